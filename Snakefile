@@ -1,0 +1,24 @@
+# asperity: constitutive models of rough contact interfaces (Oden et al. 1993).
+#
+#   snakemake --cores 2            every scene of config/config.yaml
+#   snakemake --cores 2 results/greenwood_williamson/interface.nc
+#
+# The task graph is that of DESIGN.md: surface.nc -> (checkpoint) plan.nc ->
+# one job per asperity sample -> asperities.nc -> interface.nc -> figures.
+# Rules live in workflow/rules/, one file per stage; scripts in
+# workflow/scripts/ read snakemake.input/params and call the library.
+
+configfile: "config/config.yaml"
+
+
+include: "workflow/rules/common.smk"
+include: "workflow/rules/surface.smk"
+include: "workflow/rules/population.smk"
+include: "workflow/rules/homogenize.smk"
+include: "workflow/rules/figures.smk"
+
+
+rule all:
+    input:
+        [target for name in config["scenes"] for target in scene_targets(name)],
+    default_target: True

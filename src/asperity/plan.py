@@ -1,0 +1,153 @@
+"""The plan: which asperity samples a scene needs (DESIGN.md, task graph).
+
+A sample is (height, curvature, unloading level).  The plan lays samples on
+a grid over the effective support of the peak density (report 2.5.1,
+assumption (a)), gives every sample the interference levels at which its
+response is needed, and a key: a short hash of everything its job depends on
+and nothing else.  Where the physics makes samples the same problem up to a
+shift (an asperity whose response depends on the interference only, not on
+the height of its peak), they share one key and the plan marks all but one
+as derived.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+from typing import Any, Mapping
+
+import numpy as np
+import xarray as xr
+
+#: Asperity models whose response needs no job of its own (closed forms).
+ANALYTIC_MODELS = ("hertz", "constant")
+#: Models whose response depends on interference = height - separation only.
+SHIFT_INVARIANT_MODELS = ("hertz", "constant")
+
+
+def sample_key(payload: Mapping[str, Any]) -> str:
+    """A 12-hex-digit hash of a job's inputs (canonical JSON, floats exact)."""
+
+    def plain(obj):
+        if isinstance(obj, Mapping):
+            return {str(k): plain(v) for k, v in sorted(obj.items())}
+        if isinstance(obj, (list, tuple, np.ndarray)):
+            return [plain(v) for v in obj]
+        if isinstance(obj, (float, np.floating)):
+            return float(obj).hex()
+        if isinstance(obj, np.integer):
+            return int(obj)
+        return obj
+
+    text = json.dumps(plain(payload), sort_keys=True, separators=(",", ":"))
+    return hashlib.sha256(text.encode()).hexdigest()[:12]
+
+
+def interference_grid(largest: float, count: int, smallest_fraction: float = 1e-5) -> np.ndarray:
+    """0 followed by `count - 1` geometrically spaced levels up to `largest`.
+
+    A geometric grid resolves the onset of contact (force ~ w^{3/2} for a
+    Hertzian tip) with the same relative accuracy at every scale, which a
+    uniform grid cannot.
+    """
+    if not largest > 0:
+        raise ValueError(f"largest interference must be positive, got {largest}")
+    if count < 4:
+        raise ValueError(f"the interference grid needs at least 4 levels, got {count}")
+    return np.concatenate([[0.0], np.geomspace(largest * smallest_fraction, largest, count - 1)])
+
+
+def sample_grid(lo: float, hi: float, count: int, positive: bool = False) -> np.ndarray:
+    """`count` equally spaced values on [lo, hi] (one value: the midpoint).
+
+    With `positive`, a zero lower end is moved to hi / (2 (count - 1)) so that
+    no sample sits at zero curvature (a flat tip, infinite Hertz force).
+    """
+    if count == 1 or hi == lo:
+        return np.array([0.5 * (lo + hi)])
+    if positive and lo <= 0:
+        lo = hi / (2.0 * (count - 1))
+    return np.linspace(lo, hi, count)
+
+
+def make_plan(
+    heights: np.ndarray,
+    curvatures: np.ndarray,
+    interferences: np.ndarray,
+    *,
+    model: str,
+    job_inputs: Mapping[str, Any],
+) -> xr.Dataset:
+    """The samples of a scene on the grid heights x curvatures.
+
+    `job_inputs` is everything a sample's job depends on besides its own
+    height and curvature (material, effects, accuracy, model options); it
+    goes into the key.
+    """
+    heights = np.asarray(heights, float)
+    curvatures = np.asarray(curvatures, float)
+    hh, kk = np.meshgrid(heights, curvatures, indexing="ij")
+    hh, kk = hh.ravel(), kk.ravel()
+    shift_invariant = model in SHIFT_INVARIANT_MODELS
+    base = {"model": model, "interference": np.asarray(interferences, float), **job_inputs}
+    keys = np.array(
+        [
+            sample_key({**base, "curvature": k, **({} if shift_invariant else {"height": h})})
+            for h, k in zip(hh, kk)
+        ]
+    )
+    _, first = np.unique(keys, return_index=True)
+    representative = np.zeros(keys.size, bool)
+    representative[first] = True
+    derived_from = np.where(representative, "", keys)
+    job = representative & (model not in ANALYTIC_MODELS)
+    sample = np.arange(keys.size)
+    ds = xr.Dataset(
+        {
+            "sample_height": ("sample", hh, {"units": "m", "long_name": "peak height of the sample"}),
+            "sample_curvature": (
+                "sample",
+                kk,
+                {"units": "1/m", "long_name": "mean tip curvature of the sample"},
+            ),
+            "unloading_level": (
+                "sample",
+                np.full(keys.size, np.nan),
+                {"units": "m", "long_name": "interference from which the sample unloads (NaN: none)"},
+            ),
+            "key": ("sample", keys, {"units": "1", "long_name": "hash of the inputs of the sample's job"}),
+            "derived_from": (
+                "sample",
+                derived_from,
+                {
+                    "units": "1",
+                    "long_name": "key of the sample this one is derived from by a shift in height "
+                    "(empty: computed itself)",
+                },
+            ),
+            "job": ("sample", job, {"units": "1", "long_name": "sample needs a finite element job"}),
+        },
+        coords={
+            "sample": ("sample", sample, {"units": "1", "long_name": "sample index"}),
+            "height": ("height", heights, {"units": "m", "long_name": "peak height grid"}),
+            "curvature": ("curvature", curvatures, {"units": "1/m", "long_name": "tip curvature grid"}),
+            "interference": (
+                "interference",
+                np.asarray(interferences, float),
+                {"units": "m", "long_name": "interference levels of every sample"},
+            ),
+        },
+    )
+    ds.attrs["model"] = model
+    ds.attrs["derived"] = (
+        f"{int((~representative).sum())} of {keys.size} samples derived by a shift in height "
+        "(response depends on interference only)"
+        if shift_invariant
+        else "no sample derived"
+    )
+    return ds
+
+
+def job_keys(plan: xr.Dataset) -> list[str]:
+    """Keys of the samples that need a job of their own."""
+    return [str(k) for k in plan["key"].values[plan["job"].values.astype(bool)]]

@@ -1,0 +1,138 @@
+"""Figures drawn from the result datasets (never from anything else).
+
+Files hold SI; figures show the scene's length unit where that reads better.
+Each function returns a matplotlib Figure; ``asperity.io.figures`` saves it.
+"""
+
+from __future__ import annotations
+
+import matplotlib
+
+matplotlib.use("Agg")
+
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+import xarray as xr  # noqa: E402
+
+from asperity import units  # noqa: E402
+
+METHOD_STYLE = {
+    "sampling": dict(color="C0", marker="o"),
+    "counting": dict(color="C1", marker="s"),
+    "spectral": dict(color="C2", marker="^"),
+    "exact": dict(color="k", marker="*"),
+    "given": dict(color="k", marker="*"),
+}
+
+
+def surface_figure(
+    surface: xr.Dataset,
+    profile: tuple[np.ndarray, np.ndarray] | None = None,
+    convergence: xr.Dataset | None = None,
+    length_unit: str = "m",
+) -> plt.Figure:
+    """Profile (report Figs. 2.11, 2.12a), statistics by method, convergence."""
+    scale = units.length_scale(length_unit)
+    panels = 1 + (profile is not None) + (convergence is not None)
+    fig, axes = plt.subplots(1, panels, figsize=(5.2 * panels, 4.0), squeeze=False)
+    axes = list(axes[0])
+    if profile is not None:
+        ax = axes.pop(0)
+        x, z = profile
+        n = min(x.size, 1000)
+        ax.plot(x[:n] / scale, z[:n] / scale, lw=0.8)
+        ax.set(xlabel=f"position [{length_unit}]", ylabel=f"height [{length_unit}]",
+               title=f"profile (first {n} of {x.size} points)")
+    ax = axes.pop(0)
+    names = ["sigma", "sigma_slope", "sigma_curvature", "beta", "peak_density"]
+    names = [n for n in names if n in surface]
+    if "method" in surface.dims:
+        reference = "exact" if "exact" in surface["method"].values else None
+        for method in surface["method"].values:
+            if method == reference:
+                continue
+            vals = np.array([float(surface[n].sel(method=method)) for n in names])
+            if reference:
+                ref = np.array([float(surface[n].sel(method=reference)) for n in names])
+                y = 100 * np.abs(vals / ref - 1)
+            else:
+                y = vals
+            ax.plot(range(len(names)), y, ls="none", label=str(method),
+                    **METHOD_STYLE.get(str(method), {}))
+        ax.set_xticks(range(len(names)), [n.replace("sigma_", "σ ") for n in names], rotation=30)
+        if reference:
+            ax.set_yscale("log")
+            ax.set_ylabel("error against exact [%]")
+            ax.axhline(0.1, color="r", lw=0.8, ls="--", label="0.1 %")
+        else:
+            ax.set_ylabel("value (SI)")
+        ax.legend(fontsize=8)
+        ax.set_title("statistics by method")
+    else:
+        text = "\n".join(f"{n} = {float(surface[n]):.6g} {surface[n].attrs['units']}"
+                         for n in surface.data_vars if surface[n].ndim == 0)
+        ax.text(0.05, 0.5, text, transform=ax.transAxes, va="center", family="monospace")
+        ax.set_axis_off()
+    if convergence is not None:
+        ax = axes.pop(0)
+        h = convergence["spacing"].values / scale
+        for name, color in (("sigma", "C0"), ("sigma_slope", "C1"), ("sigma_curvature", "C2")):
+            for method, ls in (("sampling", "-"), ("counting", "--")):
+                ax.loglog(h, convergence[f"{name}_error"].sel(method=method), ls=ls, color=color,
+                          marker="o", label=f"{name} ({method})")
+        ax.set(xlabel=f"sampling interval [{length_unit}]", ylabel="relative error against series",
+               title="convergence with the sampling interval")
+        ax.legend(fontsize=7)
+    fig.tight_layout()
+    return fig
+
+
+def expectation_figure(density_values: np.ndarray, z: np.ndarray, kappa: np.ndarray,
+                       expectation: xr.Dataset) -> plt.Figure:
+    """The peak density, its effective support and the integration cells (Fig. 2.10)."""
+    fig, ax = plt.subplots(figsize=(6, 4.5))
+    levels = np.geomspace(1e-6, density_values.max(), 12)
+    cs = ax.contourf(z, kappa, density_values.T, levels=levels, norm=matplotlib.colors.LogNorm(),
+                     cmap="viridis")
+    fig.colorbar(cs, ax=ax, label="f(z_p, κ)")
+    s = expectation["support"].values
+    r = expectation["rectangle"].values
+    ax.add_patch(plt.Rectangle((s[0], s[2]), s[1] - s[0], s[3] - s[2], fill=False, ec="w", ls="--",
+                               label="effective support"))
+    ax.add_patch(plt.Rectangle((r[0], r[2]), r[1] - r[0], r[3] - r[2], fill=False, ec="r",
+                               label="integration rectangle"))
+    ax.set(xlabel="peak height z_p [m]", ylabel="tip curvature κ [1/m]",
+           title=(f"raw integral {float(expectation.integral):.5f}, I = "
+                  f"{float(expectation.normalization):.5f}, E = {float(expectation.expectation):.12f}"))
+    ax.legend(fontsize=8, loc="upper left")
+    return fig
+
+
+def interface_figure(interface: xr.Dataset, verification: xr.Dataset | None = None,
+                     length_unit: str = "m", pressure_unit: str = "Pa") -> plt.Figure:
+    """Pressure and real contact area versus separation, and pressure versus area (Fig. 7.1)."""
+    ls_ = units.length_scale(length_unit)
+    ps = units.pressure_scale(pressure_unit)
+    h = interface["separation"].values / ls_
+    p = interface["nominal_pressure"].values / ps
+    a = interface["contact_area_ratio"].values
+    fig, axes = plt.subplots(1, 3, figsize=(15, 4.2))
+    axes[0].semilogy(h, p, "o-", ms=3, label="homogenized")
+    axes[1].semilogy(h, a, "o-", ms=3, label="homogenized")
+    axes[2].loglog(a, p, "o-", ms=3, label="homogenized")
+    if verification is not None:
+        pc = verification["nominal_pressure_closed_form"].values / ps
+        ac = verification["contact_area_ratio_closed_form"].values
+        axes[0].semilogy(h, pc, "k--", label="closed form")
+        axes[1].semilogy(h, ac, "k--", label="closed form")
+        axes[2].loglog(ac, pc, "k--", label="closed form")
+        worst = verification.attrs.get("max_nominal_pressure_error", np.nan)
+        axes[0].set_title(f"largest load error {100 * worst:.3f} % (load ≥ 1e-6 max)")
+    axes[0].set(xlabel=f"separation [{length_unit}]", ylabel=f"nominal pressure [{pressure_unit}]")
+    axes[1].set(xlabel=f"separation [{length_unit}]", ylabel="real contact area ratio A/A0")
+    axes[2].set(xlabel="real contact area ratio A/A0", ylabel=f"nominal pressure [{pressure_unit}]")
+    for ax in axes:
+        ax.legend(fontsize=8)
+        ax.grid(True, which="both", alpha=0.3)
+    fig.tight_layout()
+    return fig

@@ -1,0 +1,425 @@
+"""The stages of the pipeline as functions of data (DESIGN.md, task graph).
+
+Each function takes the datasets of the previous stage and the scene's
+configuration subtrees (as a scene file spells them, in the scene's units)
+and returns the dataset of its stage, in SI.  They know nothing of files or
+of the workflow manager: the workflow scripts read, call one of these, and
+write through ``asperity.io``.
+"""
+
+from __future__ import annotations
+
+import logging
+from typing import Any, Mapping
+
+import numpy as np
+import xarray as xr
+
+from asperity import greenwood_williamson, hertz, homogenize, peaks, surface, units
+from asperity.plan import interference_grid, make_plan, sample_grid
+
+log = logging.getLogger("asperity")
+
+Config = Mapping[str, Any]
+
+
+def _attrs(units_: str, long_name: str) -> dict[str, str]:
+    return {"units": units_, "long_name": long_name}
+
+
+def length_factor(units_cfg: Config) -> float:
+    return units.length_scale(units_cfg["length"])
+
+
+def material_si(material: Config, units_cfg: Config) -> dict[str, float]:
+    """Young's modulus in Pa and Poisson's ratio from a scene's material."""
+    pressure = units.pressure_scale(units_cfg.get("pressure", "Pa"))
+    return {"youngs_modulus": material["youngs_modulus"] * pressure, "poisson": material["poisson"]}
+
+
+# ---------------------------------------------------------------- surface
+
+
+def synthetic_profile(generate: Config) -> tuple[np.ndarray, np.ndarray]:
+    """Positions and heights of a synthetic profile of report 2.6.1, scene units."""
+    x = np.arange(0.0, generate["length"] + 0.5 * generate["spacing"], generate["spacing"])
+    if generate["kind"] == "cosine":
+        return x, generate["amplitude"] * np.cos(generate["wavenumber"] * x)
+    c, k, e = surface.quasirandom_series(n=generate["components"], seed=generate["seed"])
+    return x, surface.evaluate_series(x, c, k, e)
+
+
+def _series_reference(generate: Config, length: float) -> dict[str, float] | None:
+    """Exact statistics of a synthetic profile (eq. 2.4 for a series), SI."""
+    if generate["kind"] == "cosine":
+        c, k = generate["amplitude"], generate["wavenumber"]
+        amplitudes, wavenumbers = np.array([c]), np.array([k])
+    else:
+        amplitudes, wavenumbers, _ = surface.quasirandom_series(
+            n=generate["components"], seed=generate["seed"]
+        )
+    exact = surface.series_statistics(amplitudes, wavenumbers)
+    return {
+        "sigma": exact["sigma"] * length,
+        "sigma_slope": exact["sigma_slope"],
+        "sigma_curvature": exact["sigma_curvature"] / length,
+        "beta": exact["beta"],
+    }
+
+
+def surface_from_profile(z: np.ndarray, dx: float, surface_cfg: Config) -> xr.Dataset:
+    """Profile statistics by sampling, counting and spectrum (2.3.1), SI input.
+
+    For a synthetic profile the exact statistics are added as method
+    ``exact`` (cosine: closed form; series: eq. 2.4).
+    """
+    ds = surface.profile_statistics(z, dx)
+    generate = surface_cfg["profile"].get("generate")
+    if generate:
+        # the synthetic profile was written in scene units and read back in SI;
+        # its exact statistics scale with the same factor
+        length = dx / generate["spacing"]
+        exact = _series_reference(generate, length)
+        extra = xr.full_like(ds.isel(method=0), np.nan).expand_dims(method=["exact"])
+        for name, value in exact.items():
+            extra[name] = extra[name].copy(data=np.array([value]))
+        extra["m0"] = extra["sigma"] ** 2
+        extra["m2"] = extra["sigma_slope"] ** 2
+        extra["m4"] = extra["sigma_curvature"] ** 2
+        extra["peak_density"] = extra["m4"] / (6 * np.pi * np.sqrt(3) * extra["m2"])
+        merged = xr.concat([ds, extra], dim="method", data_vars="all", coords="minimal")
+        for name in ds.variables:
+            merged[name].attrs = ds[name].attrs
+        ds = merged
+    ds.attrs["population_method"] = surface_cfg.get("method", "sampling")
+    return ds
+
+
+def surface_from_map(z: np.ndarray, dx: float, dy: float, surface_cfg: Config) -> xr.Dataset:
+    """Statistics and peaks of a 2-D height map (2.4.3), SI input."""
+    ds = xr.merge([surface.map_statistics(z, dx, dy), surface.map_peaks(z, dx, dy)])
+    ds.attrs["population_method"] = "map"
+    return ds
+
+
+def surface_from_statistics(surface_cfg: Config, units_cfg: Config) -> xr.Dataset:
+    """Surface statistics given in the scene (report 2.6.2), as method ``given``."""
+    length = length_factor(units_cfg)
+    if "gaussian_heights" in surface_cfg:
+        gh = surface_cfg["gaussian_heights"]
+        ds = xr.Dataset(
+            {
+                "sigma_peak_height": ((), gh["sigma_peak_height"] * length,
+                                      _attrs("m", "standard deviation of peak heights")),
+                "tip_curvature": ((), 1.0 / (gh["radius"] * length),
+                                  _attrs("1/m", "curvature of every asperity tip (1/R)")),
+                "peak_density": ((), gh["peak_density"] / length**2,
+                                 _attrs("1/m^2", "peaks per unit nominal area")),
+            }
+        )
+        ds.attrs["population_method"] = "gaussian_heights"
+        return ds
+    st = surface_cfg["statistics"]
+    values = {
+        "mean_height": (st.get("mean_height", 0.0) * length, "m", "mean height"),
+        "sigma": (st["sigma"] * length, "m", "standard deviation of height"),
+        "sigma_slope": (st["sigma_slope"], "1", "standard deviation of slope"),
+        "sigma_curvature": (st["sigma_curvature"] / length, "1/m", "standard deviation of curvature"),
+        "peak_density": (st["peak_density"] / length**2, "1/m^2", "peaks per unit nominal area"),
+    }
+    ds = xr.Dataset(
+        {name: ("method", [v], _attrs(u, ln)) for name, (v, u, ln) in values.items()},
+        coords={"method": ("method", ["given"], _attrs("1", "how the statistics were obtained"))},
+    )
+    ds["m0"] = (ds["sigma"] ** 2).assign_attrs(_attrs("m^2", "spectral moment m0"))
+    ds["m2"] = (ds["sigma_slope"] ** 2).assign_attrs(_attrs("1", "spectral moment m2"))
+    ds["m4"] = (ds["sigma_curvature"] ** 2).assign_attrs(_attrs("1/m^2", "spectral moment m4"))
+    ds["beta"] = (np.sqrt(1.5) * ds["m2"] / np.sqrt(ds["m0"] * ds["m4"])).assign_attrs(
+        _attrs("1", "wavelength spectrum parameter beta (2.4.1)")
+    )
+    ds.attrs["population_method"] = "given"
+    return ds
+
+
+def series_convergence(generate: Config, units_cfg: Config) -> xr.Dataset:
+    """Sampled statistics of a synthetic profile versus spacing, against exact (2.6.1).
+
+    The report notes that the differences shrink with the spacing "but they
+    do not vanish"; this dataset shows how fast they shrink here.
+    """
+    length = length_factor(units_cfg)
+    exact = _series_reference(generate, length)
+    names = ["sigma", "sigma_slope", "sigma_curvature", "beta"]
+    spacings = np.asarray(generate["convergence_spacings"], float)
+    rows = []
+    for spacing in spacings:  # a handful of spacings; each call is vectorized
+        x, z = synthetic_profile({**generate, "spacing": spacing})
+        stats = surface.profile_statistics(z * length, spacing * length)
+        rows.append(stats[names].sel(method=["sampling", "counting", "spectral"]))
+    ds = xr.concat(rows, dim="spacing")
+    ds = ds.assign_coords(
+        spacing=("spacing", spacings * length, _attrs("m", "sampling interval of the profile"))
+    )
+    for name in names:
+        ds[name].attrs = rows[0][name].attrs
+        err = np.abs(ds[name] / exact[name] - 1.0)
+        ds[f"{name}_error"] = err.assign_attrs(
+            _attrs("1", f"relative error of {rows[0][name].attrs['long_name']} against the series")
+        )
+        ds[f"{name}_exact"] = xr.DataArray(exact[name], attrs={
+            "units": rows[0][name].attrs["units"],
+            "long_name": f"{rows[0][name].attrs['long_name']} of the series (eq. 2.4)"})
+    return ds
+
+
+# ------------------------------------------------------------- population
+
+
+def default_density(surface_ds: xr.Dataset) -> str:
+    method = surface_ds.attrs.get("population_method")
+    return {"gaussian_heights": "fixed_curvature", "map": "sampled"}.get(method, "nayak")
+
+
+def population_density(surface_ds: xr.Dataset, population: Config):
+    """The peak density of a scene: Nayak/Francis, fixed curvature, or sampled."""
+    kind = population.get("density") or default_density(surface_ds)
+    method = surface_ds.attrs.get("population_method")
+    if kind == "fixed_curvature":
+        if "sigma_peak_height" not in surface_ds:
+            raise ValueError("population.density fixed_curvature needs surface.gaussian_heights")
+        return peaks.FixedCurvatureDensity(
+            sigma_p=float(surface_ds["sigma_peak_height"]),
+            curvature=float(surface_ds["tip_curvature"]),
+        )
+    if kind == "sampled":
+        if "peak" not in surface_ds.dims:
+            raise ValueError("population.density sampled needs a 2-D map (surface.map)")
+        bins = tuple(population.get("histogram_bins", (20, 20)))
+        return peaks.SampledDensity.from_peaks(
+            surface_ds["height"].values, surface_ds["curvature"].values, bins=bins
+        )
+    stats = surface_ds.sel(method=method) if "method" in surface_ds.dims else surface_ds
+    return peaks.JointDensity(
+        sigma=float(stats["sigma"]),
+        sigma_slope=float(stats["sigma_slope"]),
+        sigma_curvature=float(stats["sigma_curvature"]),
+    )
+
+
+def peak_density(surface_ds: xr.Dataset) -> float:
+    """Peaks per unit area (1/m^2) from the surface dataset."""
+    pd = surface_ds["peak_density"]
+    if "method" in pd.dims:
+        pd = pd.sel(method=surface_ds.attrs["population_method"])
+    return float(pd)
+
+
+def height_scale(surface_ds: xr.Dataset) -> float:
+    """The standard deviation that `sigma` units of separation refer to."""
+    if "sigma_peak_height" in surface_ds:
+        return float(surface_ds["sigma_peak_height"])
+    sigma = surface_ds["sigma"]
+    if "method" in sigma.dims:
+        sigma = sigma.sel(method=surface_ds.attrs["population_method"])
+    return float(sigma)
+
+
+def bounds(density, cfg: Config, units_cfg: Config, threshold: float) -> tuple[float, float, float, float]:
+    """Integration/sampling rectangle: the effective support, or the scene's ranges."""
+    length = length_factor(units_cfg)
+    z0, z1, k0, k1 = density.support(threshold)
+    if "height_range" in cfg:
+        z0, z1 = (v * length for v in cfg["height_range"])
+    if "curvature_range" in cfg:
+        k0, k1 = (v / length for v in cfg["curvature_range"])
+    return float(z0), float(z1), float(k0), float(k1)
+
+
+def plan_dataset(
+    surface_ds: xr.Dataset,
+    population: Config,
+    asperity: Config,
+    material: Config,
+    effects: list[str],
+    units_cfg: Config,
+    accuracy: str,
+) -> xr.Dataset:
+    """The samples a scene needs (DESIGN.md: the plan)."""
+    density = population_density(surface_ds, population)
+    threshold = population.get("support_threshold", 1e-4)
+    z0, z1, k0, k1 = bounds(density, population, units_cfg, threshold)
+    counts = population.get("samples", {})
+    heights = sample_grid(z0, z1, counts.get("height", 11))
+    curvatures = (
+        np.array([density.curvature])
+        if isinstance(density, peaks.FixedCurvatureDensity)
+        else sample_grid(k0, k1, counts.get("curvature", 21), positive=True)
+    )
+    grid = interference_grid(z1 - z0, counts.get("interference", 241))
+    model = asperity["model"]
+    job_inputs = {
+        "material": material_si(material, units_cfg) if material else {},
+        "effects": sorted(effects),
+        "accuracy": accuracy if model not in ("hertz", "constant") else "exact",
+    }
+    plan = make_plan(heights, curvatures, grid, model=model, job_inputs=job_inputs)
+    plan.attrs["support"] = f"height [{z0:.6g}, {z1:.6g}] m, curvature [{k0:.6g}, {k1:.6g}] 1/m"
+    plan.attrs["support_threshold"] = threshold
+    log.info("plan: %d samples, %s", plan.sizes["sample"], plan.attrs["derived"])
+    return plan
+
+
+# ------------------------------------------------------------- asperities
+
+
+def asperities_dataset(
+    plan: xr.Dataset, asperity: Config, material: Config, units_cfg: Config,
+    samples: Mapping[str, xr.Dataset] | None = None,
+) -> xr.Dataset:
+    """Responses of all samples on (height, curvature, interference)."""
+    model = asperity["model"]
+    if model == "hertz":
+        mat = material_si(material, units_cfg)
+        return hertz.hertz_asperities(
+            plan["height"].values, plan["curvature"].values, plan["interference"].values,
+            mat["youngs_modulus"], mat["poisson"],
+        )
+    raise ValueError(f"asperity.model {model!r} has no response on a sample grid")
+
+
+# --------------------------------------------------------- homogenization
+
+
+def separations(homogenization: Config, surface_ds: xr.Dataset, units_cfg: Config) -> np.ndarray:
+    sep = homogenization.get("separations", {"start": 0.0, "stop": 3.0, "count": 31})
+    scale = height_scale(surface_ds) if sep.get("unit", "sigma") == "sigma" else length_factor(units_cfg)
+    return np.linspace(sep["start"], sep["stop"], sep["count"]) * scale
+
+
+def interface_dataset(
+    asperities: xr.Dataset, surface_ds: xr.Dataset, plan: xr.Dataset,
+    population: Config, homogenization: Config, units_cfg: Config,
+) -> xr.Dataset:
+    """Nominal pressure, contact area ratio, stiffness versus separation (2.5)."""
+    density = population_density(surface_ds, population)
+    threshold = float(plan.attrs.get("support_threshold", 1e-4))
+    rect = bounds(density, homogenization, units_cfg, threshold)
+    rule = homogenization.get("rule", "gauss")
+    if isinstance(density, peaks.SampledDensity) and rule != "peaks":
+        log.info("sampled density: rule %s over histogram cells", rule)
+    out = homogenize.interface_response(
+        asperities, density, separations(homogenization, surface_ds, units_cfg),
+        bounds=rect, cells=tuple(homogenization.get("cells", (40, 40))), rule=rule,
+        peak_density=peak_density(surface_ds),
+    )
+    out.attrs["rule"] = rule
+    out.attrs["cells"] = str(tuple(homogenization.get("cells", (40, 40))))
+    return out
+
+
+def expectation_dataset(
+    surface_ds: xr.Dataset, population: Config, asperity: Config,
+    homogenization: Config, units_cfg: Config,
+) -> xr.Dataset:
+    """E(X) for a constant X: the check of report 2.6.2 (eqs. 2.5 to 2.7)."""
+    density = population_density(surface_ds, population)
+    threshold = population.get("support_threshold", 1e-4)
+    support = density.support(threshold)
+    rect = bounds(density, homogenization, units_cfg, threshold)
+    area = homogenization.get("area", 1.0) * length_factor(units_cfg) ** 2
+    value = asperity.get("value", 1.0)
+    res = homogenize.expectation(
+        value, density, rect, cells=tuple(homogenization.get("cells", (20, 20))),
+        rule=homogenization.get("rule", "trapezoid"), peak_density=peak_density(surface_ds), area=area,
+    )
+    scalar = lambda v, u, ln: ((), float(v), _attrs(u, ln))  # noqa: E731
+    ds = xr.Dataset(
+        {
+            "value": scalar(value, "1", "the quantity X (constant)"),
+            "integral": scalar(res.integral, "1", "integrated value of X, eq. (2.6)"),
+            "normalization": scalar(res.normalization, "1", "integral I of the peak density, (2.7)"),
+            "expectation": scalar(res.expectation, "1", "corrected expectation E(X)/I, eq. (2.7)"),
+            "macroscopic": scalar(res.macroscopic, "1", "macroscopic value N_p E(X)"),
+            "per_unit_area": scalar(res.per_unit_area, "1/m^2", "value of X per unit nominal area"),
+            "support": ("bound", np.array(support, float),
+                        _attrs("m or 1/m", "effective support: height min, max (m); curvature min, max (1/m)")),
+            "rectangle": ("bound", np.array(rect, float),
+                          _attrs("m or 1/m", "integration rectangle: height min, max (m); curvature min, max (1/m)")),
+        },
+        coords={"bound": ("bound", ["height_min", "height_max", "curvature_min", "curvature_max"],
+                          _attrs("1", "which bound"))},
+    )
+    ds.attrs["rule"] = homogenization.get("rule", "trapezoid")
+    ds.attrs["cells"] = str(tuple(homogenization.get("cells", (20, 20))))
+    ds.attrs["beta"] = float(getattr(density, "beta", np.nan))
+    return ds
+
+
+def verification_dataset(
+    surface_ds: xr.Dataset, interface: xr.Dataset, verification: str,
+    material: Config, units_cfg: Config,
+) -> xr.Dataset:
+    """The homogenized interface beside a closed form, with relative errors."""
+    if verification != "greenwood_williamson":
+        raise ValueError(f"unknown verification {verification!r}")
+    mat = material_si(material, units_cfg)
+    closed = greenwood_williamson.gw_interface(
+        interface["separation"].values,
+        radius=1.0 / float(surface_ds["tip_curvature"]),
+        sigma_p=float(surface_ds["sigma_peak_height"]),
+        peak_density=float(surface_ds["peak_density"]),
+        E=mat["youngs_modulus"], nu=mat["poisson"],
+    )
+    ds = xr.Dataset(coords={"separation": interface["separation"]})
+    pressure = interface["nominal_pressure"]
+    relevant = pressure >= 1e-6 * float(pressure.max())
+    ds["relevant"] = relevant.assign_attrs(
+        _attrs("1", "load at least 1e-6 of its maximum (where the 0.5% bound applies)"))
+    for name in ("nominal_pressure", "contact_area_ratio", "contact_count"):
+        if name not in interface or name not in closed:
+            continue
+        ds[name] = interface[name]
+        ds[f"{name}_closed_form"] = closed[name].assign_attrs(
+            _attrs(interface[name].attrs["units"], f"{interface[name].attrs['long_name']}, closed form"))
+        err = xr.where(closed[name] > 0, np.abs(interface[name] / closed[name] - 1.0), 0.0)
+        ds[f"{name}_error"] = err.assign_attrs(
+            _attrs("1", f"relative error of {interface[name].attrs['long_name']} against the closed form"))
+        ds.attrs[f"max_{name}_error"] = float(err.where(relevant).max())
+    return ds
+
+
+def sample_dataset(
+    plan: xr.Dataset, key: str, asperity: Config, material: Config, units_cfg: Config, accuracy: str,
+) -> xr.Dataset:
+    """The response of one sample of the plan (DESIGN.md: samples/<key>.nc)."""
+    match = np.flatnonzero(plan["key"].values == key)
+    if match.size == 0:
+        raise ValueError(f"sample {key}: not in the plan")
+    row = plan.isel(sample=int(match[0]))
+    model = asperity["model"]
+    if model != "hertz":
+        raise ValueError(f"sample {key}: asperity.model {model!r} has no per-sample model")
+    mat = material_si(material, units_cfg)
+    w = plan["interference"].values
+    res = hertz.hertz_response(w, float(row["sample_curvature"]), mat["youngs_modulus"], mat["poisson"])
+    step = np.arange(w.size)
+    ds = xr.Dataset(
+        {
+            "interference": ("step", w, _attrs("m", "interference of the flat with the peak")),
+            "force": ("step", res["force"], _attrs("N", "normal contact force")),
+            "contact_area": ("step", res["contact_area"], _attrs("m^2", "real contact area")),
+            "stiffness": ("step", res["stiffness"], _attrs("N/m", "normal stiffness dF/dw")),
+        },
+        coords={"step": ("step", step, _attrs("1", "load step"))},
+    )
+    ds.attrs.update(key=key, model=model, height=float(row["sample_height"]),
+                    curvature=float(row["sample_curvature"]))
+    return ds
+
+
+def density_on_grid(surface_ds: xr.Dataset, population: Config, rect, n: int = 200):
+    """The joint peak density on an n x n grid over `rect` (for figures)."""
+    density = population_density(surface_ds, population)
+    z = np.linspace(rect[0], rect[1], n)
+    kappa = np.linspace(rect[2], rect[3], n)
+    return z, kappa, density.pdf(z[:, None], kappa[None, :])

@@ -1,0 +1,100 @@
+# Loading and validating the configuration and the scenes, and the targets of
+# each scene. Everything a rule depends on reaches it through `params:`.
+
+from pathlib import Path
+
+import jsonschema
+import yaml
+from snakemake.exceptions import WorkflowError
+from snakemake.utils import validate
+
+RESULTS = config.get("results", "results")
+SCENE_DIR = Path(config.get("scene_dir", "config/scenes"))
+
+
+def _schema_error(error):
+    """The jsonschema error behind a snakemake validation failure."""
+    seen = error
+    while seen is not None and not isinstance(seen, jsonschema.ValidationError):
+        seen = seen.__cause__ or seen.__context__
+    return seen
+
+
+def _explain(error):
+    """'file: key.path: message' for a validation error of config or a scene."""
+    path = list(error.absolute_path)
+    if len(path) >= 2 and path[0] == "scene_definitions":
+        where = SCENE_DIR / f"{path[1]}.yaml"
+        key = ".".join(str(p) for p in path[2:]) or "(top level)"
+    else:
+        where = Path("config/config.yaml")
+        key = ".".join(str(p) for p in path) or "(top level)"
+    return f"{where}: key {key}: {error.message}"
+
+
+def _load_scenes():
+    definitions = {}
+    for name in config["scenes"]:
+        scene_file = SCENE_DIR / f"{name}.yaml"
+        if not scene_file.exists():
+            raise WorkflowError(f"config/config.yaml: key scenes: no scene file {scene_file}")
+        with open(scene_file) as fh:
+            try:
+                definitions[name] = yaml.safe_load(fh) or {}
+            except yaml.YAMLError as err:
+                raise WorkflowError(f"{scene_file}: not valid YAML: {err}")
+    config["scene_definitions"] = definitions
+    try:
+        validate(config, "../../config/schema.yaml")
+    except WorkflowError as err:
+        cause = _schema_error(err)
+        raise WorkflowError(_explain(cause) if cause is not None else str(err)) from None
+    for name, scene in definitions.items():
+        for kind in ("profile", "map"):
+            source = scene["surface"].get(kind, {})
+            if "file" in source and not Path(source["file"]).exists():
+                raise WorkflowError(
+                    f"{SCENE_DIR / (name + '.yaml')}: key surface.{kind}.file: "
+                    f"no such file {source['file']}"
+                )
+    return definitions
+
+
+SCENES = _load_scenes()
+
+
+def scene(wildcards):
+    return SCENES[wildcards.scene]
+
+
+def scene_part(part, default=None):
+    """A params function giving one subtree of the scene (triggers reruns on change)."""
+    return lambda wildcards: SCENES[wildcards.scene].get(part, default)
+
+
+def surface_kind(name):
+    surface = SCENES[name]["surface"]
+    return next(k for k in ("profile", "map", "statistics", "gaussian_heights") if k in surface)
+
+
+def generated(name):
+    return SCENES[name]["surface"].get(surface_kind(name), {}).get("generate")
+
+
+def model(name):
+    return SCENES[name].get("asperity", {}).get("model")
+
+
+def scene_targets(name):
+    out = f"{RESULTS}/{name}"
+    targets = [f"{out}/surface.nc", f"{out}/figures/surface.png"]
+    gen = generated(name)
+    if gen and gen.get("convergence_spacings"):
+        targets.append(f"{out}/convergence.nc")
+    if model(name) == "constant":
+        targets += [f"{out}/expectation.nc", f"{out}/figures/expectation.png"]
+    elif model(name) is not None:
+        targets += [f"{out}/interface.nc", f"{out}/figures/interface.png"]
+        if SCENES[name].get("verification"):
+            targets.append(f"{out}/verification.nc")
+    return targets

@@ -1,0 +1,71 @@
+# Figures drawn from the netCDF files only (asperity.plots).
+
+
+def interface_figure_inputs(wildcards):
+    out = f"{RESULTS}/{wildcards.scene}"
+    inputs = {"interface": f"{out}/interface.nc", "surface": f"{out}/surface.nc"}
+    if SCENES[wildcards.scene].get("verification"):
+        inputs["verification"] = f"{out}/verification.nc"
+    return inputs
+
+
+def surface_figure_inputs(wildcards):
+    out = f"{RESULTS}/{wildcards.scene}"
+    inputs = {"surface": f"{out}/surface.nc"}
+    if generated(wildcards.scene) or surface_kind(wildcards.scene) in ("profile", "map"):
+        inputs.update(surface_inputs(wildcards))
+    gen = generated(wildcards.scene)
+    if gen and gen.get("convergence_spacings"):
+        inputs["convergence"] = f"{out}/convergence.nc"
+    return inputs
+
+
+rule surface_figure:
+    input:
+        unpack(surface_figure_inputs),
+    output:
+        report(
+            f"{RESULTS}/{{scene}}/figures/surface.png",
+            category="{scene}",
+            caption="../report/surface.rst",
+        ),
+    params:
+        kind=lambda w: surface_kind(w.scene),
+        units=scene_part("units"),
+    log:
+        f"{RESULTS}/{{scene}}/logs/surface_figure.log",
+    script:
+        "../scripts/surface_figure.py"
+
+
+rule expectation_figure:
+    input:
+        surface=f"{RESULTS}/{{scene}}/surface.nc",
+        expectation=f"{RESULTS}/{{scene}}/expectation.nc",
+    output:
+        report(
+            f"{RESULTS}/{{scene}}/figures/expectation.png",
+            category="{scene}",
+            caption="../report/expectation.rst",
+        ),
+    log:
+        f"{RESULTS}/{{scene}}/logs/expectation_figure.log",
+    script:
+        "../scripts/expectation_figure.py"
+
+
+rule interface_figure:
+    input:
+        unpack(interface_figure_inputs),
+    output:
+        report(
+            f"{RESULTS}/{{scene}}/figures/interface.png",
+            category="{scene}",
+            caption="../report/interface.rst",
+        ),
+    params:
+        units=scene_part("units"),
+    log:
+        f"{RESULTS}/{{scene}}/logs/interface_figure.log",
+    script:
+        "../scripts/interface_figure.py"

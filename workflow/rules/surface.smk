@@ -1,0 +1,54 @@
+# Stage 1-2: profile or map statistics (report 2.3, 2.4.3) -> surface.nc
+
+
+def surface_inputs(wildcards):
+    kind = surface_kind(wildcards.scene)
+    source = SCENES[wildcards.scene]["surface"][kind]
+    if kind in ("profile", "map"):
+        if "generate" in source:
+            return {"data": f"{RESULTS}/{wildcards.scene}/input/{kind}.txt"}
+        return {"data": source["file"]}
+    return {}
+
+
+rule synthetic_profile:
+    """A synthetic profile of the report's examples (2.6.1), written as a text file."""
+    output:
+        f"{RESULTS}/{{scene}}/input/profile.txt",
+    params:
+        generate=lambda w: SCENES[w.scene]["surface"]["profile"]["generate"],
+        units=scene_part("units"),
+    log:
+        f"{RESULTS}/{{scene}}/logs/synthetic_profile.log",
+    script:
+        "../scripts/synthetic_profile.py"
+
+
+rule surface:
+    """Surface statistics by sampling, counting and spectrum; or given statistics."""
+    input:
+        unpack(surface_inputs),
+    output:
+        f"{RESULTS}/{{scene}}/surface.nc",
+    params:
+        scene=lambda w: w.scene,
+        surface=scene_part("surface"),
+        units=scene_part("units"),
+    log:
+        f"{RESULTS}/{{scene}}/logs/surface.log",
+    script:
+        "../scripts/surface.py"
+
+
+rule convergence:
+    """Sampled statistics of a synthetic series against its exact ones, versus spacing."""
+    output:
+        f"{RESULTS}/{{scene}}/convergence.nc",
+    params:
+        scene=lambda w: w.scene,
+        generate=lambda w: SCENES[w.scene]["surface"]["profile"]["generate"],
+        units=scene_part("units"),
+    log:
+        f"{RESULTS}/{{scene}}/logs/convergence.log",
+    script:
+        "../scripts/convergence.py"

@@ -1,0 +1,13 @@
+"""interface.nc: the homogenized interface versus separation."""
+
+from asperity import stages
+from asperity.io.netcdf import read_dataset, write_dataset
+from asperity.joblog import job_log
+
+with job_log(snakemake.log[0], "interface"):
+    p, i = snakemake.params, snakemake.input
+    ds = stages.interface_dataset(read_dataset(i.asperities), read_dataset(i.surface),
+                                  read_dataset(i.plan), p.population, p.homogenization, p.units)
+    write_dataset(ds, snakemake.output[0], scene=p.scene, title="homogenized interface",
+                  config={"population": p.population, "homogenization": p.homogenization,
+                          "units": p.units})

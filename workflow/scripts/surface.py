@@ -1,0 +1,29 @@
+"""surface.nc: statistics of the scene's profile, map, or given statistics."""
+
+from asperity import stages
+from asperity.io import inputs
+from asperity.io.netcdf import write_dataset
+from asperity.joblog import job_log
+
+with job_log(snakemake.log[0], "surface statistics") as log:
+    cfg, units = snakemake.params.surface, snakemake.params.units
+    if "profile" in cfg:
+        path = snakemake.input.data
+        z, dx = inputs.read_profile(path, spacing=cfg["profile"].get("spacing"), length_unit=units["length"])
+        log.info("profile %s: %d points, spacing %g m", path, z.size, dx)
+        try:
+            ds = stages.surface_from_profile(z, dx, cfg)
+        except ValueError as err:
+            raise inputs.InputError(f"{path}: {err}") from err
+    elif "map" in cfg:
+        path = snakemake.input.data
+        z, dx, dy = inputs.read_map(path, spacing=cfg["map"].get("spacing"), length_unit=units["length"])
+        log.info("map %s: %s points", path, z.shape)
+        try:
+            ds = stages.surface_from_map(z, dx, dy, cfg)
+        except ValueError as err:
+            raise inputs.InputError(f"{path}: {err}") from err
+    else:
+        ds = stages.surface_from_statistics(cfg, units)
+    write_dataset(ds, snakemake.output[0], scene=snakemake.params.scene,
+                  title="surface statistics", config={"surface": cfg, "units": units})

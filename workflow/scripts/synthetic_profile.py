@@ -1,0 +1,13 @@
+"""Write the synthetic profile of a scene (report 2.6.1) as a text file."""
+
+from asperity import stages
+from asperity.io.text import write_profile
+from asperity.joblog import job_log
+
+with job_log(snakemake.log[0], "synthetic profile"):
+    gen = snakemake.params.generate
+    x, z = stages.synthetic_profile(gen)
+    write_profile(
+        snakemake.output[0], x, z,
+        comment=f"synthetic profile {gen} in {snakemake.params.units['length']}",
+    )
