@@ -51,9 +51,9 @@ def surface_figure(
         for method in surface["method"].values:
             if method == reference:
                 continue
-            vals = np.array([float(surface[n].sel(method=method)) for n in names])
+            vals = np.array([float(surface[n].sel({"method": method})) for n in names])
             if reference:
-                ref = np.array([float(surface[n].sel(method=reference)) for n in names])
+                ref = np.array([float(surface[n].sel({"method": reference})) for n in names])
                 y = 100 * np.abs(vals / ref - 1)
             else:
                 y = vals
@@ -78,7 +78,7 @@ def surface_figure(
         h = convergence["spacing"].values / scale
         for name, color in (("sigma", "C0"), ("sigma_slope", "C1"), ("sigma_curvature", "C2")):
             for method, ls in (("sampling", "-"), ("counting", "--")):
-                ax.loglog(h, convergence[f"{name}_error"].sel(method=method), ls=ls, color=color,
+                ax.loglog(h, convergence[f"{name}_error"].sel({"method": method}), ls=ls, color=color,
                           marker="o", label=f"{name} ({method})")
         ax.set(xlabel=f"sampling interval [{length_unit}]", ylabel="relative error against series",
                title="convergence with the sampling interval")

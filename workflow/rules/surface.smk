@@ -6,7 +6,8 @@ def surface_inputs(wildcards):
     source = SCENES[wildcards.scene]["surface"][kind]
     if kind in ("profile", "map"):
         if "generate" in source:
-            return {"data": f"{RESULTS}/{wildcards.scene}/input/{kind}.txt"}
+            suffix = "txt" if kind == "profile" else "npy"
+            return {"data": f"{RESULTS}/{wildcards.scene}/input/{kind}.{suffix}"}
         return {"data": source["file"]}
     return {}
 
@@ -22,6 +23,18 @@ rule synthetic_profile:
         f"{RESULTS}/{{scene}}/logs/synthetic_profile.log",
     script:
         "../scripts/synthetic_profile.py"
+
+
+rule synthetic_map:
+    """A synthetic Gaussian random height map, written as .npy."""
+    output:
+        f"{RESULTS}/{{scene}}/input/map.npy",
+    params:
+        generate=lambda w: SCENES[w.scene]["surface"]["map"]["generate"],
+    log:
+        f"{RESULTS}/{{scene}}/logs/synthetic_map.log",
+    script:
+        "../scripts/synthetic_map.py"
 
 
 rule surface:

@@ -17,7 +17,8 @@ with job_log(snakemake.log[0], "surface statistics") as log:
             raise inputs.InputError(f"{path}: {err}") from err
     elif "map" in cfg:
         path = snakemake.input.data
-        z, dx, dy = inputs.read_map(path, spacing=cfg["map"].get("spacing"), length_unit=units["length"])
+        spacing = cfg["map"].get("spacing", cfg["map"].get("generate", {}).get("spacing"))
+        z, dx, dy = inputs.read_map(path, spacing=spacing, length_unit=units["length"])
         log.info("map %s: %s points", path, z.shape)
         try:
             ds = stages.surface_from_map(z, dx, dy, cfg)

@@ -1,7 +1,7 @@
 """Write the synthetic profile of a scene (report 2.6.1) as a text file."""
 
 from asperity import stages
-from asperity.io.text import write_profile
+from asperity.io.writers import write_profile
 from asperity.joblog import job_log
 
 with job_log(snakemake.log[0], "synthetic profile"):

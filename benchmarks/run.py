@@ -1,0 +1,71 @@
+"""Speed measurements of the targets the issues set (`make bench`).
+
+Each case is timed as the best of several repeats (wall clock, this
+machine), printed as a table and written to benchmarks/out/results.json.
+Targets are stated beside each case; a miss is printed, not raised: speed
+is measured here, never asserted in the unit tests.
+"""
+
+from __future__ import annotations
+
+import json
+import platform
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+
+from asperity import homogenize, peaks, surface
+
+OUT = Path(__file__).with_name("out")
+
+
+def best_of(fn, repeats=5):
+    times = []
+    for _ in range(repeats):
+        t0 = time.perf_counter()
+        fn()
+        times.append(time.perf_counter() - t0)
+    return min(times)
+
+
+def case_profile_statistics():
+    x = np.arange(1_000_000) * 0.05
+    c, k, e = surface.quasirandom_series(n=40, seed=1993)
+    z = surface.evaluate_series(x, c, k, e)
+    return best_of(lambda: surface.profile_statistics(z, 0.05), repeats=3)
+
+
+def case_expectation_gauss_200():
+    density = peaks.JointDensity(sigma=1.1620, sigma_slope=0.59221, sigma_curvature=0.49315)
+    rect = (-5.0, 10.0, 0.0, 5.0)
+    return best_of(lambda: homogenize.expectation(
+        1.0, density, rect, cells=(200, 200), rule="gauss", peak_density=0.025359))
+
+
+CASES = [
+    ("profile statistics, 10^6 points, all three methods", case_profile_statistics, 1.0),
+    ("expectation integral, 200 x 200 cells, Gauss rule", case_expectation_gauss_200, 0.1),
+]
+
+
+def main(names=None):
+    OUT.mkdir(exist_ok=True)
+    rows = []
+    for name, fn, target in CASES:
+        if names and not any(n in name for n in names):
+            continue
+        seconds = fn()
+        rows.append({"case": name, "seconds": seconds, "target_seconds": target,
+                     "met": seconds < target})
+        print(f"{name:<60s} {seconds:9.4f} s   target < {target:g} s   "
+              f"{'met' if seconds < target else 'MISSED'}", flush=True)
+    record = {"machine": platform.platform(), "python": sys.version.split()[0],
+              "processor": platform.processor() or platform.machine(), "cases": rows}
+    (OUT / "results.json").write_text(json.dumps(record, indent=2))
+    print(f"written {OUT / 'results.json'}")
+
+
+if __name__ == "__main__":
+    main(sys.argv[1:])

@@ -1,0 +1,8 @@
+"""Write the synthetic height map of a scene as .npy."""
+
+from asperity import stages
+from asperity.io.writers import write_map
+from asperity.joblog import job_log
+
+with job_log(snakemake.log[0], "synthetic map"):
+    write_map(snakemake.output[0], stages.synthetic_map(snakemake.params.generate))
