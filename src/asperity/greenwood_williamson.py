@@ -85,7 +85,7 @@ def gw_integral(m: float, t) -> np.ndarray:
     return near
 
 
-def gw_interface(separation, radius, sigma_p, peak_density, youngs_modulus, poisson) -> xr.Dataset:
+def gw_interface(separation, radius, sigma_p, peak_density, E, nu) -> xr.Dataset:
     """Greenwood-Williamson interface laws on dim ``separation`` (report 7.1).
 
     Parameters
@@ -98,8 +98,8 @@ def gw_interface(separation, radius, sigma_p, peak_density, youngs_modulus, pois
         Standard deviation of peak heights [m].
     peak_density : float
         Peaks per unit nominal area n [1/m^2].
-    youngs_modulus, poisson : float
-        E [Pa] and nu of the asperities (rigid flat).
+    E, nu : float
+        Young's modulus [Pa] and Poisson's ratio of the asperities (rigid flat).
 
     Returns
     -------
@@ -113,7 +113,7 @@ def gw_interface(separation, radius, sigma_p, peak_density, youngs_modulus, pois
     n = float(peak_density)
     if not (R > 0.0 and s > 0.0 and n > 0.0):
         raise ValueError("radius, sigma_p and peak_density must be positive")
-    estar = float(plane_strain_modulus(youngs_modulus, poisson))
+    estar = float(plane_strain_modulus(E, nu))
     t = h / s
     count = n * gw_integral(0.0, t)
     area = n * math.pi * R * s * gw_integral(1.0, t)
@@ -134,7 +134,7 @@ def gw_interface(separation, radius, sigma_p, peak_density, youngs_modulus, pois
             "radius": R,
             "sigma_p": s,
             "peak_density": n,
-            "youngs_modulus": float(youngs_modulus),
-            "poisson": float(poisson),
+            "youngs_modulus": float(E),
+            "poisson": float(nu),
         },
     )

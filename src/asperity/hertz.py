@@ -89,7 +89,7 @@ def hertz_response(interference, curvature, youngs_modulus, poisson) -> dict[str
     return {k: np.broadcast_to(v, shape).copy() for k, v in out.items()}
 
 
-def hertz_asperities(heights, curvatures, interferences, youngs_modulus, poisson) -> xr.Dataset:
+def hertz_asperities(heights, curvatures, interferences, E, nu) -> xr.Dataset:
     """Hertz asperities on the (height, curvature, interference) grid of ``asperities.nc``.
 
     The response does not depend on the peak height (Hertz is shift
@@ -103,8 +103,8 @@ def hertz_asperities(heights, curvatures, interferences, youngs_modulus, poisson
         Tip curvatures 1/R [1/m], > 0.
     interferences : array_like, shape (nw,)
         Interferences w [m], increasing, starting at 0 or a positive value.
-    youngs_modulus, poisson : float
-        E [Pa] and nu of the asperity.
+    E, nu : float
+        Young's modulus [Pa] and Poisson's ratio of the asperity.
     """
     z = np.atleast_1d(np.asarray(heights, dtype=float))
     k = np.atleast_1d(np.asarray(curvatures, dtype=float))
@@ -113,11 +113,11 @@ def hertz_asperities(heights, curvatures, interferences, youngs_modulus, poisson
         raise ValueError("heights, curvatures and interferences must be 1-D")
     if np.any(np.diff(w) <= 0.0) or w[0] < 0.0:
         raise ValueError("interferences must be strictly increasing and start at >= 0")
-    resp = hertz_response(w[None, :], k[:, None], youngs_modulus, poisson)
+    resp = hertz_response(w[None, :], k[:, None], E, nu)
     shape = (z.size, k.size, w.size)
     dims = ("height", "curvature", "interference")
     data_vars = {}
-    for name in ("force", "contact_area", "contact_radius", "stiffness", "max_pressure"):
+    for name in ("force", "contact_area", "contact_radius", "stiffness"):
         units, long_name = _ATTRS[name]
         data_vars[name] = (dims, np.broadcast_to(resp[name][None], shape).copy(),
                            {"units": units, "long_name": long_name})
@@ -128,7 +128,7 @@ def hertz_asperities(heights, curvatures, interferences, youngs_modulus, poisson
     }
     attrs = {
         "title": "Hertz asperities: elastic sphere on a rigid flat (report 6.1)",
-        "youngs_modulus": float(youngs_modulus),
-        "poisson": float(poisson),
+        "youngs_modulus": float(E),
+        "poisson": float(nu),
     }
     return xr.Dataset(data_vars, coords=coords, attrs=attrs)

@@ -272,17 +272,28 @@ class FixedCurvatureDensity:
         return np.exp(-0.5 * xi * xi) / (math.sqrt(2.0 * math.pi) * self.sigma_p)
 
     def support(self, threshold: float = 1e-4):
-        """(z_min, z_max) where the standard normal density phi(xi) exceeds `threshold`.
+        """(z_min, z_max, curvature, curvature): heights where phi(xi) exceeds `threshold`.
 
         Closed form xi = +-sqrt(-2 ln(threshold sqrt(2 pi))); e.g. 1e-12 gives
-        +-7.28 sigma_p.
+        +-7.28 sigma_p.  The curvature "range" is the single curvature, so
+        that every density's support is the same 4-tuple.
         """
         threshold = float(threshold)
         top = 1.0 / math.sqrt(2.0 * math.pi)
         if not 0.0 < threshold < top:
             raise ValueError(f"threshold must be in (0, {top:.6f}), got {threshold!r}")
         x = math.sqrt(-2.0 * math.log(threshold / top))
-        return self.mean_height - x * self.sigma_p, self.mean_height + x * self.sigma_p
+        k = float(self.curvature)
+        return self.mean_height - x * self.sigma_p, self.mean_height + x * self.sigma_p, k, k
+
+
+def _data_range(x: np.ndarray) -> tuple[float, float]:
+    """(min, max) of x; a single value c becomes c -+ |c|/2 (-+ 1/2 for c = 0)."""
+    lo, hi = float(x.min()), float(x.max())
+    if hi > lo:
+        return lo, hi
+    half = 0.5 * abs(lo) if lo != 0.0 else 0.5
+    return lo - half, hi + half
 
 
 class SampledDensity:
@@ -324,7 +335,8 @@ class SampledDensity:
         bins : (int, int)
             Number of cells in height and curvature.
         range : ((z_min, z_max), (kappa_min, kappa_max)), optional
-            Defaults to the range of the peaks.
+            Defaults to the range of the peaks; if all peaks share one value c
+            of a variable, its range is c -+ |c|/2 (-+ 1/2 for c = 0).
         """
         height = np.asarray(height, dtype=float).ravel()
         curvature = np.asarray(curvature, dtype=float).ravel()
@@ -334,9 +346,14 @@ class SampledDensity:
             raise ValueError("no peaks: cannot sample a density from an empty list")
         if not (np.isfinite(height).all() and np.isfinite(curvature).all()):
             raise ValueError("peak heights and curvatures must be finite")
+        if range is None:
+            range = (_data_range(height), _data_range(curvature))
         counts, ez, ek = np.histogram2d(height, curvature, bins=bins, range=range)
         area = np.diff(ez)[:, None] * np.diff(ek)[None, :]
-        values = counts / (height.size * area)
+        with np.errstate(divide="ignore", over="ignore", invalid="ignore"):
+            values = counts / (height.size * area)
+        if not (np.all(area > 0.0) and np.isfinite(values).all()):
+            raise ValueError(f"histogram cells too small to hold a density: range {range!r}")
         return cls(ez, ek, values, height, curvature)
 
     @property

@@ -63,8 +63,11 @@ def test_expectation_unit(run):
     assert float(ds.expectation) == pytest.approx(1.0, abs=1e-12)
     assert float(ds.macroscopic) == pytest.approx(0.025359, rel=1e-12)
     assert float(ds.per_unit_area) == pytest.approx(0.025359, rel=1e-12)
-    # the raw integral is not one: truncation and a coarse rule (report: 1.0043)
-    assert abs(float(ds.integral) - 1.0) > 1e-4
+    # for X = 1 the raw integral (2.6) is the normalization I of (2.7) itself;
+    # with kappa in [0, 5] it is 1 + 7.8e-8 here (the report printed 1.0043,
+    # which neither its text's rectangle nor its input echo's reproduces)
+    assert float(ds.integral) == pytest.approx(float(ds.normalization), rel=1e-14)
+    assert abs(float(ds.integral) - 1.0) < 1e-6
 
 
 def test_greenwood_williamson_within_half_percent(run):
