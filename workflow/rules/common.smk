@@ -32,6 +32,16 @@ def _explain(error):
     return f"{where}: key {key}: {error.message}"
 
 
+def _canonical(obj):
+    """Dicts with sorted keys, recursively: the params of a rule then do not
+    change (and trigger no rerun) when a scene file is merely reformatted."""
+    if isinstance(obj, dict):
+        return {k: _canonical(obj[k]) for k in sorted(obj)}
+    if isinstance(obj, list):
+        return [_canonical(v) for v in obj]
+    return obj
+
+
 def _load_scenes():
     definitions = {}
     for name in config["scenes"]:
@@ -57,7 +67,7 @@ def _load_scenes():
                     f"{SCENE_DIR / (name + '.yaml')}: key surface.{kind}.file: "
                     f"no such file {source['file']}"
                 )
-    return definitions
+    return {name: _canonical(scene) for name, scene in definitions.items()}
 
 
 SCENES = _load_scenes()

@@ -1,0 +1,46 @@
+"""Stages as functions of data: scene configuration in, SI datasets out."""
+
+import numpy as np
+import pytest
+
+from asperity import hertz, stages
+
+UNITS = {"length": "um", "pressure": "MPa"}
+STEEL = {"statistics": {"sigma": 4.91, "sigma_slope": 0.16, "sigma_curvature": 0.0227,
+                        "peak_density": 0.000508}}
+
+
+def test_given_statistics_in_si():
+    ds = stages.surface_from_statistics(STEEL, UNITS)
+    assert float(ds["sigma"].sel({"method": "given"})) == pytest.approx(4.91e-6)
+    assert float(ds["sigma_curvature"].sel({"method": "given"})) == pytest.approx(0.0227e6)
+    assert float(ds["peak_density"].sel({"method": "given"})) == pytest.approx(508e6)
+    # beta = sqrt(1.5) sigma_slope^2 / (sigma sigma_curvature) (2.4.1)
+    assert float(ds["beta"].sel({"method": "given"})) == pytest.approx(
+        np.sqrt(1.5) * 0.16**2 / (4.91 * 0.0227), rel=1e-12)
+
+
+def test_plan_and_per_sample_response_agree_with_gathered():
+    surface = stages.surface_from_statistics(STEEL, UNITS)
+    mat = {"youngs_modulus": 209000.0, "poisson": 0.3}
+    plan = stages.plan_dataset(surface, {"samples": {"height": 3, "curvature": 4, "interference": 20}},
+                               {"model": "hertz"}, mat, [], UNITS, "standard")
+    assert plan.sizes["sample"] == 12
+    asperities = stages.asperities_dataset(plan, {"model": "hertz"}, mat, UNITS)
+    key = str(plan["key"].values[5])
+    one = stages.sample_dataset(plan, key, {"model": "hertz"}, mat, UNITS, "standard")
+    k = one.attrs["curvature"]
+    np.testing.assert_allclose(one["force"].values,
+                               asperities["force"].sel(curvature=k).isel(height=0).values, rtol=1e-14)
+    direct = hertz.hertz_response(plan["interference"].values, k, 209e9, 0.3)["force"]
+    np.testing.assert_allclose(one["force"].values, direct, rtol=1e-14)
+    with pytest.raises(ValueError, match="not in the plan"):
+        stages.sample_dataset(plan, "nokey", {"model": "hertz"}, mat, UNITS, "standard")
+
+
+def test_synthetic_map_statistics():
+    gen = {"points": 128, "spacing": 1.0, "sigma": 2.0, "correlation_length": 8.0, "seed": 3}
+    z = stages.synthetic_map(gen)
+    assert z.shape == (128, 128)
+    assert z.std() == pytest.approx(2.0, rel=1e-12)
+    assert abs(z.mean()) < 1e-12
