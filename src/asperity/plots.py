@@ -90,20 +90,24 @@ def surface_figure(
 def expectation_figure(density_values: np.ndarray, z: np.ndarray, kappa: np.ndarray,
                        expectation: xr.Dataset) -> plt.Figure:
     """The peak density, its effective support and the integration cells (Fig. 2.10)."""
-    fig, ax = plt.subplots(figsize=(6, 4.5))
-    levels = np.geomspace(1e-6, density_values.max(), 12)
-    cs = ax.contourf(z, kappa, density_values.T, levels=levels, norm=matplotlib.colors.LogNorm(),
-                     cmap="viridis")
-    fig.colorbar(cs, ax=ax, label="f(z_p, κ)")
+    fig, ax = plt.subplots(figsize=(6.5, 4.8))
+    positive = np.where(density_values > 0, density_values, np.nan)
+    exponents = np.arange(-6, int(np.ceil(np.log10(np.nanmax(positive)))) + 1)
+    cs = ax.contourf(z, kappa, positive.T, levels=10.0 ** exponents,
+                     norm=matplotlib.colors.LogNorm(), cmap="viridis", extend="min")
+    fig.colorbar(cs, ax=ax, label="f(z_p, κ)", ticks=10.0 ** exponents)
     s = expectation["support"].values
     r = expectation["rectangle"].values
-    ax.add_patch(plt.Rectangle((s[0], s[2]), s[1] - s[0], s[3] - s[2], fill=False, ec="w", ls="--",
-                               label="effective support"))
-    ax.add_patch(plt.Rectangle((r[0], r[2]), r[1] - r[0], r[3] - r[2], fill=False, ec="r",
+    ax.add_patch(plt.Rectangle((s[0], s[2]), s[1] - s[0], s[3] - s[2], fill=False, ec="k", ls="--",
+                               lw=1.5, label="effective support (f_ξη > 1e-4)"))
+    ax.add_patch(plt.Rectangle((r[0], r[2]), r[1] - r[0], r[3] - r[2], fill=False, ec="r", lw=2,
                                label="integration rectangle"))
+    pad_z, pad_k = 0.05 * (r[1] - r[0]), 0.05 * (r[3] - r[2])
+    ax.set_xlim(r[0] - pad_z, r[1] + pad_z)
+    ax.set_ylim(r[2] - pad_k, r[3] + pad_k)
     ax.set(xlabel="peak height z_p [m]", ylabel="tip curvature κ [1/m]",
-           title=(f"raw integral {float(expectation.integral):.5f}, I = "
-                  f"{float(expectation.normalization):.5f}, E = {float(expectation.expectation):.12f}"))
+           title=(f"raw integral (2.6) {float(expectation.integral):.10f}\n"
+                  f"corrected E(X) (2.7) = {float(expectation.expectation):.12f}"))
     ax.legend(fontsize=8, loc="upper left")
     return fig
 

@@ -1,0 +1,34 @@
+"""The single-asperity finite element model (report sections 3, 6.1, 7).
+
+One asperity, a body of revolution or a plane-strain section standing on a
+block of bulk material, pressed by a rigid flat; elastic, small strain,
+P2 elements on a curved graded mesh refined adaptively near the contact
+edge; contact by the C1 penalty of report 3.3.2 or exactly (augmented
+Lagrangian); Newton-Raphson with step cutting.
+
+    >>> from asperity.fe import solve_asperity, Paraboloid, LinearElastic
+    >>> ds = solve_asperity(Paraboloid(1.0), LinearElastic(1000.0, 0.3),
+    ...                     [0.001, 0.002, 0.005, 0.01, 0.02])  # doctest: +SKIP
+"""
+
+from .errors import ContactZoneError, ConvergenceError
+from .geometry import CosineHill, Cylinder, Paraboloid, Profile, Sphere, TruncatedV
+from .material import LinearElastic
+from .presets import ACCURACY
+from .solve import hertz, penalty_error, solve_asperity
+
+__all__ = [
+    "ACCURACY",
+    "ContactZoneError",
+    "ConvergenceError",
+    "CosineHill",
+    "Cylinder",
+    "LinearElastic",
+    "Paraboloid",
+    "Profile",
+    "Sphere",
+    "TruncatedV",
+    "hertz",
+    "penalty_error",
+    "solve_asperity",
+]

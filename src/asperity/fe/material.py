@@ -1,0 +1,105 @@
+"""Materials: stress and tangent at quadrature points, given the strain.
+
+Strains and stresses are stored as 4 components (shape ``(4, ...)``):
+``[e_11, e_22, e_33, e_12]`` with the *tensor* shear component e_12, where
+1, 2 are the in-plane (r, z) or (x, z) directions and 3 is the hoop
+direction (axisymmetric, e_33 = u_r / r) or the out-of-plane direction
+(plane strain, e_33 = 0).  The work product is ``sum(METRIC * s * e)``
+with ``METRIC = (1, 1, 1, 2)``.
+
+A material is any object with
+
+- ``response(strain) -> (stress, tangent)``: stress (4, ...) and the
+  tangent d stress / d strain (4, 4, ...) or (4, 4) if uniform;
+- ``is_linear`` (the tangent does not depend on the strain);
+- ``contact_modulus`` [Pa] (scales the contact penalty);
+- ``yield_stress`` [Pa] (``inf`` if none): the response counts as elastic
+  while the von Mises stress stays below it.
+
+Inelastic materials (report 3.2.2) will add internal state; the solvers
+use only the interface above.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+METRIC = np.array([1.0, 1.0, 1.0, 2.0])
+
+
+@dataclass(frozen=True)
+class LinearElastic:
+    """Linear isotropic elasticity (report 3.2.1): sigma = lambda tr(e) I + 2 mu e.
+
+    E: Young's modulus [Pa]; nu: Poisson's ratio; yield_stress [Pa] only
+    classifies the response (``elastic`` output), it does not change it.
+    """
+
+    E: float
+    nu: float
+    yield_stress: float = math.inf
+
+    is_linear = True
+
+    def __post_init__(self):
+        if not (np.isfinite(self.E) and self.E > 0):
+            raise ValueError(f"E must be positive, got {self.E!r}")
+        if not -1.0 < self.nu < 0.5:
+            raise ValueError(f"nu must lie in (-1, 0.5), got {self.nu!r}")
+        if not self.yield_stress > 0:
+            raise ValueError("yield_stress must be positive (inf if none)")
+
+    @property
+    def lame(self) -> tuple[float, float]:
+        lam = self.E * self.nu / ((1 + self.nu) * (1 - 2 * self.nu))
+        mu = self.E / (2 * (1 + self.nu))
+        return lam, mu
+
+    @property
+    def contact_modulus(self) -> float:
+        """Plane-strain modulus E' = E / (1 - nu^2) [Pa]."""
+        return self.E / (1 - self.nu**2)
+
+    def tangent(self) -> np.ndarray:
+        lam, mu = self.lame
+        D = np.zeros((4, 4))
+        D[:3, :3] = lam
+        D[[0, 1, 2], [0, 1, 2]] += 2 * mu
+        D[3, 3] = 2 * mu
+        return D
+
+    def response(self, strain: np.ndarray):
+        D = self.tangent()
+        stress = np.tensordot(D, strain, axes=(1, 0))
+        return stress, D
+
+
+def von_mises(stress: np.ndarray) -> np.ndarray:
+    """Von Mises equivalent stress of 4-component stresses."""
+    s11, s22, s33, s12 = stress
+    return np.sqrt(0.5 * ((s11 - s22) ** 2 + (s22 - s33) ** 2 + (s33 - s11) ** 2)
+                   + 3.0 * s12**2)
+
+
+def equivalent_strain(strain: np.ndarray) -> np.ndarray:
+    """Von Mises equivalent strain sqrt(2/3 e':e') of 4-component strains."""
+    e11, e22, e33, e12 = strain
+    mean = (e11 + e22 + e33) / 3.0
+    dev2 = (e11 - mean) ** 2 + (e22 - mean) ** 2 + (e33 - mean) ** 2 + 2 * e12**2
+    return np.sqrt(2.0 / 3.0 * dev2)
+
+
+def complementary_energy_density(material, stress: np.ndarray) -> np.ndarray:
+    """sigma : C : sigma with C the inverse tangent (for error norms)."""
+    _, D = material.response(np.zeros((4, 1)))
+    D = np.asarray(D)
+    if D.ndim == 2:
+        C = np.linalg.inv(D)
+        e = np.tensordot(C, stress, axes=(1, 0))
+    else:  # per point tangents (4, 4, ...)
+        Dm = np.moveaxis(D, (0, 1), (-2, -1))
+        e = np.moveaxis(np.linalg.solve(Dm, np.moveaxis(stress, 0, -1)[..., None])[..., 0], -1, 0)
+    return np.tensordot(METRIC, stress * e, axes=(0, 0))

@@ -1,0 +1,214 @@
+"""Newton-Raphson on the condensed contact problem, with automatic step control.
+
+For an elastic body the only nonlinearity is the contact traction on the
+top surface, so the equations (report 3.28) are solved for the surface
+u_z alone:
+
+    R(u) = K_S u + int t_N(a(u)) N W ds = 0,     J = K_S + int t_N'(a) N N^T W ds,
+
+with K_S the condensed stiffness (`assembly.CondensedStiffness`).  R is
+the gradient of the convex energy 1/2 u^T K_S u + int Phi(a) W ds, so each
+Newton step is safeguarded by a backtracking line search on that energy.
+
+Step control in the spirit of report 3.5: each requested interference is
+reached from the last converged state with the tangent predictor
+u + dw du/dw; a step that does not converge within `max_iterations` (or
+diverges, or gives non-finite values) is cut in half and retried, up to
+`max_cuts` times per requested step; then `ConvergenceError` names the step.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import scipy.linalg as sla
+
+from .contact import AugmentedPenalty, C1Penalty, ContactZone
+from .errors import ConvergenceError
+
+
+class _NotConverged(Exception):
+    pass
+
+
+def _penalty_energy(law, a):
+    """Phi(a) with Phi' = t_N, for the line search."""
+    k = law.kappa[:, None]
+    if isinstance(law, AugmentedPenalty):
+        x = np.maximum(law.multipliers + k * a, 0.0)
+        return 0.5 * x**2 / k
+    eps = law.smoothing_pressure / k
+    return np.where(a >= eps, k * (0.5 * a**2 - 0.5 * eps * a + eps**2 / 6),
+                    np.where(a >= 0, k * a**3 / (6 * eps), 0.0))
+
+
+@dataclass
+class LevelState:
+    """A converged state at interference w."""
+
+    w: float
+    u: np.ndarray           # surface u_z (zone dofs)
+    dudw: np.ndarray        # tangent du/dw
+    traction: np.ndarray    # t_N at the facet quadrature points
+    force: float            # total force [N] or [N/m]
+    stiffness: float        # dF/dw from the consistent tangent
+    iterations: int = 0
+    cuts: int = 0
+
+
+class ContactNewton:
+    """Solves R(u) = 0 on a `ContactZone` with condensed stiffness `K`."""
+
+    def __init__(self, K: np.ndarray, zone: ContactZone, tolerance: float = 1e-8,
+                 max_iterations: int = 25, divergence: float = 1e8):
+        self.K = K
+        self.zone = zone
+        self.tolerance = tolerance
+        self.max_iterations = max_iterations
+        self.divergence = divergence
+
+    def _energy(self, law, u, w):
+        a = self.zone.penetration(u, w)
+        return 0.5 * u @ self.K @ u + np.sum(_penalty_energy(law, a) * self.zone.weights)
+
+    def residual(self, law, u, w):
+        a = self.zone.penetration(u, w)
+        t, dt = law.traction(a)
+        f = self.zone.nodal(t)
+        return self.K @ u + f, f, t, dt
+
+    def solve(self, law, w: float, u0: np.ndarray):
+        """Newton iterations from u0; returns (u, t, dt, iterations)."""
+        u = np.array(u0, dtype=float)
+        R, f, t, dt = self.residual(law, u, w)
+        r0 = np.linalg.norm(R)
+        for it in range(self.max_iterations + 1):
+            rn = np.linalg.norm(R)
+            if not np.isfinite(rn):
+                raise _NotConverged("non-finite residual")
+            if rn <= self.tolerance * max(np.linalg.norm(f), np.finfo(float).tiny):
+                return u, t, dt, it
+            if rn == 0.0:
+                return u, t, dt, it
+            if rn > self.divergence * max(r0, np.finfo(float).tiny):
+                raise _NotConverged("diverging residual")
+            if it == self.max_iterations:
+                break
+            J = self.K + self.zone.matrix(dt)
+            try:
+                d = sla.cho_solve(sla.cho_factor(J, check_finite=True), -R)
+            except (np.linalg.LinAlgError, ValueError) as exc:
+                raise _NotConverged(f"tangent not positive definite: {exc}") from None
+            # backtracking (Armijo) line search on the convex energy
+            e0 = self._energy(law, u, w)
+            slope = R @ d
+            alpha = 1.0
+            for _ in range(40):
+                trial = u + alpha * d
+                if self._energy(law, trial, w) <= e0 + 1e-4 * alpha * slope:
+                    break
+                alpha *= 0.5
+            u = trial
+            R, f, t, dt = self.residual(law, u, w)
+        raise _NotConverged(f"no convergence in {self.max_iterations} iterations")
+
+    def tangent(self, dt: np.ndarray) -> np.ndarray:
+        """du/dw at a converged state: J du/dw = -int t' N W."""
+        J = self.K + self.zone.matrix(dt)
+        rhs = -self.zone.nodal(dt)
+        if not np.any(rhs):
+            return np.zeros(self.zone.ndofs)
+        return sla.cho_solve(sla.cho_factor(J), rhs)
+
+    def state(self, w, u, t, dt, iterations=0, cuts=0) -> LevelState:
+        dudw = self.tangent(dt)
+        zone = self.zone
+        da = np.einsum("jf,jg->fg", dudw[zone.facet_nodes], zone.N) + 1.0
+        return LevelState(w, u, dudw, t, zone.total(t), zone.total(dt * da),
+                          iterations, cuts)
+
+
+def untouched(zone: ContactZone, w: float = 0.0) -> LevelState:
+    n = zone.ndofs
+    shape = zone.weights.shape
+    return LevelState(w, np.zeros(n), np.zeros(n), np.zeros(shape), 0.0, 0.0)
+
+
+def solve_uzawa(newton: ContactNewton, kappa: np.ndarray, w: float, u0: np.ndarray,
+                multipliers: np.ndarray, tolerance: float, max_updates: int = 50):
+    """Augmented Lagrangian: Newton on t = max(0, lambda + kappa a), then lambda <- t.
+
+    Stops when the largest penetration at the quadrature points is below
+    `tolerance` * w and the force changed by less than `tolerance` relative.
+    Returns (u, t, dt, iterations, multipliers).
+    """
+    u = u0
+    lam = multipliers
+    total = 0
+    force_old = None
+    for _ in range(max_updates):
+        law = AugmentedPenalty(kappa, lam)
+        u, t, dt, its = newton.solve(law, w, u)
+        total += its
+        a = newton.zone.penetration(u, w)
+        force = newton.zone.total(t)
+        pen = float(np.max(np.where(t > 0, a, 0.0), initial=0.0))
+        lam = t
+        if pen <= tolerance * w and force_old is not None and \
+                abs(force - force_old) <= tolerance * abs(force):
+            return u, t, dt, total, lam
+        force_old = force
+    raise _NotConverged(f"Uzawa updates did not reach the tolerance in {max_updates}")
+
+
+def continuation(newton: ContactNewton, law: C1Penalty, levels, max_cuts: int = 8,
+                 exact_tolerance: float | None = None, step_offset: int = 0):
+    """Solve the interference levels in order, with step cutting.
+
+    `law` is the penalty law; with `exact_tolerance` set, each level is
+    solved exactly by Uzawa updates (augmented Lagrangian with the same
+    stiffness).  Levels <= 0 (flat not touching) give the untouched state;
+    the path always starts from first touch (w = 0, u = 0), so no step
+    skips first contact.  Returns a list of `LevelState`.
+    """
+    zone = newton.zone
+    state = untouched(zone)
+    lam = np.zeros(zone.weights.shape)
+    out = []
+    for n, target in enumerate(levels):
+        target = float(target)
+        if target <= 0:
+            s = untouched(zone, target)
+            out.append(s)
+            state = untouched(zone)
+            continue
+        cuts = 0
+        iterations = 0
+        goals = [target]
+        while goals:
+            goal = goals[-1]
+            u0 = state.u + (goal - state.w) * state.dudw
+            try:
+                if exact_tolerance is None:
+                    u, t, dt, its = newton.solve(law, goal, u0)
+                    iterations += its
+                else:
+                    u, t, dt, its, lam_new = solve_uzawa(
+                        newton, law.kappa, goal, u0, lam, exact_tolerance)
+                    iterations += its
+                    lam = lam_new
+            except _NotConverged as exc:
+                iterations += newton.max_iterations
+                cuts += 1
+                if cuts > max_cuts:
+                    raise ConvergenceError(step_offset + n, target, state.w, cuts - 1,
+                                           str(exc)) from None
+                goals.append(0.5 * (state.w + goal))
+                continue
+            state = newton.state(goal, u, t, dt, 0, 0)
+            goals.pop()
+        state.iterations = iterations
+        state.cuts = cuts
+        out.append(state)
+    return out
