@@ -140,3 +140,29 @@ def interface_figure(interface: xr.Dataset, verification: xr.Dataset | None = No
         ax.grid(True, which="both", alpha=0.3)
     fig.tight_layout()
     return fig
+
+
+def map_figure(z: np.ndarray, surface: xr.Dataset, length_unit: str = "m",
+               bins: tuple[int, int] = (20, 20)) -> plt.Figure:
+    """A height map with its eight-neighbour peaks (Fig. 2.8) and their sampled
+    joint density of height and curvature (Fig. 2.9)."""
+    scale = units.length_scale(length_unit)
+    dx, dy = float(surface["spacing_x"]), float(surface["spacing_y"])
+    fig, axes = plt.subplots(1, 2, figsize=(12, 4.8))
+    ny, nx = z.shape
+    im = axes[0].imshow(z / scale, origin="lower", cmap="terrain",
+                        extent=(0, nx * dx / scale, 0, ny * dy / scale))
+    fig.colorbar(im, ax=axes[0], label=f"height [{length_unit}]")
+    axes[0].plot(surface["x"] / scale, surface["y"] / scale, "r.", ms=3, label="peaks")
+    axes[0].set(xlabel=f"x [{length_unit}]", ylabel=f"y [{length_unit}]",
+                title=f"{surface.sizes['peak']} peaks, {float(surface['peak_density']) * scale**2:.3g} "
+                      f"per {length_unit}^2")
+    axes[0].legend(fontsize=8, loc="upper right")
+    h, k = surface["height"].values / scale, surface["curvature"].values * scale
+    counts, ze, ke, mesh = axes[1].hist2d(h, k, bins=bins, cmap="Blues", density=True)
+    fig.colorbar(mesh, ax=axes[1], label=f"sampled f(z_p, κ) [1/({length_unit}·1/{length_unit})]")
+    axes[1].plot(h, k, "k.", ms=2)
+    axes[1].set(xlabel=f"peak height z_p [{length_unit}]", ylabel=f"mean curvature κ [1/{length_unit}]",
+                title="sampled joint density of peaks (2.4.3)")
+    fig.tight_layout()
+    return fig
