@@ -5,7 +5,7 @@ BIN := $(VENV)/bin
 STAMP := $(VENV)/.installed-stamp
 CORES ?= 2
 
-.PHONY: all reproduce test test-fast bench clean-results
+.PHONY: all reproduce test test-fast bench figures clean-results
 
 all: reproduce
 
@@ -31,6 +31,13 @@ test-fast: $(STAMP)
 # Speed measurements; writes benchmarks/out/results.json and prints a table.
 bench: $(STAMP)
 	$(BIN)/python benchmarks/run.py
+
+# The figures shown in the README, copied from a full run.
+README_FIGURES := profile_quasirandom/figures/surface.png expectation_unit/figures/expectation.png \
+	greenwood_williamson/figures/interface.png map_hertz/figures/surface.png steel_hertz/figures/interface.png
+figures: reproduce
+	mkdir -p docs/figures
+	for f in $(README_FIGURES); do cp results/$$f docs/figures/$$(echo $$f | sed 's|/figures/|_|'); done
 
 clean-results:
 	rm -rf results .snakemake

@@ -204,8 +204,8 @@ def _uniform_step(path, x: np.ndarray, lines, what: str) -> float:
         i = int(off[0]) + 1
         raise InputError(
             path,
-            f"non-uniform {what} spacing: step {step[i - 1]!r} from {x[i - 1]!r} to {x[i]!r} "
-            f"differs from the median step {med!r} by more than {STEP_TOLERANCE:g} relative; "
+            f"non-uniform {what} spacing: step {float(step[i - 1]):.9g} from {float(x[i - 1]):.9g} to {float(x[i]):.9g} "
+            f"differs from the median step {float(med):.9g} by more than {STEP_TOLERANCE:g} relative; "
             "resample the data to uniform spacing",
             None if lines is None else int(lines[i]),
         )
