@@ -51,3 +51,29 @@ def test_missing_profile_file(workflow_copy):
     assert proc.returncode != 0
     text = proc.stdout + proc.stderr
     assert f"{path.relative_to(workflow_copy)}: key surface.profile.file: no such file" in text, text
+
+
+@pytest.mark.parametrize(
+    "content, message",
+    [
+        ("# x z\n0 1\n0.2 2\n0.4 abc\n", "profile.csv:4: column 2: 'abc' is not a number"),
+        ("0 1\n0.2 nan\n0.4 3\n", "profile.csv:2: column 2 is nan"),
+        ("0 1\n0.2 2\n0.4 1\n0.6 2\n0.8 1\n",
+         "data/profile.csv: sampling method with order-8 differences needs at least 10 points"),
+    ],
+    ids=["non-numeric", "nan", "too-few-points"],
+)
+def test_bad_profile_file_fails_its_job_and_writes_nothing(workflow_copy, content, message):
+    data = workflow_copy / "data"
+    data.mkdir(exist_ok=True)
+    (data / "profile.csv").write_text(content)
+
+    def change(scene):
+        scene["surface"]["profile"] = {"file": "data/profile.csv"}
+
+    _edit(workflow_copy, "profile_cosine", change)
+    proc = snakemake(workflow_copy, "results/profile_cosine/surface.nc", check=False)
+    assert proc.returncode != 0
+    log = (workflow_copy / "results" / "profile_cosine" / "logs" / "surface.log").read_text()
+    assert message in log, log
+    assert not (workflow_copy / "results" / "profile_cosine" / "surface.nc").exists()

@@ -14,7 +14,7 @@ with job_log(snakemake.log[0], "surface statistics") as log:
         try:
             ds = stages.surface_from_profile(z, dx, cfg)
         except ValueError as err:
-            raise inputs.InputError(f"{path}: {err}") from err
+            raise inputs.InputError(path, str(err)) from err
     elif "map" in cfg:
         path = snakemake.input.data
         spacing = cfg["map"].get("spacing", cfg["map"].get("generate", {}).get("spacing"))
@@ -23,7 +23,7 @@ with job_log(snakemake.log[0], "surface statistics") as log:
         try:
             ds = stages.surface_from_map(z, dx, dy, cfg)
         except ValueError as err:
-            raise inputs.InputError(f"{path}: {err}") from err
+            raise inputs.InputError(path, str(err)) from err
     else:
         ds = stages.surface_from_statistics(cfg, units)
     write_dataset(ds, snakemake.output[0], scene=snakemake.params.scene,
