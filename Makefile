@@ -34,7 +34,8 @@ bench: $(STAMP)
 
 # The figures shown in the README, copied from a full run.
 README_FIGURES := profile_quasirandom/figures/surface.png expectation_unit/figures/expectation.png \
-	greenwood_williamson/figures/interface.png map_hertz/figures/surface.png steel_hertz/figures/interface.png
+	greenwood_williamson/figures/interface.png map_hertz/figures/surface.png steel_hertz/figures/interface.png \
+	profiles_anisotropic/figures/surface.png
 figures: reproduce
 	mkdir -p docs/figures
 	for f in $(README_FIGURES); do cp results/$$f docs/figures/$$(echo $$f | sed 's|/figures/|_|'); done

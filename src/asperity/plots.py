@@ -166,3 +166,40 @@ def map_figure(z: np.ndarray, surface: xr.Dataset, length_unit: str = "m",
                 title="sampled joint density of peaks (2.4.3)")
     fig.tight_layout()
     return fig
+
+
+def directional_figure(surface: xr.Dataset, length_unit: str = "m") -> plt.Figure:
+    """m2 and m4 of each profile versus direction, with the least-squares moments
+    (2.3.2) and, for a synthetic surface, the exact ones (eq. 2.4)."""
+    scale = units.length_scale(length_unit)
+    method = surface.attrs.get("population_method", "sampling")
+    t = np.linspace(0, np.pi, 181)
+    c, s = np.cos(t), np.sin(t)
+    fig, axes = plt.subplots(1, 2, figsize=(11, 4.2))
+
+    def m2(sfx=""):
+        g = lambda n: float(surface[f"{n}{sfx}"])  # noqa: E731
+        return g("m20") * c**2 + 2 * g("m11") * c * s + g("m02") * s**2
+
+    def m4(sfx=""):
+        g = lambda n: float(surface[f"{n}{sfx}"])  # noqa: E731
+        return (g("m40") * c**4 + 4 * g("m31") * c**3 * s + 6 * g("m22") * c**2 * s**2
+                + 4 * g("m13") * c * s**3 + g("m04") * s**4)
+
+    theta = np.degrees(surface["direction"].values)
+    per = surface.sel({"method": method})
+    axes[0].plot(theta, per["m2"], "o", label=f"profiles ({method})")
+    axes[0].plot(np.degrees(t), m2(), "-", label="least-squares m20, m11, m02")
+    if "m20_exact" in surface:
+        axes[0].plot(np.degrees(t), m2("_exact"), "k--", label="exact (eq. 2.4)")
+    axes[0].set(xlabel="profile direction [deg]", ylabel="m2 (slope variance) [1]")
+    if "m40" in surface:
+        axes[1].plot(theta, per["m4"] * scale**2, "o", label=f"profiles ({method})")
+        axes[1].plot(np.degrees(t), m4() * scale**2, "-", label="least-squares m40 ... m04")
+        if "m40_exact" in surface:
+            axes[1].plot(np.degrees(t), m4("_exact") * scale**2, "k--", label="exact (eq. 2.4)")
+    axes[1].set(xlabel="profile direction [deg]", ylabel=f"m4 (curvature variance) [1/{length_unit}^2]")
+    for ax in axes:
+        ax.legend(fontsize=8)
+    fig.tight_layout()
+    return fig

@@ -441,3 +441,67 @@ def synthetic_map(generate: Config) -> np.ndarray:
     z = np.fft.ifft2(np.fft.fft2(noise) * np.exp(-k2 * generate["correlation_length"] ** 2 / 8)).real
     z -= z.mean()
     return z * (generate["sigma"] / z.std())
+
+
+def profile_file_name(direction_deg: float) -> str:
+    """File name of the synthetic profile along `direction_deg`."""
+    return f"profile_{direction_deg:g}deg.txt"
+
+
+def anisotropic_series(generate: Config):
+    """Amplitudes, wave vectors and phases of a synthetic anisotropic surface (eq. 2.3).
+
+    The 1-D quasi-random series of 2.6.1 with each wave vector turned to a
+    random direction and its x component stretched by `aspect`.
+    """
+    c, k, e = surface.quasirandom_series(n=generate["components"], seed=generate["seed"])
+    phi = np.random.default_rng(generate["seed"] + 1).uniform(0.0, np.pi, c.size)
+    return c, generate["aspect"] * k * np.cos(phi), k * np.sin(phi), e
+
+
+def synthetic_directional_profiles(generate: Config) -> list[tuple[np.ndarray, np.ndarray]]:
+    """Profiles z(s) = sum C cos((kx cos t + ky sin t) s + e) along each direction t."""
+    c, kx, ky, e = anisotropic_series(generate)
+    s = np.arange(0.0, generate["length"] + 0.5 * generate["spacing"], generate["spacing"])
+    out = []
+    for deg in generate["directions"]:  # a handful of directions
+        t = np.radians(deg)
+        out.append((s, surface.evaluate_series(s, c, kx * np.cos(t) + ky * np.sin(t), e)))
+    return out
+
+
+def surface_from_profiles(
+    profiles: list[tuple[np.ndarray, float]], directions_deg: list[float], surface_cfg: Config,
+) -> xr.Dataset:
+    """Statistics of profiles along several directions and the surface moments (2.3.2).
+
+    Each profile gets the statistics of `profile_statistics` (dim
+    ``direction``); the moments m20, m11, m02 (3 directions or more) and the
+    fourth-order moments (5 or more) follow by least squares from the
+    chosen method's m0, m2, m4, with the invariants of 2.3.2.  For a
+    synthetic surface the exact moments of eq. (2.4) are added as
+    ``<moment>_exact``.
+    """
+    method = surface_cfg.get("method", "sampling")
+    stats = xr.concat([surface.profile_statistics(z, dx) for z, dx in profiles], dim="direction",
+                      data_vars="all", coords="minimal", compat="override")
+    theta = np.radians(np.asarray(directions_deg, float))
+    stats = stats.assign_coords(direction=("direction", theta, _attrs("rad", "profile direction from the x axis")))
+    chosen = stats.sel({"method": method})
+    moments = surface.directional_moments(theta, chosen["m0"].values, chosen["m2"].values, chosen["m4"].values)
+    ds = xr.merge([stats, moments], combine_attrs="drop_conflicts")
+    ds.attrs.update(moments.attrs)
+    generate = surface_cfg["profiles"].get("generate")
+    if generate:
+        length = profiles[0][1] / generate["spacing"]
+        c, kx, ky, _ = anisotropic_series(generate)
+        exact = surface.series_moments_2d(c, kx, ky)
+        for name, value in exact.items():
+            if name not in ds:
+                continue
+            order = int(name[1]) + int(name[2])
+            ds[f"{name}_exact"] = xr.DataArray(
+                value * length ** (2 - order),
+                attrs=_attrs(ds[name].attrs["units"], f"{ds[name].attrs['long_name']}, exact (eq. 2.4)"))
+    ds.attrs["population_method"] = method
+    return ds

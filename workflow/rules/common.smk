@@ -67,6 +67,12 @@ def _load_scenes():
                     f"{SCENE_DIR / (name + '.yaml')}: key surface.{kind}.file: "
                     f"no such file {source['file']}"
                 )
+        for i, item in enumerate(scene["surface"].get("profiles", {}).get("files", [])):
+            if not Path(item["file"]).exists():
+                raise WorkflowError(
+                    f"{SCENE_DIR / (name + '.yaml')}: key surface.profiles.files.{i}.file: "
+                    f"no such file {item['file']}"
+                )
     return {name: _canonical(scene) for name, scene in definitions.items()}
 
 
@@ -84,7 +90,9 @@ def scene_part(part, default=None):
 
 def surface_kind(name):
     surface = SCENES[name]["surface"]
-    return next(k for k in ("profile", "map", "statistics", "gaussian_heights") if k in surface)
+    return next(
+        k for k in ("profile", "profiles", "map", "statistics", "gaussian_heights") if k in surface
+    )
 
 
 def generated(name):

@@ -9,6 +9,10 @@ def surface_inputs(wildcards):
             suffix = "txt" if kind == "profile" else "npy"
             return {"data": f"{RESULTS}/{wildcards.scene}/input/{kind}.{suffix}"}
         return {"data": source["file"]}
+    if kind == "profiles":
+        if "generate" in source:
+            return {"data": f"{RESULTS}/{wildcards.scene}/input/profiles"}
+        return {"data": [item["file"] for item in source["files"]]}
     return {}
 
 
@@ -23,6 +27,19 @@ rule synthetic_profile:
         f"{RESULTS}/{{scene}}/logs/synthetic_profile.log",
     script:
         "../scripts/synthetic_profile.py"
+
+
+rule synthetic_profiles:
+    """Profiles of a synthetic anisotropic surface along the scene's directions (2.3.2)."""
+    output:
+        directory(f"{RESULTS}/{{scene}}/input/profiles"),
+    params:
+        generate=lambda w: SCENES[w.scene]["surface"]["profiles"]["generate"],
+        units=scene_part("units"),
+    log:
+        f"{RESULTS}/{{scene}}/logs/synthetic_profiles.log",
+    script:
+        "../scripts/synthetic_profiles.py"
 
 
 rule synthetic_map:

@@ -1,5 +1,7 @@
 """surface.nc: statistics of the scene's profile, map, or given statistics."""
 
+from pathlib import Path
+
 from asperity import stages
 from asperity.io import inputs
 from asperity.io.netcdf import write_dataset
@@ -15,6 +17,19 @@ with job_log(snakemake.log[0], "surface statistics") as log:
             ds = stages.surface_from_profile(z, dx, cfg)
         except ValueError as err:
             raise inputs.InputError(path, str(err)) from err
+    elif "profiles" in cfg:
+        src = cfg["profiles"]
+        if "generate" in src:
+            folder = Path(snakemake.input.data)
+            items = [(folder / stages.profile_file_name(d), d, None) for d in src["generate"]["directions"]]
+        else:
+            items = [(item["file"], item["direction"], item.get("spacing")) for item in src["files"]]
+        profiles = []
+        for path, direction, spacing in items:
+            z, dx = inputs.read_profile(path, spacing=spacing, length_unit=units["length"])
+            log.info("profile %s at %g deg: %d points, spacing %g m", path, direction, z.size, dx)
+            profiles.append((z, dx))
+        ds = stages.surface_from_profiles(profiles, [d for _, d, _ in items], cfg)
     elif "map" in cfg:
         path = snakemake.input.data
         spacing = cfg["map"].get("spacing", cfg["map"].get("generate", {}).get("spacing"))

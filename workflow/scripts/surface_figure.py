@@ -12,7 +12,9 @@ from asperity.units import length_scale
 with job_log(snakemake.log[0], "surface figure"):
     i, p = snakemake.input, snakemake.params
     surface = read_dataset(i.surface)
-    if p.kind == "map":
+    if p.kind == "profiles":
+        fig = plots.directional_figure(surface, length_unit=p.units["length"])
+    elif p.kind == "map":
         unit = p.units["length"]
         spacing = float(surface["spacing_x"]) / length_scale(unit)  # back to the scene's unit
         z, _, _ = inputs.read_map(i.data, spacing=spacing, length_unit=unit)

@@ -1,0 +1,14 @@
+"""Write the profiles of a synthetic anisotropic surface, one text file per direction."""
+
+from pathlib import Path
+
+from asperity import stages
+from asperity.io.writers import write_profile
+from asperity.joblog import job_log
+
+with job_log(snakemake.log[0], "synthetic profiles"):
+    gen = snakemake.params.generate
+    out = Path(snakemake.output[0])
+    for direction, (x, z) in zip(gen["directions"], stages.synthetic_directional_profiles(gen)):
+        write_profile(out / stages.profile_file_name(direction), x, z,
+                      comment=f"direction {direction} deg of {gen} in {snakemake.params.units['length']}")
