@@ -6,6 +6,13 @@ P2 elements on a curved graded mesh refined adaptively near the contact
 edge; contact by the C1 penalty of report 3.3.2 or exactly (augmented
 Lagrangian); Newton-Raphson with step cutting.
 
+Modules: `geometry` (profiles), `mesh` (graded curved meshes, refinement),
+`material` (stress and tangent at quadrature points), `assembly` (P2
+fields, stiffness, condensation onto the surface), `contact` (penalty law,
+contact points, contact edge), `newton` (Newton, step control, Uzawa),
+`adapt` (ZZ estimator, marking), `presets` (accuracy), `solve` (driver,
+Dataset), `analytic` (Hertz), `errors`.
+
     >>> from asperity.fe import solve_asperity, Paraboloid, LinearElastic
     >>> ds = solve_asperity(Paraboloid(1.0), LinearElastic(1000.0, 0.3),
     ...                     [0.001, 0.002, 0.005, 0.01, 0.02])  # doctest: +SKIP

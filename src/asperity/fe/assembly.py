@@ -68,7 +68,7 @@ class Discretization:
         basis = self.basis
         self.ndofs = basis.N
         self.element_dofs = basis.element_dofs  # (12, ne)
-        x = basis.global_coordinates().value  # (2, ne, nq)
+        x = np.array(basis.global_coordinates())  # (2, ne, nq)
         self.x = x
         dx = basis.dx  # (ne, nq)
         r = x[0]
@@ -81,10 +81,16 @@ class Discretization:
             B[0, i] = g[0][0]
             B[1, i] = g[1][1]
             if self.axisymmetric:
-                B[2, i] = phi.value[0] / r
+                B[2, i] = np.asarray(phi)[0] / r
             B[3, i] = 0.5 * (g[0][1] + g[1][0])
         self.B = B
         self._Bsp = None
+        nv = mesh.vertices.p.shape[1]
+        loc = np.zeros((2, self.ndofs))
+        nod, fac = basis.nodal_dofs, basis.facet_dofs
+        loc[:, nod[0]] = loc[:, nod[1]] = m2.doflocs[:, :nv]
+        loc[:, fac[0]] = loc[:, fac[1]] = m2.doflocs[:, nv:]
+        self.dof_locations = loc
         self._dirichlet()
         self._top_surface()
 
@@ -166,7 +172,7 @@ class Discretization:
     def scalar_p2_interpolation(self) -> sp.csr_matrix:
         """Sparse (ne * nq, n_scalar) interpolation of continuous scalar P2 fields."""
         sb = Basis(self.m2, ElementTriP2(), intorder=INTORDER)
-        vals = np.array([phi.value for (phi, *_) in sb.basis])  # (6, ne, nq)
+        vals = np.array([np.asarray(phi) for (phi, *_) in sb.basis])  # (6, ne, nq)
         nloc, ne, nq = vals.shape
         rows = np.broadcast_to(np.arange(ne * nq).reshape(1, ne, nq), vals.shape)
         cols = np.broadcast_to(sb.element_dofs[:, :, None], vals.shape)
@@ -174,40 +180,104 @@ class Discretization:
                              shape=(ne * nq, sb.N))
 
 
-class CondensedStiffness:
-    """The elastic stiffness condensed onto the candidate contact dofs.
+def _trailing(A: sp.csc_matrix, m: int) -> np.ndarray:
+    """The trailing m x m block of a square CSC matrix, dense."""
+    n = A.shape[0]
+    start, stop = A.indptr[n - m], A.indptr[n]
+    rows = A.indices[start:stop]
+    cols = np.repeat(np.arange(m), np.diff(A.indptr[n - m:]))
+    keep = rows >= n - m
+    out = np.zeros((m, m))
+    out[rows[keep] - (n - m), cols[keep]] = A.data[start:stop][keep]
+    return out
 
-    With S the u_z dofs of the top-surface nodes that may touch the flat,
-    X = K_ff^-1 E_S (one sparse LU, one multi-right-hand-side solve) gives
-    the compliance C = X_S of the surface and the Schur complement
-    K_S = C^-1, exactly equivalent to the full system for any load acting
-    on S only.  Full displacements are recovered as u_f = X f_S.
+
+def nested_dissection(A: sp.csr_matrix, xy: np.ndarray, leaf: int = 64) -> np.ndarray:
+    """Fill-reducing elimination order of the graph of A by geometric bisection.
+
+    The dofs (positions `xy`, shape (2, n)) are split at the median of their
+    longer extent; the dofs of the first half coupled to the second form the
+    separator, ordered after both halves, which are ordered recursively.
+    """
+    A = A.tocsr()
+    n = A.shape[0]
+    label = np.zeros(n, dtype=np.int8)
+    out = []
+
+    def split(idx):
+        if len(idx) <= leaf:
+            out.append(idx)
+            return
+        pts = xy[:, idx]
+        axis = int(np.argmax(pts.max(axis=1) - pts.min(axis=1)))
+        first = pts[axis] <= np.median(pts[axis])
+        if first.all() or not first.any():
+            out.append(idx)
+            return
+        a, b = idx[first], idx[~first]
+        label[b] = 1
+        rows = A[a]
+        cross = np.zeros(len(a), dtype=np.int8)
+        nz = np.diff(rows.indptr) > 0
+        hits = label[rows.indices]
+        cross[nz] = np.maximum.reduceat(hits, rows.indptr[:-1][nz])
+        label[b] = 0
+        split(a[cross == 0])
+        split(b)
+        out.append(a[cross == 1])
+
+    split(np.arange(n))
+    return np.concatenate(out)
+
+
+class CondensedStiffness:
+    """The elastic stiffness condensed onto the candidate contact dofs S.
+
+    The free dofs are ordered with S last (the rest by geometric nested
+    dissection) and factorized by SuperLU without pivoting (K is symmetric
+    positive definite).  With K = L U, the trailing blocks give
+    the Schur complement K_S = K_SS - K_SI K_II^-1 K_IS = L_SS U_SS, the
+    exact stiffness of the body seen from S, at the price of one sparse
+    factorization.  Full displacements for forces acting on S are recovered
+    with the same factors (`full_displacement`).
     """
 
     def __init__(self, disc: Discretization, K: sp.csr_matrix, surface_dofs: np.ndarray):
         self.disc = disc
         free = disc.free
-        Kff = K[free][:, free].tocsc()
-        self.lu = spl.splu(Kff)
+        n = len(free)
         pos = np.full(disc.ndofs, -1)
-        pos[free] = np.arange(len(free))
+        pos[free] = np.arange(n)
         spos = pos[surface_dofs]
         if np.any(spos < 0):
             raise RuntimeError("a contact dof is fixed by the supports")
-        E = np.zeros((len(free), len(surface_dofs)))
-        E[spos, np.arange(len(surface_dofs))] = 1.0
-        X = self.lu.solve(E)
-        self.X = X
-        C = X[spos]
-        C = 0.5 * (C + C.T)
-        self.compliance = C
-        S = np.linalg.inv(C)
-        self.stiffness = 0.5 * (S + S.T)
+        m = len(spos)
+        Kff = K[free][:, free].tocsr()
+        inner = np.ones(n, dtype=bool)
+        inner[spos] = False
+        inner = np.nonzero(inner)[0]
+        order = nested_dissection(Kff[inner][:, inner], disc.dof_locations[:, free[inner]])
+        perm = np.concatenate((inner[order], spos))
+        Kp = Kff[perm][:, perm].tocsc()
+        lu = spl.splu(Kp, permc_spec="NATURAL", diag_pivot_thresh=0.0,
+                      options=dict(SymmetricMode=True))
+        tail = np.arange(n - m, n)
+        if not (np.array_equal(lu.perm_c[tail], tail) and np.array_equal(lu.perm_r[tail], tail)):
+            raise RuntimeError("the factorization did not keep the contact dofs last")
+        Ks = _trailing(lu.L, m) @ _trailing(lu.U, m)
+        self.stiffness = 0.5 * (Ks + Ks.T)
+        self.lu = lu
+        self.perm = perm
+        self.n = n
+        self.m = m
         self.surface_dofs = surface_dofs
 
     def full_displacement(self, f_surface: np.ndarray) -> np.ndarray:
         """Displacement vector(s) (ndofs[, k]) for surface forces f_S (m[, k])."""
         disc = self.disc
+        rhs = np.zeros((self.n,) + f_surface.shape[1:])
+        rhs[self.n - self.m:] = f_surface
+        x = self.lu.solve(rhs)
         u = np.zeros((disc.ndofs,) + f_surface.shape[1:])
-        u[disc.free] = self.X @ f_surface
+        u[disc.free[self.perm]] = x
         return u

@@ -15,21 +15,36 @@ Penalty (report 3.3.2, Fig. 3.2): the C1 law
           H a^2 / (2 eps)       0 <= a < eps
           H (a - eps / 2)       a >= eps
 
-with slope H / eps =: kappa (the penalty stiffness, the report's 1/epsilon
-of 3.4.1).  Here ``kappa = c E' / h_f`` on each facet of arc length h_f,
-E' = E / (1 - nu^2) the contact modulus, ``c = PENALTY_FACTOR = 100``: the
-penetration is about p h_f / (c E'), i.e. 1 % of the element size at a
-pressure equal to E', which puts the penalty error well below the
-discretization error (measured by `asperity.fe.solve.penalty_error`).  The
-smoothing pressure is ``H = SMOOTHING * E'`` with SMOOTHING = 1e-3, so
-eps = H / kappa shrinks with the penalty and the C1 law tends to the exact
-condition as kappa grows.
+whose linear branch has the slope H =: kappa, the penalty stiffness [Pa/m]
+(the report's 1/epsilon of 3.4.1), and eps is the penetration over which
+the law is smoothed.  Here ``kappa = c E' / h_f`` on each facet of arc
+length h_f, E' = E / (1 - nu^2) the contact modulus,
+``c = PENALTY_FACTOR = 1000``: the penetration is about p h_f / (c E'),
+i.e. 0.1 % of the element size at a pressure equal to E'.  The penalty's
+own error (`asperity.fe.solve.penalty_error`) falls as 1 / c; at c = 1000
+it is a few 1e-5 in force and contact radius on the Hertz problem, well
+below the discretization error.  The smoothing covers the pressures below
+p_s / 2 with ``p_s = SMOOTHING * E'`` (SMOOTHING = 1e-3), i.e.
+eps = p_s / kappa, which shrinks with the penalty so that the C1 law tends
+to the exact condition as kappa grows.
 
-Exact option: the same quadrature-point condition enforced exactly by an
-augmented Lagrangian (Uzawa updates of the multipliers lambda_q at the
-facet quadrature points, t_N = max(0, lambda + kappa a)) to a tolerance on
-the penetration: the limit of the penalty method as kappa -> infinity on
-the same discretization, so the difference measures the penalty's own error.
+Integration over the surface (`ContactZone`): the traction is evaluated
+at contact points on each 3-node facet.  Default ``FACET_RULE = "nodal"``:
+Simpson's rule, whose points are the facet's nodes, so there is one
+contact condition per surface node.  The "gauss" rule (6 Gauss points)
+imposes more conditions than a quadratic facet has unknowns; with a stiff
+penalty the pressure then oscillates between the points and Newton's
+active set creeps a few points per iteration (measured: 20-30 iterations
+against 4-8 with the nodal rule, independent of the penalty factor).
+Contact area and radius are not counted at the points (the report's
+Fig. 8.15 staircase): the edge is interpolated between nodes
+(`contact_edge`).
+
+Exact option: the same point-wise condition enforced exactly by an
+augmented Lagrangian (Uzawa updates of the multipliers lambda at the
+contact points, t_N = max(0, lambda + kappa a)) to a tolerance on the
+penetration: the limit of the penalty method as kappa -> infinity on the
+same discretization, so the difference measures the penalty's own error.
 """
 
 from __future__ import annotations
@@ -41,7 +56,7 @@ import numpy as np
 from .assembly import TopSurface
 
 #: penalty stiffness kappa = PENALTY_FACTOR * E' / h_facet
-PENALTY_FACTOR = 100.0
+PENALTY_FACTOR = 1000.0
 #: smoothing pressure H of the C1 penalty, as a fraction of E'
 SMOOTHING = 1e-3
 #: integration of the contact traction on each 3-node facet: "nodal"
@@ -59,18 +74,24 @@ def _lagrange_quadratic(xi: np.ndarray):
 
 
 class ContactZone:
-    """Quadrature on the first `nfacets` top facets (the candidate zone).
+    """Contact points on the first `nfacets` top facets (the candidate zone).
 
     Unknowns are the u_z of the chain nodes 0 .. 2 nfacets (``ndofs``).
+    The facets are the isoparametric traces of the P2 elements: position
+    and displacement are quadratic in the facet coordinate, ``weights`` are
+    the rule's weights times ds (times r for a body of revolution).
     """
 
-    def __init__(self, top: TopSurface, nfacets: int, axisymmetric: bool,
-                 rule: str | None = None):
+    def __init__(self, top: TopSurface, nfacets: int, geometry, rule: str | None = None):
         self.nfacets = nfacets
         self.ndofs = 2 * nfacets + 1
         self.dofs = top.node_dofs[: self.ndofs]
         self.coords = top.coords[:, : self.ndofs]
+        axisymmetric = bool(geometry.axisymmetric)
         self.axisymmetric = axisymmetric
+        # height of the undeformed profile at the nodes (differs from the
+        # meshed top for a shallow profile, whose shape is in the gap only)
+        self.z_nodes = self.coords[1] + geometry.gap_offset(self.coords[0])
         fn = top.facet_nodes(nfacets)  # (3, nf)
         self.facet_nodes = fn
         rule = FACET_RULE if rule is None else rule
@@ -89,7 +110,7 @@ class ContactZone:
         tang = np.einsum("cjf,jg->cfg", X, dN)
         ds = np.hypot(tang[0], tang[1]) * wq  # (nf, ng)
         self.r = pos[0]
-        self.z0 = pos[1]
+        self.z0 = pos[1] + geometry.gap_offset(pos[0])
         self.weights = ds * np.abs(pos[0]) if axisymmetric else ds
         # facet arc lengths
         self.lengths = (np.hypot(tang[0], tang[1]) * wq).sum(axis=1)
@@ -101,7 +122,7 @@ class ContactZone:
         return self.z0 + np.einsum("jf,jg->fg", u[self.facet_nodes], self.N) + w
 
     def node_penetration(self, u: np.ndarray, w: float) -> np.ndarray:
-        return self.coords[1] + u + w
+        return self.z_nodes + u + w
 
     def nodal(self, q: np.ndarray) -> np.ndarray:
         """sum_g q N_j W into the nodes, q (nf, ng)."""

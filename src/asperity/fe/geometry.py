@@ -31,6 +31,10 @@ class Profile:
     """Common behaviour of asperity profiles (subclasses are frozen dataclasses)."""
 
     axisymmetric: bool
+    #: shallow asperity: the body is the block under the tangent plane at the
+    #: apex and the profile enters only through the initial gap (Hertz's
+    #: half-space idealization); otherwise the body has the profile's shape.
+    shallow: bool = False
     #: a short name used in records and hashes
     kind: ClassVar[str] = "profile"
 
@@ -68,6 +72,16 @@ class Profile:
         r = np.abs(np.asarray(r, dtype=float))
         inside = r <= self.extent
         return np.where(inside, self._hill(np.minimum(r, self.extent)), -self.height)
+
+    def body_surface(self, r) -> np.ndarray:
+        """Height of the top of the meshed body above the apex [m]."""
+        if self.shallow:
+            return np.zeros_like(np.asarray(r, dtype=float))
+        return self.surface(r)
+
+    def gap_offset(self, r) -> np.ndarray:
+        """surface - body_surface: the part of the profile carried by the gap."""
+        return self.surface(r) - self.body_surface(r)
 
     def slope(self, r) -> np.ndarray:
         """d surface / d r."""
@@ -130,7 +144,7 @@ class CosineHill(Profile):
         """Hill of a given peak-to-valley `height` and width/height ratio."""
         _check_positive(width_to_height=width_to_height, height=height)
         amplitude = 0.5 * height
-        wavenumber = math.pi / (width_to_height * height)
+        wavenumber = math.pi / (width_to_height * amplitude)
         return cls(amplitude, wavenumber, axisymmetric)
 
     @classmethod
@@ -202,13 +216,19 @@ class Sphere(Profile):
 class Paraboloid(Profile):
     """The paraboloid z = -r^2 / (2 R): the shape Hertz theory assumes.
 
-    The hill extends to r = `cap_ratio` * R (default 0.5, where the slope is
-    0.5) and stands on the block.
+    By default (``shallow=True``) exactly Hertz's idealization: the elastic
+    body is the half space under the tangent plane at the apex and the
+    paraboloid is the initial gap to the flat, so the model converges to
+    the Hertz solution.  With ``shallow=False`` the body itself has the
+    paraboloid's shape: a hill out to r = `cap_ratio` * R (default 0.5,
+    where the slope is 0.5) standing on the block; it is more compliant
+    than the half space (about 0.5-1 % in load at a / R = 0.03-0.14).
     """
 
     radius: float
     cap_ratio: float = 0.5
     axisymmetric: bool = True
+    shallow: bool = True
     kind: ClassVar[str] = "paraboloid"
 
     def __post_init__(self):
@@ -241,26 +261,30 @@ class Cylinder(Sphere):
 class TruncatedV(Profile):
     """The truncated V ridge of report 6.2 (plane strain by default).
 
-    A flat top of half width `top_half_width`, flanks falling at
-    `flank_angle_deg` from the horizontal (45 deg, the report's grooves) down
-    to the valley `ridge_height` below the top.  The flat first touches the whole
-    top at once; its corners are kept as mesh vertices.
+    The report machined V grooves of included angle 45 deg (pitch 0.1 in,
+    depth 0.125 in: 2 atan(0.05 / 0.125) = 43.6 deg) and truncated the
+    ridges between them (its Fig. 6.8b).  The ridge has a flat top of half
+    width `top_half_width` and flanks of included angle
+    `included_angle_deg` (each flank at half that angle from the vertical)
+    down to the valley `ridge_height` below the top.  The flat first
+    touches the whole top at once; its corners are kept as mesh vertices.
     """
 
     top_half_width: float
     ridge_height: float
-    flank_angle_deg: float = 45.0
+    included_angle_deg: float = 45.0
     axisymmetric: bool = False
     kind: ClassVar[str] = "truncated_v"
 
     def __post_init__(self):
         _check_positive(top_half_width=self.top_half_width, height=self.ridge_height)
-        if not 0 < self.flank_angle_deg < 90:
-            raise ValueError("flank_angle_deg must lie in (0, 90)")
+        if not 0 < self.included_angle_deg < 180:
+            raise ValueError("included_angle_deg must lie in (0, 180)")
 
     @property
     def flank_slope(self) -> float:
-        return math.tan(math.radians(self.flank_angle_deg))
+        """|dz/dx| of the flanks."""
+        return 1.0 / math.tan(math.radians(0.5 * self.included_angle_deg))
 
     @property
     def extent(self) -> float:
@@ -284,5 +308,3 @@ class TruncatedV(Profile):
         w = np.asarray(w, dtype=float)
         return np.maximum(super().intersection_radius(w), self.top_half_width)
 
-
-Geometry = Profile

@@ -15,6 +15,9 @@ from the apex (``apex_size``, ratio ``growth``) to L, each cut into
 distance from the apex: fine where the contact starts, coarse far away.
 Kinks of the profile are moved onto ring radii so they are vertices.
 
+For a shallow profile (`Profile.shallow`) the meshed top is the flat
+tangent plane and the profile only enters the gap to the flat.
+
 Elements are 6-node triangles (P2) with second-order geometry: the
 mid-side nodes of the top surface lie on the true curve (projected along
 the perpendicular bisector of the chord).  Refinement (skfem's red-green-
@@ -48,7 +51,7 @@ def project_to_profile(geometry: Profile, a: np.ndarray, b: np.ndarray) -> np.nd
 
     def phi(s):
         r = mid[0] + s * normal[0]
-        return geometry.surface(r) - (mid[1] + s * normal[1])
+        return geometry.body_surface(r) - (mid[1] + s * normal[1])
 
     lo = -length.copy()
     hi = length.copy()
@@ -62,7 +65,7 @@ def project_to_profile(geometry: Profile, a: np.ndarray, b: np.ndarray) -> np.nd
     s = 0.5 * (lo + hi)
     out = mid + s * normal
     # fall back to vertical projection where the bisector has no bracket
-    vertical = np.vstack((mid[0], geometry.surface(mid[0])))
+    vertical = np.vstack((mid[0], geometry.body_surface(mid[0])))
     out = np.where(ok, out, vertical)
     out[0] = np.maximum(out[0], 0.0)
     return out
@@ -120,7 +123,7 @@ class AsperityMesh:
         r = rho * np.cos(th)
         r[:, -1] = 0.0  # exactly on the axis
         zp = -rho * np.sin(th)
-        z = zp + geometry.surface(r)
+        z = zp + geometry.body_surface(r)
         p = np.hstack((np.zeros((2, 1)), np.vstack((r.ravel(), z.ravel()))))
         nr = len(radii)
 
@@ -149,10 +152,7 @@ class AsperityMesh:
         m = self.vertices
         bf = m.boundary_facets()
         f = m.facets[:, bf]
-        on_top = self.top[f[0]] & self.top[f[1]]
-        # exclude a facet lying on the axis (both ends at r = 0 cannot happen
-        # on the top surface except for degenerate meshes)
-        bf = bf[on_top]
+        bf = bf[self.top[f[0]] & self.top[f[1]]]
         rmin = m.p[0, m.facets[:, bf]].min(axis=0)
         return bf[np.argsort(rmin, kind="stable")]
 
@@ -192,12 +192,6 @@ class AsperityMesh:
     @property
     def nelements(self) -> int:
         return self.vertices.t.shape[1]
-
-    def element_sizes(self) -> np.ndarray:
-        """Longest edge of each element."""
-        p, t = self.vertices.p, self.vertices.t
-        e = [np.hypot(*(p[:, t[i]] - p[:, t[(i + 1) % 3]])) for i in range(3)]
-        return np.max(e, axis=0)
 
     # --- refinement ---------------------------------------------------------
     def refined(self, marked: np.ndarray) -> "AsperityMesh":

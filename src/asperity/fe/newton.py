@@ -8,7 +8,10 @@ u_z alone:
 
 with K_S the condensed stiffness (`assembly.CondensedStiffness`).  R is
 the gradient of the convex energy 1/2 u^T K_S u + int Phi(a) W ds, so each
-Newton step is safeguarded by a backtracking line search on that energy.
+Newton step is safeguarded by a backtracking line search on that energy
+(or on the residual norm where energy differences drown in round-off).
+Converged when ||R|| <= tolerance * ||f_contact|| or, for very stiff
+penalties, when ||R|| reaches its round-off level (`ContactNewton.floor`).
 
 Step control in the spirit of report 3.5: each requested interference is
 reached from the last converged state with the tangent predictor
@@ -19,6 +22,7 @@ diverges, or gives non-finite values) is cut in half and retried, up to
 
 from __future__ import annotations
 
+import time
 from dataclasses import dataclass
 
 import numpy as np
@@ -28,8 +32,19 @@ from .contact import AugmentedPenalty, C1Penalty, ContactZone
 from .errors import ConvergenceError
 
 
+#: Newton stops once the residual is below this multiple of its round-off
+#: level (`ContactNewton.floor`), which matters for very stiff penalties
+ROUNDOFF_FACTOR = 10.0
+
+#: the exact option's stiffness dF/dw holds the points in contact by springs
+#: this much stiffer than the augmented Lagrangian's (relative error ~ 1 / scale)
+EXACT_TANGENT_SCALE = 1e6
+
+
 class _NotConverged(Exception):
-    pass
+    def __init__(self, message: str, iterations: int = 0):
+        super().__init__(message)
+        self.iterations = iterations
 
 
 def _penalty_energy(law, a):
@@ -55,6 +70,7 @@ class LevelState:
     stiffness: float        # dF/dw from the consistent tangent
     iterations: int = 0
     cuts: int = 0
+    wall_time: float = 0.0
 
 
 class ContactNewton:
@@ -72,6 +88,20 @@ class ContactNewton:
         a = self.zone.penetration(u, w)
         return 0.5 * u @ self.K @ u + np.sum(_penalty_energy(law, a) * self.zone.weights)
 
+    def floor(self, u, w, dt) -> float:
+        """Round-off level of the residual: below it no iteration can go.
+
+        The penetration a = z + u + w is a difference of much larger
+        numbers (relative error eps (|z| + |u| + w) / a), which the penalty
+        stiffness t' amplifies; plus the rounding of K_S u.
+        """
+        eps = np.finfo(float).eps
+        zone = self.zone
+        up = np.einsum("jf,jg->fg", np.abs(u)[zone.facet_nodes], np.abs(zone.N))
+        da = eps * (np.abs(zone.z0) + up + abs(w))
+        return (np.linalg.norm(zone.nodal(dt * da))
+                + eps * np.linalg.norm(np.abs(self.K) @ np.abs(u)))
+
     def residual(self, law, u, w):
         a = self.zone.penetration(u, w)
         t, dt = law.traction(a)
@@ -86,32 +116,38 @@ class ContactNewton:
         for it in range(self.max_iterations + 1):
             rn = np.linalg.norm(R)
             if not np.isfinite(rn):
-                raise _NotConverged("non-finite residual")
-            if rn <= self.tolerance * max(np.linalg.norm(f), np.finfo(float).tiny):
+                raise _NotConverged("non-finite residual", it)
+            if rn <= max(self.tolerance * np.linalg.norm(f), ROUNDOFF_FACTOR * self.floor(u, w, dt)):
                 return u, t, dt, it
             if rn == 0.0:
                 return u, t, dt, it
             if rn > self.divergence * max(r0, np.finfo(float).tiny):
-                raise _NotConverged("diverging residual")
+                raise _NotConverged("diverging residual", it)
             if it == self.max_iterations:
                 break
             J = self.K + self.zone.matrix(dt)
             try:
                 d = sla.cho_solve(sla.cho_factor(J, check_finite=True), -R)
             except (np.linalg.LinAlgError, ValueError) as exc:
-                raise _NotConverged(f"tangent not positive definite: {exc}") from None
-            # backtracking (Armijo) line search on the convex energy
+                raise _NotConverged(f"tangent not positive definite: {exc}", it) from None
+            # backtracking line search: accept a step that decreases the
+            # convex energy (Armijo) or, where energy differences drown in
+            # round-off near the solution, one that decreases the residual
             e0 = self._energy(law, u, w)
             slope = R @ d
             alpha = 1.0
             for _ in range(40):
                 trial = u + alpha * d
-                if self._energy(law, trial, w) <= e0 + 1e-4 * alpha * slope:
+                e1 = self._energy(law, trial, w)
+                if e1 <= e0 + 1e-4 * alpha * slope:
+                    break
+                if np.linalg.norm(self.residual(law, trial, w)[0]) <= (1 - 1e-4 * alpha) * rn:
                     break
                 alpha *= 0.5
             u = trial
             R, f, t, dt = self.residual(law, u, w)
-        raise _NotConverged(f"no convergence in {self.max_iterations} iterations")
+        raise _NotConverged(f"no convergence in {self.max_iterations} iterations",
+                            self.max_iterations)
 
     def tangent(self, dt: np.ndarray) -> np.ndarray:
         """du/dw at a converged state: J du/dw = -int t' N W."""
@@ -149,29 +185,37 @@ def solve_uzawa(newton: ContactNewton, kappa: np.ndarray, w: float, u0: np.ndarr
     force_old = None
     for _ in range(max_updates):
         law = AugmentedPenalty(kappa, lam)
-        u, t, dt, its = newton.solve(law, w, u)
+        try:
+            u, t, dt, its = newton.solve(law, w, u)
+        except _NotConverged as exc:
+            raise _NotConverged(str(exc), total + exc.iterations) from None
         total += its
         a = newton.zone.penetration(u, w)
         force = newton.zone.total(t)
-        pen = float(np.max(np.where(t > 0, a, 0.0), initial=0.0))
+        # points of zero measure (the apex of a body of revolution) carry
+        # no force and no constraint
+        pen = float(np.max(np.where((t > 0) & (newton.zone.weights > 0), a, 0.0), initial=0.0))
         lam = t
         if pen <= tolerance * w and force_old is not None and \
                 abs(force - force_old) <= tolerance * abs(force):
             return u, t, dt, total, lam
         force_old = force
-    raise _NotConverged(f"Uzawa updates did not reach the tolerance in {max_updates}")
+    raise _NotConverged(f"Uzawa updates did not reach the tolerance in {max_updates}", total)
 
 
 def continuation(newton: ContactNewton, law: C1Penalty, levels, max_cuts: int = 8,
-                 exact_tolerance: float | None = None, step_offset: int = 0):
+                 exact_tolerance: float | None = None, steps=None):
     """Solve the interference levels in order, with step cutting.
 
     `law` is the penalty law; with `exact_tolerance` set, each level is
     solved exactly by Uzawa updates (augmented Lagrangian with the same
     stiffness).  Levels <= 0 (flat not touching) give the untouched state;
     the path always starts from first touch (w = 0, u = 0), so no step
-    skips first contact.  Returns a list of `LevelState`.
+    skips first contact.  `steps` are the caller's indices of the levels
+    (named by `ConvergenceError`; default 0, 1, ...).  Returns a list of
+    `LevelState`.
     """
+    steps = range(len(levels)) if steps is None else list(steps)
     zone = newton.zone
     state = untouched(zone)
     lam = np.zeros(zone.weights.shape)
@@ -179,12 +223,13 @@ def continuation(newton: ContactNewton, law: C1Penalty, levels, max_cuts: int = 
     for n, target in enumerate(levels):
         target = float(target)
         if target <= 0:
-            s = untouched(zone, target)
-            out.append(s)
+            out.append(untouched(zone, target))
             state = untouched(zone)
+            lam = np.zeros(zone.weights.shape)
             continue
         cuts = 0
         iterations = 0
+        start = time.perf_counter()
         goals = [target]
         while goals:
             goal = goals[-1]
@@ -199,16 +244,21 @@ def continuation(newton: ContactNewton, law: C1Penalty, levels, max_cuts: int = 
                     iterations += its
                     lam = lam_new
             except _NotConverged as exc:
-                iterations += newton.max_iterations
+                iterations += exc.iterations
                 cuts += 1
                 if cuts > max_cuts:
-                    raise ConvergenceError(step_offset + n, target, state.w, cuts - 1,
+                    raise ConvergenceError(int(steps[n]), target, state.w, cuts - 1,
                                            str(exc)) from None
                 goals.append(0.5 * (state.w + goal))
                 continue
+            if exact_tolerance is not None:
+                # tangent of the exact condition: the active points held
+                # (their spring stiffened by EXACT_TANGENT_SCALE)
+                dt = dt * EXACT_TANGENT_SCALE
             state = newton.state(goal, u, t, dt, 0, 0)
             goals.pop()
         state.iterations = iterations
         state.cuts = cuts
+        state.wall_time = time.perf_counter() - start
         out.append(state)
     return out
