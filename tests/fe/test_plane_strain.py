@@ -27,7 +27,6 @@ def test_truncated_v_flat_top_acts_as_a_punch():
     F, w = ds.force.values, ds.interference.values
     np.testing.assert_allclose(F / w, F[0] / w[0], rtol=1e-3)
     np.testing.assert_allclose(ds.normal_stiffness.values, F[0] / w[0], rtol=1e-3)
-    assert np.all(ds.max_pressure.values > F / (2 * 0.1))  # corner concentration
 
 
 def test_truncated_v_converges_with_accuracy():
