@@ -32,7 +32,7 @@ def test_sample_grid_avoids_zero_curvature():
 
 def test_shift_invariant_model_derives_heights():
     plan = make_plan(np.linspace(-1, 1, 5), [1.0, 2.0, 3.0], interference_grid(1.0, 8),
-                     model="hertz", job_inputs=JOB)
+                     model="hertz", job_inputs=JOB, shift_invariant=True, analytic=True)
     keys = plan["key"].values.reshape(5, 3)
     assert all(len(set(keys[:, j])) == 1 for j in range(3))  # one key per curvature
     assert len(set(keys.ravel())) == 3
@@ -42,9 +42,10 @@ def test_shift_invariant_model_derives_heights():
 
 def test_height_dependent_model_gets_a_job_per_sample():
     plan = make_plan(np.linspace(-1, 1, 4), [1.0, 2.0], interference_grid(1.0, 8),
-                     model="fe_cosine", job_inputs=JOB)
+                     model="fe", job_inputs=JOB, shift_invariant=False, analytic=False)
     assert len(set(plan["key"].values)) == 8
     assert len(job_keys(plan)) == 8
     other = make_plan(np.linspace(-1, 1, 4), [1.0, 2.0], interference_grid(1.0, 8),
-                      model="fe_cosine", job_inputs={**JOB, "accuracy": "fine"})
+                      model="fe", job_inputs={**JOB, "accuracy": "fine"},
+                      shift_invariant=False, analytic=False)
     assert set(other["key"].values).isdisjoint(plan["key"].values)

@@ -19,12 +19,6 @@ from typing import Any, Mapping
 import numpy as np
 import xarray as xr
 
-#: Asperity models whose response needs no job of its own (closed forms).
-ANALYTIC_MODELS = ("hertz", "constant")
-#: Models whose response depends on interference = height - separation only.
-SHIFT_INVARIANT_MODELS = ("hertz", "constant")
-
-
 def sample_key(payload: Mapping[str, Any]) -> str:
     """A 12-hex-digit hash of a job's inputs (canonical JSON, floats exact)."""
 
@@ -77,18 +71,21 @@ def make_plan(
     *,
     model: str,
     job_inputs: Mapping[str, Any],
+    shift_invariant: bool,
+    analytic: bool,
 ) -> xr.Dataset:
     """The samples of a scene on the grid heights x curvatures.
 
     `job_inputs` is everything a sample's job depends on besides its own
     height and curvature (material, effects, accuracy, model options); it
-    goes into the key.
+    goes into the key.  `shift_invariant`: the response depends on the
+    interference only, not on the peak height (samples of one curvature
+    share a key).  `analytic`: a closed form, no job of its own.
     """
     heights = np.asarray(heights, float)
     curvatures = np.asarray(curvatures, float)
     hh, kk = np.meshgrid(heights, curvatures, indexing="ij")
     hh, kk = hh.ravel(), kk.ravel()
-    shift_invariant = model in SHIFT_INVARIANT_MODELS
     base = {"model": model, "interference": np.asarray(interferences, float), **job_inputs}
     keys = np.array(
         [
@@ -100,7 +97,7 @@ def make_plan(
     representative = np.zeros(keys.size, bool)
     representative[first] = True
     derived_from = np.where(representative, "", keys)
-    job = representative & (model not in ANALYTIC_MODELS)
+    job = representative & (not analytic)
     sample = np.arange(keys.size)
     ds = xr.Dataset(
         {

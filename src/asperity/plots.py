@@ -113,8 +113,10 @@ def expectation_figure(density_values: np.ndarray, z: np.ndarray, kappa: np.ndar
 
 
 def interface_figure(interface: xr.Dataset, verification: xr.Dataset | None = None,
-                     length_unit: str = "m", pressure_unit: str = "Pa") -> plt.Figure:
-    """Pressure and real contact area versus separation, and pressure versus area (Fig. 7.1)."""
+                     length_unit: str = "m", pressure_unit: str = "Pa",
+                     others: dict[str, xr.Dataset] | None = None) -> plt.Figure:
+    """Pressure and real contact area versus separation, and pressure versus area
+    (Figs. 7.1, 7.4); `others`: interfaces of compared scenes, drawn beside."""
     ls_ = units.length_scale(length_unit)
     ps = units.pressure_scale(pressure_unit)
     h = interface["separation"].values / ls_
@@ -124,6 +126,17 @@ def interface_figure(interface: xr.Dataset, verification: xr.Dataset | None = No
     axes[0].semilogy(h, p, "o-", ms=3, label="homogenized")
     axes[1].semilogy(h, a, "o-", ms=3, label="homogenized")
     axes[2].loglog(a, p, "o-", ms=3, label="homogenized")
+    for i, (name, other) in enumerate((others or {}).items()):
+        ho = other["separation"].values / ls_
+        po = other["nominal_pressure"].values / ps
+        ao = other["contact_area_ratio"].values
+        style = dict(ls=":", marker="s", ms=3, color=f"C{i + 1}", label=name)
+        axes[0].semilogy(ho, po, **style)
+        axes[1].semilogy(ho, ao, **style)
+        axes[2].loglog(ao, po, **style)
+    if "extrapolated_fraction" in interface and float(interface["extrapolated_fraction"].max()) > 0:
+        axes[1].set_title(f"largest share of contacts beyond the FE range: "
+                          f"{100 * float(interface['extrapolated_fraction'].max()):.2g} %")
     if verification is not None:
         pc = verification["nominal_pressure_closed_form"].values / ps
         ac = verification["contact_area_ratio_closed_form"].values
@@ -201,5 +214,71 @@ def directional_figure(surface: xr.Dataset, length_unit: str = "m") -> plt.Figur
     axes[1].set(xlabel="profile direction [deg]", ylabel=f"m4 (curvature variance) [1/{length_unit}^2]")
     for ax in axes:
         ax.legend(fontsize=8)
+    fig.tight_layout()
+    return fig
+
+
+def asperities_figure(asperities: xr.Dataset, others: dict[str, xr.Dataset] | None = None,
+                      length_unit: str = "m") -> plt.Figure:
+    """Force and contact area of single asperities versus interference at three
+    curvatures (Figs. 7.2, 7.3); compared scenes' asperities dashed."""
+    ls_ = units.length_scale(length_unit)
+    fig, axes = plt.subplots(1, 2, figsize=(11, 4.2))
+    curv = asperities["curvature"].values
+    picks = sorted(set([0, curv.size // 2, curv.size - 1]))
+    sets = {"this scene": asperities, **(others or {})}
+    for s_i, (name, ds) in enumerate(sets.items()):
+        for c_i, j in enumerate(picks):
+            k = curv[j]
+            one = ds.sel(curvature=k, method="nearest").isel(height=0)
+            w = one["interference"].values
+            keep = w > 0
+            label = f"{name}, κ = {k * ls_:.3g} 1/{length_unit}"
+            style = dict(color=f"C{c_i}", ls="-" if s_i == 0 else "--", label=label)
+            axes[0].loglog(w[keep] / ls_, one["force"].values[keep], **style)
+            axes[1].loglog(w[keep] / ls_, one["contact_area"].values[keep] / ls_**2, **style)
+            if "extrapolated" in one and s_i == 0:
+                beyond = one["extrapolated"].values & keep
+                if beyond.any():
+                    axes[0].loglog(w[beyond] / ls_, one["force"].values[beyond], "x",
+                                   color=f"C{c_i}", ms=3)
+    axes[0].set(xlabel=f"interference [{length_unit}]", ylabel="force [N]",
+                title="single asperities (x: beyond the FE range)")
+    axes[1].set(xlabel=f"interference [{length_unit}]", ylabel=f"contact area [{length_unit}^2]")
+    for ax in axes:
+        ax.legend(fontsize=7)
+        ax.grid(True, which="both", alpha=0.3)
+    fig.tight_layout()
+    return fig
+
+
+def hertz_verification_figure(ds: xr.Dataset) -> plt.Figure:
+    """Finite element asperities against Hertz (report Figs. 6.5, 6.6)."""
+    fig, axes = plt.subplots(1, 3, figsize=(15, 4.2))
+    w = ds["interference"].values
+    axes[0].plot(w, ds["hertz_force"], "k-", label="Hertz")
+    axes[1].plot(w, ds["hertz_contact_radius"], "k-", label="Hertz")
+    markers = {"paraboloid": "o", "sphere": "s"}
+    for b in ds["body"].values:
+        for r_i, run in enumerate(ds["run"].values):
+            f = ds["force"].sel(body=b, run=run).values
+            if np.all(np.isnan(f)):
+                continue
+            style = dict(marker=markers.get(str(b), "^"), ls="none", color=f"C{r_i}",
+                         mfc="none" if b == "sphere" else None, label=f"{b}, {run}")
+            axes[0].plot(w, f, **style)
+            axes[1].plot(w, ds["contact_radius"].sel(body=b, run=run).values, **style)
+            axes[2].plot(w, 100 * ds["force_error"].sel(body=b, run=run).values,
+                         ls="-" if b == "paraboloid" else "--", marker=style["marker"],
+                         color=f"C{r_i}", mfc=style["mfc"], label=f"load, {b}, {run}")
+    axes[2].axhline(1.0, color="r", lw=0.8, ls=":", label="±1 % (standard bound)")
+    axes[2].axhline(-1.0, color="r", lw=0.8, ls=":")
+    axes[0].set(xlabel="interference w", ylabel="load P", title="load (Fig. 6.6)")
+    axes[1].set(xlabel="interference w", ylabel="contact radius r")
+    axes[2].set(xlabel="interference w", ylabel="load error against Hertz [%]",
+                title="report 1993: up to 17.5 % (Fig. 6.5)")
+    for ax in axes:
+        ax.legend(fontsize=7)
+        ax.grid(True, alpha=0.3)
     fig.tight_layout()
     return fig

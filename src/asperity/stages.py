@@ -15,7 +15,7 @@ from typing import Any, Mapping
 import numpy as np
 import xarray as xr
 
-from asperity import greenwood_williamson, hertz, homogenize, peaks, surface, units
+from asperity import greenwood_williamson, hertz, homogenize, models, peaks, surface, units
 from asperity.plan import interference_grid, make_plan, sample_grid
 
 log = logging.getLogger("asperity")
@@ -34,7 +34,10 @@ def length_factor(units_cfg: Config) -> float:
 def material_si(material: Config, units_cfg: Config) -> dict[str, float]:
     """Young's modulus in Pa and Poisson's ratio from a scene's material."""
     pressure = units.pressure_scale(units_cfg.get("pressure", "Pa"))
-    return {"youngs_modulus": material["youngs_modulus"] * pressure, "poisson": material["poisson"]}
+    out = {"youngs_modulus": material["youngs_modulus"] * pressure, "poisson": material["poisson"]}
+    if "yield_stress" in material:
+        out["yield_stress"] = material["yield_stress"] * pressure
+    return out
 
 
 # ---------------------------------------------------------------- surface
@@ -208,20 +211,22 @@ def population_density(surface_ds: xr.Dataset, population: Config):
 
 def peak_density(surface_ds: xr.Dataset) -> float:
     """Peaks per unit area (1/m^2) from the surface dataset."""
-    pd = surface_ds["peak_density"]
-    if "method" in pd.dims:
-        pd = pd.sel({"method": surface_ds.attrs["population_method"]})
-    return float(pd)
+    return _population_stat(surface_ds, "peak_density")
+
+
+def _population_stat(surface_ds: xr.Dataset, name: str) -> float:
+    """A statistic of the method that feeds the population."""
+    value = surface_ds[name]
+    if "method" in value.dims:
+        value = value.sel({"method": surface_ds.attrs["population_method"]})
+    return float(value)
 
 
 def height_scale(surface_ds: xr.Dataset) -> float:
     """The standard deviation that `sigma` units of separation refer to."""
     if "sigma_peak_height" in surface_ds:
         return float(surface_ds["sigma_peak_height"])
-    sigma = surface_ds["sigma"]
-    if "method" in sigma.dims:
-        sigma = sigma.sel({"method": surface_ds.attrs["population_method"]})
-    return float(sigma)
+    return _population_stat(surface_ds, "sigma")
 
 
 def bounds(density, cfg: Config, units_cfg: Config, threshold: float) -> tuple[float, float, float, float]:
@@ -257,12 +262,21 @@ def plan_dataset(
     )
     grid = interference_grid(z1 - z0, counts.get("interference", 241))
     model = asperity["model"]
+    analytic = models.is_analytic(asperity)
     job_inputs = {
         "material": material_si(material, units_cfg) if material else {},
         "effects": sorted(effects),
-        "accuracy": accuracy if model not in ("hertz", "constant") else "exact",
+        "accuracy": "exact" if analytic else accuracy,
+        "asperity": dict(asperity),
     }
-    plan = make_plan(heights, curvatures, grid, model=model, job_inputs=job_inputs)
+    width_to_height = None
+    if asperity.get("geometry") == "cosine" and "width_to_height" not in asperity:
+        width_to_height = models.representative_width_to_height(_population_stat(surface_ds, "sigma_slope"))
+        job_inputs["width_to_height"] = width_to_height
+    plan = make_plan(heights, curvatures, grid, model=model, job_inputs=job_inputs,
+                     shift_invariant=models.is_shift_invariant(asperity), analytic=analytic)
+    if width_to_height is not None:
+        plan.attrs["width_to_height"] = width_to_height
     plan.attrs["support"] = f"height [{z0:.6g}, {z1:.6g}] m, curvature [{k0:.6g}, {k1:.6g}] 1/m"
     plan.attrs["support_threshold"] = threshold
     log.info("plan: %d samples, %s", plan.sizes["sample"], plan.attrs["derived"])
@@ -284,6 +298,8 @@ def asperities_dataset(
             plan["height"].values, plan["curvature"].values, plan["interference"].values,
             mat["youngs_modulus"], mat["poisson"],
         )
+    if model == "fe":
+        return models.gather(plan, samples or {})
     raise ValueError(f"asperity.model {model!r} has no response on a sample grid")
 
 
@@ -312,6 +328,12 @@ def interface_dataset(
         bounds=rect, cells=tuple(homogenization.get("cells", (40, 40))), rule=rule,
         peak_density=peak_density(surface_ds),
     )
+    if "extrapolated_per_unit_area" in out:
+        fraction = xr.where(out["contact_count"] > 0,
+                            out["extrapolated_per_unit_area"] / out["contact_count"], 0.0)
+        out["extrapolated_fraction"] = fraction.assign_attrs(_attrs(
+            "1", "fraction of contacting asperities beyond their FE job's largest interference"))
+        out = out.drop_vars(["extrapolated_per_unit_area", "raw_extrapolated"])
     out.attrs["rule"] = rule
     out.attrs["cells"] = str(tuple(homogenization.get("cells", (40, 40))))
     return out
@@ -397,6 +419,8 @@ def sample_dataset(
         raise ValueError(f"sample {key}: not in the plan")
     row = plan.isel(sample=int(match[0]))
     model = asperity["model"]
+    if model == "fe":
+        return models.solve_sample(plan, key, asperity, material_si(material, units_cfg), accuracy)
     if model != "hertz":
         raise ValueError(f"sample {key}: asperity.model {model!r} has no per-sample model")
     mat = material_si(material, units_cfg)

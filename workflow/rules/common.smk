@@ -44,7 +44,11 @@ def _canonical(obj):
 
 def _load_scenes():
     definitions = {}
-    for name in config["scenes"]:
+    pending = list(config["scenes"])
+    while pending:  # the configured scenes and the scenes they compare with
+        name = pending.pop(0)
+        if name in definitions:
+            continue
         scene_file = SCENE_DIR / f"{name}.yaml"
         if not scene_file.exists():
             raise WorkflowError(f"config/config.yaml: key scenes: no scene file {scene_file}")
@@ -53,6 +57,7 @@ def _load_scenes():
                 definitions[name] = yaml.safe_load(fh) or {}
             except yaml.YAMLError as err:
                 raise WorkflowError(f"{scene_file}: not valid YAML: {err}")
+        pending += list(definitions[name].get("compare_with", []) or [])
     config["scene_definitions"] = definitions
     try:
         validate(config, "../../config/schema.yaml")
@@ -61,13 +66,13 @@ def _load_scenes():
         raise WorkflowError(_explain(cause) if cause is not None else str(err)) from None
     for name, scene in definitions.items():
         for kind in ("profile", "map"):
-            source = scene["surface"].get(kind, {})
+            source = scene.get("surface", {}).get(kind, {})
             if "file" in source and not Path(source["file"]).exists():
                 raise WorkflowError(
                     f"{SCENE_DIR / (name + '.yaml')}: key surface.{kind}.file: "
                     f"no such file {source['file']}"
                 )
-        for i, item in enumerate(scene["surface"].get("profiles", {}).get("files", [])):
+        for i, item in enumerate(scene.get("surface", {}).get("profiles", {}).get("files", [])):
             if not Path(item["file"]).exists():
                 raise WorkflowError(
                     f"{SCENE_DIR / (name + '.yaml')}: key surface.profiles.files.{i}.file: "
@@ -105,6 +110,8 @@ def model(name):
 
 def scene_targets(name):
     out = f"{RESULTS}/{name}"
+    if "single_asperity" in SCENES[name]:
+        return [f"{out}/verification.nc", f"{out}/figures/verification.png"]
     targets = [f"{out}/surface.nc", f"{out}/figures/surface.png"]
     gen = generated(name)
     if gen and gen.get("convergence_spacings"):
@@ -112,7 +119,8 @@ def scene_targets(name):
     if model(name) == "constant":
         targets += [f"{out}/expectation.nc", f"{out}/figures/expectation.png"]
     elif model(name) is not None:
-        targets += [f"{out}/interface.nc", f"{out}/figures/interface.png"]
+        targets += [f"{out}/interface.nc", f"{out}/figures/interface.png",
+                    f"{out}/figures/asperities.png"]
         if SCENES[name].get("verification"):
             targets.append(f"{out}/verification.nc")
     return targets

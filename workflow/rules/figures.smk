@@ -1,9 +1,15 @@
 # Figures drawn from the netCDF files only (asperity.plots).
 
 
+def compared(wildcards, name):
+    """The `name` result files of the scenes this scene compares with."""
+    return [f"{RESULTS}/{other}/{name}" for other in SCENES[wildcards.scene].get("compare_with", [])]
+
+
 def interface_figure_inputs(wildcards):
     out = f"{RESULTS}/{wildcards.scene}"
-    inputs = {"interface": f"{out}/interface.nc", "surface": f"{out}/surface.nc"}
+    inputs = {"interface": f"{out}/interface.nc", "surface": f"{out}/surface.nc",
+              "others": compared(wildcards, "interface.nc")}
     if SCENES[wildcards.scene].get("verification"):
         inputs["verification"] = f"{out}/verification.nc"
     return inputs
@@ -65,7 +71,42 @@ rule interface_figure:
         ),
     params:
         units=scene_part("units"),
+        compare_with=scene_part("compare_with", []),
     log:
         f"{RESULTS}/{{scene}}/logs/interface_figure.log",
     script:
         "../scripts/interface_figure.py"
+
+
+rule asperities_figure:
+    input:
+        asperities=f"{RESULTS}/{{scene}}/asperities.nc",
+        others=lambda w: compared(w, "asperities.nc"),
+    output:
+        report(
+            f"{RESULTS}/{{scene}}/figures/asperities.png",
+            category="{scene}",
+            caption="../report/asperities.rst",
+        ),
+    params:
+        units=scene_part("units"),
+        compare_with=scene_part("compare_with", []),
+    log:
+        f"{RESULTS}/{{scene}}/logs/asperities_figure.log",
+    script:
+        "../scripts/asperities_figure.py"
+
+
+rule verification_figure:
+    input:
+        verification=f"{RESULTS}/{{scene}}/verification.nc",
+    output:
+        report(
+            f"{RESULTS}/{{scene}}/figures/verification.png",
+            category="{scene}",
+            caption="../report/verification.rst",
+        ),
+    log:
+        f"{RESULTS}/{{scene}}/logs/verification_figure.log",
+    script:
+        "../scripts/verification_figure.py"

@@ -38,16 +38,24 @@ rule interface:
         "../scripts/interface.py"
 
 
+def verification_inputs(wildcards):
+    if "single_asperity" in SCENES[wildcards.scene]:
+        return {}  # one asperity against Hertz: nothing upstream
+    out = f"{RESULTS}/{wildcards.scene}"
+    return {"surface": f"{out}/surface.nc", "interface": f"{out}/interface.nc"}
+
+
 rule verification:
-    """The homogenized interface against a closed form (Greenwood-Williamson, 7.1)."""
+    """A result against a closed form: one FE asperity against Hertz (6.1), or
+    the homogenized interface against Greenwood-Williamson (7.1)."""
     input:
-        surface=f"{RESULTS}/{{scene}}/surface.nc",
-        interface=f"{RESULTS}/{{scene}}/interface.nc",
+        unpack(verification_inputs),
     output:
         f"{RESULTS}/{{scene}}/verification.nc",
     params:
         scene=lambda w: w.scene,
         verification=scene_part("verification"),
+        single_asperity=scene_part("single_asperity"),
         material=scene_part("material", {}),
         units=scene_part("units"),
     log:

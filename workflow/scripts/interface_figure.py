@@ -1,4 +1,4 @@
-"""figures/interface.png from interface.nc (and verification.nc)."""
+"""figures/interface.png from interface.nc (and verification.nc, compared scenes)."""
 
 from asperity import plots
 from asperity.io.figures import save_figure
@@ -6,8 +6,9 @@ from asperity.io.netcdf import read_dataset
 from asperity.joblog import job_log
 
 with job_log(snakemake.log[0], "interface figure"):
-    i, u = snakemake.input, snakemake.params.units
+    i, p = snakemake.input, snakemake.params
     ver = read_dataset(i.verification) if "verification" in i.keys() else None
-    fig = plots.interface_figure(read_dataset(i.interface), ver, length_unit=u["length"],
-                                 pressure_unit=u.get("pressure", "Pa"))
+    others = {name: read_dataset(path) for name, path in zip(p.compare_with, i.others)}
+    fig = plots.interface_figure(read_dataset(i.interface), ver, length_unit=p.units["length"],
+                                 pressure_unit=p.units.get("pressure", "Pa"), others=others)
     save_figure(fig, snakemake.output[0])
