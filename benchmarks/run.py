@@ -44,9 +44,28 @@ def case_expectation_gauss_200():
         1.0, density, rect, cells=(200, 200), rule="gauss", peak_density=0.025359))
 
 
+def case_fe_hertz_five_points():
+    from asperity.fe import LinearElastic, Paraboloid, solve_asperity
+
+    return best_of(lambda: solve_asperity(Paraboloid(1.0), LinearElastic(1000.0, 0.3),
+                                          [0.001, 0.002, 0.005, 0.01, 0.02], accuracy="standard"),
+                   repeats=3)
+
+
+def case_fe_cosine_forty_levels():
+    from asperity.fe import CosineHill, LinearElastic, solve_asperity
+
+    hill = CosineHill.from_aspect(17.09, 2e-6)  # the representative hill of scene asperity_shape
+    levels = np.geomspace(1e-10, 0.3 * 2e-6, 40)
+    return best_of(lambda: solve_asperity(hill, LinearElastic(65e9, 0.3), levels,
+                                          accuracy="standard"), repeats=3)
+
+
 CASES = [
     ("profile statistics, 10^6 points, all three methods", case_profile_statistics, 1.0),
     ("expectation integral, 200 x 200 cells, Gauss rule", case_expectation_gauss_200, 0.1),
+    ("FE Hertz curve, 5 interferences, standard", case_fe_hertz_five_points, 2.0),
+    ("FE cosine hill, 40-level loading curve, standard", case_fe_cosine_forty_levels, 3.0),
 ]
 
 

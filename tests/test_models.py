@@ -1,0 +1,58 @@
+"""Asperity models: representative hills, FE levels, and the gather onto the plan's grid."""
+
+import math
+
+import numpy as np
+import pytest
+import xarray as xr
+
+from asperity import hertz, models
+from asperity.plan import interference_grid, make_plan
+
+
+def test_representative_hill_has_the_surface_rms_slope_and_the_sample_curvature():
+    """8.2: width/height = pi/(sqrt2 sigma_slope); 2.5.1: kappa = C k^2."""
+    ratio = models.representative_width_to_height(0.13)
+    hill = models.fe_geometry({"geometry": "cosine"}, 0.018e6, ratio)
+    assert hill.tip_curvature == pytest.approx(0.018e6, rel=1e-12)
+    # rms slope of C cos(k s) is k C / sqrt2
+    assert hill.wavenumber * hill.amplitude / math.sqrt(2) == pytest.approx(0.13, rel=1e-12)
+
+
+def _fake_sample(key, curvature, levels):
+    """A 'FE' sample that is exactly Hertz, to test the gather's interpolation."""
+    r = hertz.hertz_response(levels, curvature, 2e11, 0.3)
+    ds = xr.Dataset({name: ("step", r[src]) for name, src in
+                     (("force", "force"), ("contact_area", "contact_area"),
+                      ("contact_radius", "contact_radius"), ("normal_stiffness", "stiffness"))})
+    ds["interference"] = ("step", levels)
+    ds.attrs["key"] = key
+    return ds
+
+
+def test_gather_reproduces_a_power_law_between_and_below_levels():
+    grid = interference_grid(1e-6, 121)
+    plan = make_plan([0.0, 1e-6], [1e5, 2e5], grid, model="fe", job_inputs={},
+                     shift_invariant=True, analytic=False)
+    keys = dict(zip(plan["sample_curvature"].values, plan["key"].values))
+    levels = np.geomspace(grid[5], 0.5e-6, 40)  # FE range ends at half the grid
+    samples = {k: _fake_sample(k, c, levels) for c, k in keys.items()}
+    gathered = models.gather(plan, samples)
+    exact = hertz.hertz_asperities([0.0, 1e-6], [1e5, 2e5], grid, 2e11, 0.3)
+    inside = grid <= levels[-1]
+    # log-log monotone cubic on 40 levels per 3.7 decades; power law below: 1e-10
+    np.testing.assert_allclose(gathered["force"].values[..., inside],
+                               exact["force"].values[..., inside], rtol=1e-10, atol=0)
+    assert not gathered["extrapolated"].values[..., inside].any()
+    assert gathered["extrapolated"].values[..., ~inside].all()
+    # beyond: the last tangent, a lower bound of the convex w^1.5
+    beyond = gathered["force"].values[..., ~inside]
+    assert np.all(beyond <= exact["force"].values[..., ~inside] * (1 + 1e-12))
+
+
+def test_gather_names_missing_samples():
+    grid = interference_grid(1e-6, 20)
+    plan = make_plan([0.0], [1e5, 2e5], grid, model="fe", job_inputs={},
+                     shift_invariant=True, analytic=False)
+    with pytest.raises(ValueError, match="2 samples missing"):
+        models.gather(plan, {})
