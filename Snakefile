@@ -8,6 +8,14 @@
 # Rules live in workflow/rules/, one file per stage; scripts in
 # workflow/scripts/ read snakemake.input/params and call the library.
 
+import os
+
+# one BLAS thread per job: jobs already run in parallel on the cores, and
+# threads competing with each other slow the FE solves many-fold
+for _var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
+    os.environ.setdefault(_var, "1")
+
+
 configfile: "config/config.yaml"
 
 
@@ -16,9 +24,11 @@ include: "workflow/rules/surface.smk"
 include: "workflow/rules/population.smk"
 include: "workflow/rules/homogenize.smk"
 include: "workflow/rules/figures.smk"
+include: "workflow/rules/accuracy.smk"
 
 
 rule all:
     input:
         [target for name in config["scenes"] for target in scene_targets(name)],
+        f"{RESULTS}/accuracy/hertz.nc",
     default_target: True

@@ -529,3 +529,28 @@ def surface_from_profiles(
                 attrs=_attrs(ds[name].attrs["units"], f"{ds[name].attrs['long_name']}, exact (eq. 2.4)"))
     ds.attrs["population_method"] = method
     return ds
+
+
+def hertz_verification_dataset(single: Config, material: Config, units_cfg: Config) -> xr.Dataset:
+    """One FE asperity against Hertz at the scene's presets (report 6.1, Fig. 6.5).
+
+    The paraboloid (Hertz's own idealization) and the true sphere, one run
+    per preset: `asperity.fe.study.hertz_accuracy_study` without its
+    refinement sequence and penalty study.
+    """
+    from asperity.fe.study import hertz_accuracy_study
+
+    length = length_factor(units_cfg)
+    mat = material_si(material, units_cfg)
+    ds = hertz_accuracy_study(
+        radius=single["radius"] * length, youngs_modulus=mat["youngs_modulus"], poisson=mat["poisson"],
+        interferences=tuple(v * length for v in single["interferences"]),
+        presets=tuple(single.get("presets", ("standard", "fine"))), refinement=(), penalty_factors=(),
+    )
+    for body in ds["body"].values:
+        for run in ds["run"].values:
+            err = ds["max_force_error"].sel(body=body, run=run)
+            if np.isfinite(err):
+                ds.attrs[f"max_force_error_{body}_{run}"] = float(err)
+                ds.attrs[f"max_radius_error_{body}_{run}"] = float(ds["max_radius_error"].sel(body=body, run=run))
+    return ds

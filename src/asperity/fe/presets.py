@@ -20,8 +20,10 @@ Keys
 domain_factor
     cut-off radius L of the block / `Profile.length_scale` (footprint
     radius of the hill) for bodies of revolution.  Fixing u = 0 at L makes
-    the body stiffer by about 0.4 a / L relative in the approach (a the
-    contact radius); 300 keeps that below 0.1 %.  Plane-strain sections use
+    the body stiffer, by about 1.1 a / L relative in load on the Hertz
+    problem (a the contact radius, measured by `asperity.fe.study`); at 300
+    that is most of the 'standard' preset's 0.12 % load error there.
+    Plane-strain sections use
     the fixed `PLANE_STRAIN_DOMAIN` instead (see below).
 apex_fraction
     innermost ring radius of the initial mesh / the smallest contact radius
