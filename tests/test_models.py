@@ -56,3 +56,20 @@ def test_gather_names_missing_samples():
                      shift_invariant=True, analytic=False)
     with pytest.raises(ValueError, match="2 samples missing"):
         models.gather(plan, {})
+
+
+def test_fe_failure_names_sample_and_step(monkeypatch):
+    """A sample whose Newton iterations fail even with step cutting stops its job
+    with a message naming the sample (key, curvature) and the step."""
+    from asperity import fe
+
+    def fail(*args, **kwargs):
+        raise fe.ConvergenceError(step=7, interference=3e-7, reached=1e-7, cuts=8)
+
+    monkeypatch.setattr(fe, "solve_asperity", fail)
+    plan = make_plan([0.0], [1e5], interference_grid(1e-6, 20), model="fe", job_inputs={},
+                     shift_invariant=True, analytic=False)
+    key = str(plan["key"].values[0])
+    with pytest.raises(RuntimeError, match=rf"sample {key} \(curvature 100000 1/m\).*step 7"):
+        models.solve_sample(plan, key, {"model": "fe", "geometry": "sphere"},
+                            {"youngs_modulus": 2e11, "poisson": 0.3}, "draft")

@@ -130,7 +130,7 @@ def solve_sample(plan: xr.Dataset, key: str, asperity: Config, material_si: Conf
     try:
         ds = fe.solve_asperity(geometry, fe_material(material_si), levels, accuracy=accuracy,
                                contact=asperity.get("contact", "penalty"))
-    except fe.ConvergenceError as err:
+    except (fe.ConvergenceError, fe.ContactZoneError) as err:
         raise RuntimeError(f"sample {key} (curvature {curvature:.6g} 1/m): {err}") from err
     ds.attrs.update(key=key, model="fe", curvature=curvature, geometry=repr(geometry),
                     height=float(row["sample_height"]))
