@@ -38,10 +38,12 @@ bench: $(STAMP)
 # The figures shown in the README, copied from a full run.
 README_FIGURES := profile_quasirandom/figures/surface.png expectation_unit/figures/expectation.png \
 	greenwood_williamson/figures/interface.png map_hertz/figures/surface.png steel_hertz/figures/interface.png \
-	profiles_anisotropic/figures/surface.png
+	profiles_anisotropic/figures/surface.png hertz/figures/verification.png \
+	asperity_shape/figures/interface.png asperity_shape/figures/asperities.png
 figures: reproduce
 	mkdir -p docs/figures
 	for f in $(README_FIGURES); do cp results/$$f docs/figures/$$(echo $$f | sed 's|/figures/|_|'); done
+	cp results/accuracy/hertz.png docs/figures/accuracy_hertz.png
 
 clean-results:
 	rm -rf results .snakemake
