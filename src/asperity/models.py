@@ -12,10 +12,16 @@ An asperity model is named in a scene's ``asperity`` section:
   * ``cosine`` with the ``representative`` mapping of report 8.2: every
     hill has the width-to-height ratio of a cosine whose rms slope is the
     surface's, pi / (sqrt(2) sigma_slope), and the sample's tip curvature
-    kappa = C k^2 (2.5.1); its peak height only shifts the interference.
+    kappa = C k^2 (2.5.1); its peak height only shifts the interference;
+  * ``cosine`` with the ``coupled`` mapping of 2.5.1: the hill
+    z = C cos(k r) of the sample has amplitude C = z_p (its peak height
+    above the mean plane) and tip curvature kappa = C k^2.  Only peaks above
+    the mean plane are hills; they touch a flat at separation h >= 0 with
+    w = z_p - h <= C, half their height.
 
-All of these respond to the interference alone (shift invariant in height),
-so the plan runs one job per curvature.  An FE job computes a geometric
+Sphere, paraboloid and the representative hill respond to the interference
+alone (shift invariant in height): one job per curvature.  The coupled hill
+depends on both: one job per (height, curvature).  An FE job computes a geometric
 sequence of levels up to the largest interference the geometry admits
 (`max_interference`); the gather interpolates each sample onto the plan's
 interference grid in log-log space (monotone cubic), continues below the
@@ -45,9 +51,13 @@ def is_analytic(asperity: Config) -> bool:
     return asperity["model"] in ANALYTIC
 
 
+def is_coupled(asperity: Config) -> bool:
+    return asperity.get("geometry") == "cosine" and asperity.get("mapping", "representative") == "coupled"
+
+
 def is_shift_invariant(asperity: Config) -> bool:
-    """Response depends on interference only (all models and mappings built so far)."""
-    return asperity.get("mapping", "representative") == "representative"
+    """Response depends on the interference only, not on the peak height."""
+    return not is_coupled(asperity)
 
 
 def representative_width_to_height(sigma_slope: float) -> float:
@@ -59,11 +69,17 @@ def representative_width_to_height(sigma_slope: float) -> float:
     return math.pi / (math.sqrt(2.0) * sigma_slope)
 
 
-def fe_geometry(asperity: Config, curvature: float, width_to_height: float | None):
-    """The `asperity.fe` profile of a sample of tip curvature `curvature` [1/m]."""
+def fe_geometry(asperity: Config, curvature: float, width_to_height: float | None,
+                height: float | None = None):
+    """The `asperity.fe` profile of a sample of tip curvature `curvature` [1/m]
+    (and, for the coupled mapping, peak height `height` [m] above the mean plane)."""
     from asperity import fe
 
     kind = asperity["geometry"]
+    if is_coupled(asperity):
+        if not height or height <= 0:
+            raise ValueError(f"coupled cosine hill needs a peak height above the mean plane, got {height}")
+        return fe.CosineHill(height, math.sqrt(curvature / height))
     if kind == "sphere":
         return fe.Sphere(1.0 / curvature)
     if kind == "paraboloid":
@@ -122,7 +138,8 @@ def solve_sample(plan: xr.Dataset, key: str, asperity: Config, material_si: Conf
         raise ValueError(f"sample {key}: not in the plan")
     row = plan.isel(sample=int(match[0]))
     curvature = float(row["sample_curvature"])
-    geometry = fe_geometry(asperity, curvature, plan.attrs.get("width_to_height"))
+    geometry = fe_geometry(asperity, curvature, plan.attrs.get("width_to_height"),
+                           float(row["sample_height"]))
     grid = plan["interference"].values
     positive = grid[grid > 0]
     w_last = min(positive[-1], max_interference(geometry, asperity))

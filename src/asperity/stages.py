@@ -254,7 +254,10 @@ def plan_dataset(
     threshold = population.get("support_threshold", 1e-4)
     z0, z1, k0, k1 = bounds(density, population, units_cfg, threshold)
     counts = population.get("samples", {})
-    heights = sample_grid(z0, z1, counts.get("height", 11))
+    if models.is_coupled(asperity):  # hills exist above the mean plane only (2.5.1)
+        heights = sample_grid(0.0, z1, counts.get("height", 11), positive=True)
+    else:
+        heights = sample_grid(z0, z1, counts.get("height", 11))
     curvatures = (
         np.array([density.curvature])
         if isinstance(density, peaks.FixedCurvatureDensity)

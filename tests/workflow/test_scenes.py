@@ -19,7 +19,7 @@ pytestmark = [pytest.mark.workflow, pytest.mark.slow]
 
 SCENES = ["profile_cosine", "profile_quasirandom", "expectation_unit", "greenwood_williamson",
           "steel_hertz", "map_hertz", "profiles_anisotropic", "hertz", "greenwood_williamson_fe",
-          "asperity_shape", "asperity_shape_hertz"]
+          "asperity_shape", "asperity_shape_hertz", "asperity_shape_coupled"]
 
 
 @pytest.fixture(scope="module")
@@ -151,6 +151,20 @@ def test_asperity_shape_sinusoid_against_sphere(run):
     plan = result(run, "asperity_shape", "plan.nc")
     assert plan.attrs["width_to_height"] == pytest.approx(np.pi / (np.sqrt(2) * 0.13), rel=1e-12)
     assert int(plan["job"].sum()) == plan.sizes["curvature"]
+
+
+def test_coupled_hills_one_job_per_height_and_curvature(run):
+    """2.5.1: C = z_p, kappa = C k^2: hills above the mean plane, one FE job per sample;
+    at separations >= 1 sigma no contact goes beyond half a hill's height except
+    the lowest sampled hill at the smallest separation."""
+    plan = result(run, "asperity_shape_coupled", "plan.nc")
+    assert int(plan["job"].sum()) == plan.sizes["height"] * plan.sizes["curvature"]
+    assert float(plan["height"].min()) > 0
+    fe = result(run, "asperity_shape_coupled", "interface.nc")
+    assert float(fe["extrapolated_fraction"].max()) < 0.01
+    sphere = result(run, "asperity_shape_hertz", "interface.nc")
+    ratio = fe["nominal_pressure"].values / sphere["nominal_pressure"].values
+    assert np.all((ratio > 0.9) & (ratio < 1.1)), ratio
 
 
 def test_accuracy_study_written(run):

@@ -81,7 +81,15 @@ def _load_scenes():
     return {name: _canonical(scene) for name, scene in definitions.items()}
 
 
-SCENES = _load_scenes()
+class _Scenes(dict):
+    def __missing__(self, name):
+        raise WorkflowError(
+            f"scene {name!r} is not among the scenes of config/config.yaml (nor compared with "
+            f"by one); add it to `scenes:` or run with --config 'scenes=[{name}]'"
+        )
+
+
+SCENES = _Scenes(_load_scenes())
 
 
 def scene(wildcards):
