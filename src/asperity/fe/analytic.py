@@ -4,26 +4,21 @@ from __future__ import annotations
 
 import numpy as np
 
+from asperity.hertz import hertz_response, plane_strain_modulus
+
 
 def hertz(radius: float, E: float, nu: float, interference) -> dict[str, np.ndarray]:
-    """Hertz (report 6.1): r = sqrt(R w), A = pi R w, P = 4/3 E/(1-nu^2) R^1/2 w^3/2.
+    """Hertz (report 6.1) for a paraboloid of radius R, from `asperity.hertz`.
 
     Returns contact_radius [m], contact_area [m^2], force [N] and
     normal_stiffness dP/dw = 2 E' r [N/m].
     """
-    w = np.asarray(interference, dtype=float)
-    Es = E / (1 - nu**2)
-    wp = np.maximum(w, 0.0)
-    a = np.sqrt(radius * wp)
-    return dict(
-        contact_radius=a,
-        contact_area=np.pi * a**2,
-        force=4.0 / 3.0 * Es * np.sqrt(radius) * wp**1.5,
-        normal_stiffness=2 * Es * a,
-    )
+    r = hertz_response(np.asarray(interference, dtype=float), 1.0 / radius, E, nu)
+    return dict(contact_radius=r["contact_radius"], contact_area=r["contact_area"],
+                force=r["force"], normal_stiffness=r["stiffness"])
 
 
 def hertz_line_half_width(radius: float, E: float, nu: float, force_per_length) -> np.ndarray:
     """Half width of the contact of a cylinder: b = sqrt(4 P R / (pi E'))."""
-    Es = E / (1 - nu**2)
+    Es = plane_strain_modulus(E, nu)
     return np.sqrt(4 * np.asarray(force_per_length, dtype=float) * radius / (np.pi * Es))
