@@ -32,6 +32,7 @@ tangent, and flags the latter as ``extrapolated``.
 from __future__ import annotations
 
 import math
+import time
 from typing import Any, Mapping
 
 import numpy as np
@@ -144,13 +145,14 @@ def solve_sample(plan: xr.Dataset, key: str, asperity: Config, material_si: Conf
     positive = grid[grid > 0]
     w_last = min(positive[-1], max_interference(geometry, asperity))
     levels = fe_levels(positive[0], w_last, asperity.get("levels", 40))
+    cpu = time.process_time()
     try:
         ds = fe.solve_asperity(geometry, fe_material(material_si), levels, accuracy=accuracy,
                                contact=asperity.get("contact", "penalty"))
     except (fe.ConvergenceError, fe.ContactZoneError) as err:
         raise RuntimeError(f"sample {key} (curvature {curvature:.6g} 1/m): {err}") from err
     ds.attrs.update(key=key, model="fe", curvature=curvature, geometry=repr(geometry),
-                    height=float(row["sample_height"]))
+                    height=float(row["sample_height"]), cpu_time=time.process_time() - cpu)
     return ds
 
 
@@ -209,6 +211,15 @@ def gather(plan: xr.Dataset, samples: Mapping[str, xr.Dataset]) -> xr.Dataset:
             "curvature": ("curvature", curvatures, {"units": "1/m", "long_name": "tip curvature"}),
             "interference": ("interference", grid, {"units": "m", "long_name": "interference"}),
         },
+    )
+    jobs = [by_key[str(k)] for k in unique]
+    ds.attrs.update(
+        accuracy=str(jobs[0].attrs.get("accuracy", "")),
+        fe_jobs=len(jobs),
+        fe_cpu_time=float(sum(j.attrs.get("cpu_time", np.nan) for j in jobs)),
+        max_newton_iterations=int(max(j["newton_iterations"].max() for j in jobs)),
+        max_step_cuts=int(max(j["step_cuts"].max() for j in jobs)),
+        max_dofs=int(max(j["dofs"].max() for j in jobs)),
     )
     ds["extrapolated"] = (dims, extrapolated, {
         "units": "1", "long_name": "beyond the largest interference the FE job computed "

@@ -339,6 +339,10 @@ def interface_dataset(
         out = out.drop_vars(["extrapolated_per_unit_area", "raw_extrapolated"])
     out.attrs["rule"] = rule
     out.attrs["cells"] = str(tuple(homogenization.get("cells", (40, 40))))
+    for name in ("accuracy", "fe_jobs", "fe_cpu_time", "max_newton_iterations", "max_step_cuts",
+                 "max_dofs"):  # what the asperities cost (FE scenes)
+        if name in asperities.attrs:
+            out.attrs[name] = asperities.attrs[name]
     return out
 
 

@@ -135,6 +135,10 @@ def test_greenwood_williamson_from_fe_spheres(run):
         assert ds[f"{name}_error"].values[relevant].max() < 0.015, name
     interface = result(run, "greenwood_williamson_fe", "interface.nc")
     assert float(interface["extrapolated_fraction"].max()) == 0.0
+    # what the asperities cost, recorded with the interface
+    assert interface.attrs["accuracy"] == "standard" and int(interface.attrs["fe_jobs"]) == 1
+    assert float(interface.attrs["fe_cpu_time"]) > 0
+    assert int(interface.attrs["max_newton_iterations"]) >= 1
     plan = result(run, "greenwood_williamson_fe", "plan.nc")
     assert int(plan["job"].sum()) == 1  # one curvature, one FE job
     assert len(list((run / "results" / "greenwood_williamson_fe" / "samples").glob("*.nc"))) == 1
