@@ -213,14 +213,12 @@ def gather(plan: xr.Dataset, samples: Mapping[str, xr.Dataset]) -> xr.Dataset:
         },
     )
     jobs = [by_key[str(k)] for k in unique]
-    ds.attrs.update(
-        accuracy=str(jobs[0].attrs.get("accuracy", "")),
-        fe_jobs=len(jobs),
-        fe_cpu_time=float(sum(j.attrs.get("cpu_time", np.nan) for j in jobs)),
-        max_newton_iterations=int(max(j["newton_iterations"].max() for j in jobs)),
-        max_step_cuts=int(max(j["step_cuts"].max() for j in jobs)),
-        max_dofs=int(max(j["dofs"].max() for j in jobs)),
-    )
+    ds.attrs.update(accuracy=str(jobs[0].attrs.get("accuracy", "")), fe_jobs=len(jobs),
+                    fe_cpu_time=float(sum(j.attrs.get("cpu_time", np.nan) for j in jobs)))
+    for attr, var in (("max_newton_iterations", "newton_iterations"), ("max_step_cuts", "step_cuts"),
+                      ("max_dofs", "dofs")):
+        if all(var in j for j in jobs):
+            ds.attrs[attr] = int(max(j[var].max() for j in jobs))
     ds["extrapolated"] = (dims, extrapolated, {
         "units": "1", "long_name": "beyond the largest interference the FE job computed "
         "(continued with its last tangent)"})
