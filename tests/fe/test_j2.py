@@ -1,0 +1,115 @@
+"""J2 plasticity with linear isotropic hardening: radial return and tangent."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from asperity.fe.j2 import J2Plasticity
+from asperity.uniaxial import run_uniaxial
+
+E, NU, SY = 200e9, 0.3, 250e6
+
+
+@pytest.mark.parametrize("H", [0.0, 2e9, 50e9])
+def test_uniaxial_linear_hardening_exact(H):
+    """sigma = sy + E H / (E + H) (eps - sy / E) past yield, to 1e-10."""
+    mat = J2Plasticity(E, NU, SY, H)
+    emax = 0.02
+    ds = run_uniaxial(mat, [(0.0, 0.0), (1.0, emax)], steps=37, adaptive=False,
+                      newton_tol=1e-14)
+    eps = ds.strain.values
+    exact = np.where(eps <= SY / E, E * eps, SY + E * H / (E + H) * (eps - SY / E))
+    np.testing.assert_allclose(ds.stress.values, exact, rtol=1e-10, atol=1e-10 * SY)
+    np.testing.assert_allclose(exact, mat.uniaxial_stress(eps), rtol=1e-14)
+    # plastic strain: eps - sigma / E; lateral stresses are zero so eps_22 follows
+    np.testing.assert_allclose(ds.inelastic_strain.values, eps - ds.stress.values / E,
+                               rtol=1e-9, atol=1e-14)
+    assert ds.attrs["steps"] == 37 and ds.attrs["rejected_steps"] == 0
+
+
+def test_uniaxial_unloading_and_reversal():
+    """Elastic unloading with slope E; reverse yield at sigma_n - 2 sigma_y(alpha)."""
+    H = 10e9
+    mat = J2Plasticity(E, NU, SY, H)
+    ds = run_uniaxial(mat, [(0.0, 0.0), (1.0, 0.01), (3.0, -0.01)], steps=60, adaptive=False,
+                      newton_tol=1e-14)
+    s, e = ds.stress.values, ds.strain.values
+    i = int(np.argmax(e))
+    smax = s[i]
+    Et = E * H / (E + H)
+    np.testing.assert_allclose(smax, SY + Et * (0.01 - SY / E), rtol=1e-10)
+    # unloading stays elastic until sigma = -(sy + H alpha_max)
+    alpha = 0.01 - smax / E
+    reverse = -(SY + H * alpha)
+    el = (np.arange(len(e)) > i) & (s > reverse * (1 - 1e-12))
+    np.testing.assert_allclose(s[el], smax + E * (e[el] - e[i]), rtol=1e-9, atol=1e-6 * SY)
+    assert s[-1] < reverse
+
+
+def _random_strains(rng, n, size):
+    e = rng.normal(size=(4, n)) * size
+    return e
+
+
+@pytest.mark.parametrize("H", [0.0, 5e9])
+def test_consistent_tangent_matches_finite_differences(H):
+    mat = J2Plasticity(E, NU, SY, H)
+    rng = np.random.default_rng(0)
+    n = 12
+    st = mat.initial_state((n,))
+    # a plastic history first, then a new increment
+    e1 = _random_strains(rng, n, 0.004)
+    _, _, st = mat.update(e1, st)
+    e2 = e1 + _random_strains(rng, n, 0.003)
+    s, D, new = mat.update(e2, st)
+    assert np.all(new.alpha > st.alpha - 1e-300)
+    h = 1e-8
+    Dfd = np.empty_like(D)
+    for j in range(4):
+        ep, em = e2.copy(), e2.copy()
+        ep[j] += h
+        em[j] -= h
+        Dfd[:, j] = (mat.update(ep, st, tangent=False)[0]
+                     - mat.update(em, st, tangent=False)[0]) / (2 * h)
+    plastic = new.alpha > st.alpha
+    assert plastic.sum() >= n // 2
+    err = np.abs(D - Dfd).max(axis=(0, 1)) / np.abs(D).max(axis=(0, 1))
+    assert err.max() < 1e-6, err
+
+
+def test_vectorized_shapes_and_elastic_points():
+    mat = J2Plasticity(E, NU, SY, 1e9)
+    rng = np.random.default_rng(1)
+    e = rng.normal(size=(4, 3, 5)) * 0.003
+    e[:, 0, 0] = 1e-5          # elastic point
+    st = mat.initial_state((3, 5))
+    s, D, new = mat.update(e, st, 0.1)
+    assert s.shape == (4, 3, 5) and D.shape == (4, 4, 3, 5)
+    np.testing.assert_allclose(D[:, :, 0, 0], mat.tangent(), rtol=1e-14)
+    # point by point equals the vectorized update
+    for i in range(3):
+        for k in range(5):
+            s1, D1, _ = mat.update(e[:, i, k], mat.initial_state(()), 0.1)
+            np.testing.assert_allclose(s1, s[:, i, k], rtol=1e-13, atol=1e-6)
+            np.testing.assert_allclose(D1, D[:, :, i, k], rtol=1e-13, atol=1e-3)
+    np.testing.assert_allclose(new.time, 0.1)
+
+
+def test_load_reversal_in_one_step_is_finite():
+    mat = J2Plasticity(E, NU, SY, 0.0)
+    st = mat.initial_state(())
+    _, _, st = mat.update(np.array([0.02, -0.01, -0.01, 0.0]), st)
+    s, D, st2 = mat.update(np.array([-0.02, 0.01, 0.01, 0.003]), st)
+    assert np.all(np.isfinite(s)) and np.all(np.isfinite(D))
+    from asperity.fe.material import von_mises
+    np.testing.assert_allclose(von_mises(s), SY, rtol=1e-12)
+
+
+def test_validation():
+    with pytest.raises(ValueError):
+        J2Plasticity(E, NU, -1.0)
+    with pytest.raises(ValueError):
+        J2Plasticity(E, NU, SY, -1.0)
+    with pytest.raises(ValueError):
+        J2Plasticity(E, 0.5, SY)
