@@ -11,7 +11,9 @@ Modules: `geometry` (profiles), `mesh` (graded curved meshes, refinement),
 fields, stiffness, condensation onto the surface), `contact` (penalty law,
 contact points, contact edge), `newton` (Newton, step control, Uzawa),
 `adapt` (ZZ estimator, marking), `presets` (accuracy), `solve` (driver,
-Dataset), `analytic` (Hertz), `errors`.
+Dataset), `analytic` (Hertz), `errors`; `inelastic` (J2 or Bodner-Partom
+body along a prescribed interference history: incremental, full Newton on
+a fixed mesh, adaptive time steps).
 
     >>> from asperity.fe import solve_asperity, Paraboloid, LinearElastic
     >>> ds = solve_asperity(Paraboloid(1.0), LinearElastic(1000.0, 0.3),
@@ -20,6 +22,7 @@ Dataset), `analytic` (Hertz), `errors`.
 
 from .errors import ContactZoneError, ConvergenceError
 from .geometry import CosineHill, Cylinder, Paraboloid, Profile, Sphere, TruncatedV
+from .inelastic import History, solve_asperity_history
 from .material import LinearElastic
 from .presets import ACCURACY
 from .solve import hertz, penalty_error, solve_asperity
@@ -27,6 +30,7 @@ from .solve import hertz, penalty_error, solve_asperity
 __all__ = [
     "ACCURACY",
     "ContactZoneError",
+    "History",
     "ConvergenceError",
     "CosineHill",
     "Cylinder",
@@ -38,4 +42,5 @@ __all__ = [
     "hertz",
     "penalty_error",
     "solve_asperity",
+    "solve_asperity_history",
 ]
