@@ -86,6 +86,8 @@ from dataclasses import dataclass, fields, replace
 
 import numpy as np
 
+from .material import IsotropicElasticity
+
 SQRT2 = math.sqrt(2.0)
 SQRT3 = math.sqrt(3.0)
 #: tensor components -> Mandel components
@@ -225,7 +227,7 @@ def _take(d: dict, idx) -> dict:
 
 
 @dataclass(frozen=True)
-class BodnerPartom:
+class BodnerPartom(IsotropicElasticity):
     """Bodner-Partom constants (SI) and switches (report 3.2.2).
 
     E [Pa], nu; D0 limiting shear strain rate [1/s]; n; Z0 initial hardness
@@ -378,39 +380,17 @@ class BodnerPartom:
         return replace(self, **{m: False for m in mechanisms})
 
     # ------------------------------------------------------------ elastic
-    @property
-    def G(self) -> float:
-        return self.E / (2.0 * (1.0 + self.nu))
 
-    @property
-    def K(self) -> float:
-        return self.E / (3.0 * (1.0 - 2.0 * self.nu))
 
-    @property
-    def lame(self) -> tuple[float, float]:
-        return self.K - 2.0 * self.G / 3.0, self.G
 
-    @property
-    def contact_modulus(self) -> float:
-        return self.E / (1.0 - self.nu**2)
 
     @property
     def stress_scale(self) -> float:
         """A representative stress [Pa] (Z0), for tolerances and floors."""
         return self.Z0
 
-    def elastic_mandel(self) -> np.ndarray:
-        P = np.eye(4) - np.outer(IDENTITY, IDENTITY) / 3.0
-        return self.K * np.outer(IDENTITY, IDENTITY) + 2.0 * self.G * P
 
-    def tangent(self) -> np.ndarray:
-        """Elastic tangent (4, 4) in tensor components."""
-        return tangent_from_mandel(self.elastic_mandel())
 
-    def response(self, strain: np.ndarray):
-        """Elastic response (for the stateless solver interface)."""
-        D = self.tangent()
-        return np.tensordot(D, strain, axes=(1, 0)), D
 
     @property
     def kappa_rupture(self) -> float:

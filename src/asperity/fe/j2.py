@@ -31,6 +31,7 @@ from dataclasses import dataclass, fields
 import numpy as np
 
 from .bodner_partom import IDENTITY, from_mandel, tangent_from_mandel, to_mandel
+from .material import IsotropicElasticity
 
 _I = IDENTITY[:, None]
 
@@ -73,7 +74,7 @@ class J2State:
 
 
 @dataclass(frozen=True)
-class J2Plasticity:
+class J2Plasticity(IsotropicElasticity):
     """E [Pa], nu, yield_stress [Pa], H hardening modulus d yield / d alpha [Pa]."""
 
     E: float
@@ -94,33 +95,15 @@ class J2Plasticity:
         if not (np.isfinite(self.H) and self.H >= 0):
             raise ValueError("H must be >= 0")
 
-    @property
-    def G(self) -> float:
-        return self.E / (2.0 * (1.0 + self.nu))
 
-    @property
-    def K(self) -> float:
-        return self.E / (3.0 * (1.0 - 2.0 * self.nu))
 
-    @property
-    def contact_modulus(self) -> float:
-        return self.E / (1.0 - self.nu**2)
 
     @property
     def stress_scale(self) -> float:
         return self.yield_stress
 
-    def elastic_mandel(self) -> np.ndarray:
-        P = np.eye(4) - np.outer(IDENTITY, IDENTITY) / 3.0
-        return self.K * np.outer(IDENTITY, IDENTITY) + 2.0 * self.G * P
 
-    def tangent(self) -> np.ndarray:
-        return tangent_from_mandel(self.elastic_mandel())
 
-    def response(self, strain: np.ndarray):
-        """Elastic response (stateless interface of `asperity.fe.material`)."""
-        D = self.tangent()
-        return np.tensordot(D, strain, axes=(1, 0)), D
 
     def uniaxial_stress(self, strain):
         """Exact monotonic uniaxial stress for total axial strain (>= 0)."""

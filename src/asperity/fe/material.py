@@ -30,8 +30,55 @@ import numpy as np
 METRIC = np.array([1.0, 1.0, 1.0, 2.0])
 
 
+class IsotropicElasticity:
+    """The elastic part every material shares, from its ``E`` and ``nu`` (report 3.2.1).
+
+    Moduli, the elastic tangent sigma = lambda tr(e) I + 2 mu e in tensor
+    components (4, 4), and the stateless ``response`` of the solver
+    interface.  Inelastic materials add their flow on top of it.
+    """
+
+    @property
+    def G(self) -> float:
+        """Shear modulus mu [Pa]."""
+        return self.E / (2.0 * (1.0 + self.nu))
+
+    @property
+    def K(self) -> float:
+        """Bulk modulus [Pa]."""
+        return self.E / (3.0 * (1.0 - 2.0 * self.nu))
+
+    @property
+    def lame(self) -> tuple[float, float]:
+        return self.K - 2.0 * self.G / 3.0, self.G
+
+    @property
+    def contact_modulus(self) -> float:
+        """Plane-strain modulus E' = E / (1 - nu^2) [Pa]."""
+        return self.E / (1 - self.nu**2)
+
+    def elastic_mandel(self) -> np.ndarray:
+        """The elastic tangent in Mandel components (shear scaled by sqrt 2)."""
+        identity = np.array([1.0, 1.0, 1.0, 0.0])
+        deviator = np.eye(4) - np.outer(identity, identity) / 3.0
+        return self.K * np.outer(identity, identity) + 2.0 * self.G * deviator
+
+    def tangent(self) -> np.ndarray:
+        lam, mu = self.lame
+        D = np.zeros((4, 4))
+        D[:3, :3] = lam
+        D[[0, 1, 2], [0, 1, 2]] += 2 * mu
+        D[3, 3] = 2 * mu
+        return D
+
+    def response(self, strain: np.ndarray):
+        D = self.tangent()
+        stress = np.tensordot(D, strain, axes=(1, 0))
+        return stress, D
+
+
 @dataclass(frozen=True)
-class LinearElastic:
+class LinearElastic(IsotropicElasticity):
     """Linear isotropic elasticity (report 3.2.1): sigma = lambda tr(e) I + 2 mu e.
 
     E: Young's modulus [Pa]; nu: Poisson's ratio; yield_stress [Pa] only
@@ -51,30 +98,6 @@ class LinearElastic:
             raise ValueError(f"nu must lie in (-1, 0.5), got {self.nu!r}")
         if not self.yield_stress > 0:
             raise ValueError("yield_stress must be positive (inf if none)")
-
-    @property
-    def lame(self) -> tuple[float, float]:
-        lam = self.E * self.nu / ((1 + self.nu) * (1 - 2 * self.nu))
-        mu = self.E / (2 * (1 + self.nu))
-        return lam, mu
-
-    @property
-    def contact_modulus(self) -> float:
-        """Plane-strain modulus E' = E / (1 - nu^2) [Pa]."""
-        return self.E / (1 - self.nu**2)
-
-    def tangent(self) -> np.ndarray:
-        lam, mu = self.lame
-        D = np.zeros((4, 4))
-        D[:3, :3] = lam
-        D[[0, 1, 2], [0, 1, 2]] += 2 * mu
-        D[3, 3] = 2 * mu
-        return D
-
-    def response(self, strain: np.ndarray):
-        D = self.tangent()
-        stress = np.tensordot(D, strain, axes=(1, 0))
-        return stress, D
 
 
 def von_mises(stress: np.ndarray) -> np.ndarray:
