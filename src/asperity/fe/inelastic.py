@@ -62,7 +62,7 @@ from .contact import PENALTY_FACTOR, C1Penalty, ContactZone, contact_edge
 from .errors import ContactZoneError, ConvergenceError
 from .material import METRIC, LinearElastic, equivalent_strain, von_mises
 from .presets import resolve
-from .solve import _check_levels, _describe, adapted_model
+from .solve import _check_levels, _dataset, adapted_model
 
 #: a point counts as having yielded once its equivalent inelastic strain
 #: exceeds this
@@ -392,13 +392,6 @@ VARIABLES = {
     "wall_time": ("s", "wall time of the step, including its rejected tries"),
 }
 
-PLANE_STRAIN_UNITS = {
-    "force": ("N/m", "contact force per unit length of the ridge"),
-    "contact_area": ("m", "contact width 2 a per unit length of the ridge (area per length)"),
-    "contact_radius": ("m", "contact half width a (edge located between nodes)"),
-}
-
-
 def solve_asperity_history(geometry, material, history: History, accuracy="standard",
                            initial_time_step: float | None = None,
                            max_time_step: float | None = None,
@@ -592,31 +585,21 @@ def solve_asperity_history(geometry, material, history: History, accuracy="stand
 
     total = time.perf_counter() - t_start
     k = len(rows)
-    data = {}
-    axi = geometry.axisymmetric
-    for name, (units, long_name) in VARIABLES.items():
+    rec = {}
+    for name in VARIABLES:
         if name == "dofs":
-            values = np.full(k, model.dofs)
+            rec[name] = np.full(k, model.dofs)
         elif name == "elastic":
-            values = np.array([r["max_inelastic_strain"] <= INELASTIC_THRESHOLD for r in rows])
+            rec[name] = np.array([r["max_inelastic_strain"] <= INELASTIC_THRESHOLD for r in rows])
         elif name == "small_strain":
-            values = np.array([r["max_principal_strain"] < SMALL_STRAIN_LIMIT for r in rows])
+            rec[name] = np.array([r["max_principal_strain"] < SMALL_STRAIN_LIMIT for r in rows])
         else:
-            values = np.array([r[name] for r in rows])
-        if not axi and name in PLANE_STRAIN_UNITS:
-            units, long_name = PLANE_STRAIN_UNITS[name]
-        data[name] = ("step", values, dict(units=units, long_name=long_name))
-    ds = xr.Dataset(data, coords=dict(step=("step", np.arange(k),
-                                            dict(units="1", long_name="time step index"))))
-    ds.attrs.update(
-        geometry=_describe(geometry),
-        material=_describe(material),
-        symmetry="axisymmetric" if axi else "plane strain (per unit length)",
-        accuracy=accuracy if isinstance(accuracy, str) else "custom",
-        accuracy_parameters=repr(preset),
-        contact="penalty",
-        penalty_factor=factor,
-        mesh_strategy="fixed, adapted once to the elastic solution at the largest interference",
+            rec[name] = np.array([r[name] for r in rows])
+    ds = _dataset(
+        rec, geometry, material, accuracy, preset, "penalty", factor,
+        "fixed, adapted once to the elastic solution at the largest interference",
+        variables=VARIABLES, step_name="time step index", methods=False,
+        extra_attrs=dict(
         history_times=np.asarray(history.times, float),
         history_interferences=knots_w,
         steps=k - 1,
@@ -628,5 +611,5 @@ def solve_asperity_history(geometry, material, history: History, accuracy="stand
         completed=int(t >= t_end * (1 - 1e-12) or not math.isnan(residual)),
         mesh_wall_time=t_mesh,
         total_wall_time=total,
-    )
+    ))
     return ds

@@ -303,17 +303,20 @@ def _describe(obj) -> str:
 
 
 def _dataset(rec: dict, geometry, material, accuracy, preset, contact, penalty_factor,
-             strategy, extra_attrs=None) -> xr.Dataset:
+             strategy, extra_attrs=None, variables=None, step_name="load step index",
+             methods=True) -> xr.Dataset:
+    """The per-step Dataset of an FE run (units and long names from `variables`)."""
+    variables = VARIABLES if variables is None else variables
     axi = geometry.axisymmetric
     data = {}
     for name, values in rec.items():
-        units, long_name = VARIABLES[name]
+        units, long_name = variables[name]
         if not axi and name in PLANE_STRAIN_UNITS:
             units, long_name = PLANE_STRAIN_UNITS[name]
         data[name] = ("step", np.asarray(values), dict(units=units, long_name=long_name))
     n = len(rec["force"])
     ds = xr.Dataset(data, coords=dict(step=("step", np.arange(n),
-                                            dict(units="1", long_name="load step index"))))
+                                            dict(units="1", long_name=step_name))))
     ds.attrs.update(
         geometry=_describe(geometry),
         material=_describe(material),
@@ -323,9 +326,10 @@ def _dataset(rec: dict, geometry, material, accuracy, preset, contact, penalty_f
         contact=contact,
         penalty_factor=float(penalty_factor),
         mesh_strategy=strategy,
-        normal_stiffness_method="consistent tangent of the converged state",
         contact_edge_method="gap (3/2 power fit) between last node in contact and first out",
     )
+    if methods:
+        ds.attrs["normal_stiffness_method"] = "consistent tangent of the converged state"
     if extra_attrs:
         ds.attrs.update(extra_attrs)
     return ds
