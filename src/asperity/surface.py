@@ -286,6 +286,12 @@ _PROFILE_VARS = {
 }
 
 
+def _deviations(sigma: float, s_slope: float, s_curv: float) -> dict[str, float]:
+    """Standard deviations and the spectral moments they are (2.3.1: m0, m2, m4)."""
+    return {"sigma": sigma, "sigma_slope": s_slope, "sigma_curvature": s_curv,
+            "m0": sigma**2, "m2": s_slope**2, "m4": s_curv**2}
+
+
 def _method_sampling(z, h, order, mean_z, sigma):
     slope, curv = derivatives(z, h, order)
     s_slope = float(np.std(slope, ddof=1))
@@ -294,12 +300,7 @@ def _method_sampling(z, h, order, mean_z, sigma):
         "mean_height": mean_z,
         "mean_slope": float(slope.mean()),
         "mean_curvature": float(curv.mean()),
-        "sigma": sigma,
-        "sigma_slope": s_slope,
-        "sigma_curvature": s_curv,
-        "m0": sigma**2,
-        "m2": s_slope**2,
-        "m4": s_curv**2,
+        **_deviations(sigma, s_slope, s_curv),
     }, slope
 
 
@@ -320,12 +321,7 @@ def _method_counting(z, h, mean_z, sigma, slope):
     s_slope = math.pi * sigma * d_zero  # 2.3.1
     s_curv = math.pi * s_slope * d_extr
     return {
-        "sigma": sigma,
-        "sigma_slope": s_slope,
-        "sigma_curvature": s_curv,
-        "m0": sigma**2,
-        "m2": s_slope**2,
-        "m4": s_curv**2,
+        **_deviations(sigma, s_slope, s_curv),
         "zero_density": d_zero,
         "extremum_density": d_extr,
     }

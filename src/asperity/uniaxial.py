@@ -388,23 +388,25 @@ def b1900_load_creep(**kw) -> xr.Dataset:
     return _run_named("load_creep", **kw)
 
 
+def _tension(material, title: str, strain_rate: float, max_strain: float, **kw) -> xr.Dataset:
+    """Constant strain-rate tension to `max_strain`."""
+    ds = run_uniaxial(material, [(0.0, 0.0), (max_strain / strain_rate, max_strain)],
+                      control="strain", **kw)
+    ds.attrs["title"] = title
+    return ds
+
+
 def aluminum_tension(strain_rate: float = 1e-3, max_strain: float = 0.05, material=None,
                      **kw) -> xr.Dataset:
     """Tension of aluminum 6061-T4 (report 6.3.1, Fig. 6.14) at a constant
     strain rate (ours: 1e-3 1/s to 5 %)."""
-    material = material or BodnerPartom.aluminum_6061_t4()
-    ds = run_uniaxial(material, [(0.0, 0.0), (max_strain / strain_rate, max_strain)],
-                      control="strain", **kw)
-    ds.attrs["title"] = "aluminum 6061 tension (report 6.3.1, Fig. 6.14)"
-    return ds
+    return _tension(material or BodnerPartom.aluminum_6061_t4(),
+                    "aluminum 6061 tension (report 6.3.1, Fig. 6.14)", strain_rate, max_strain, **kw)
 
 
 def sae1020_tension(strain_rate: float = 1e-3, max_strain: float = 0.05, material=None,
                     **kw) -> xr.Dataset:
     """Tension of SAE 1020 steel (report 8.2.1, Fig. 8.13) at a constant
     strain rate (ours: 1e-3 1/s to 5 %)."""
-    material = material or BodnerPartom.sae_1020()
-    ds = run_uniaxial(material, [(0.0, 0.0), (max_strain / strain_rate, max_strain)],
-                      control="strain", **kw)
-    ds.attrs["title"] = "SAE 1020 steel tension (report 8.2.1, Fig. 8.13)"
-    return ds
+    return _tension(material or BodnerPartom.sae_1020(),
+                    "SAE 1020 steel tension (report 8.2.1, Fig. 8.13)", strain_rate, max_strain, **kw)
