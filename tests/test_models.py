@@ -26,6 +26,8 @@ def _fake_sample(key, curvature, levels):
                      (("force", "force"), ("contact_area", "contact_area"),
                       ("contact_radius", "contact_radius"), ("normal_stiffness", "stiffness"))})
     ds["interference"] = ("step", levels)
+    ds["elastic"] = ("step", levels < 1e-7)  # yields between the levels around 1e-7
+    ds["max_equivalent_strain"] = ("step", 0.1 * levels / 0.25e-6)  # 8 % at 0.2 um
     ds.attrs["key"] = key
     return ds
 
@@ -48,6 +50,12 @@ def test_gather_reproduces_a_power_law_between_and_below_levels():
     # beyond: the last tangent, a lower bound of the convex w^1.5
     beyond = gathered["force"].values[..., ~inside]
     assert np.all(beyond <= exact["force"].values[..., ~inside] * (1 + 1e-12))
+    # the elastic and small-strain indicators switch midway between the steps around the limit
+    for name, limit in (("elastic", 1e-7), ("small_strain", 0.2e-6)):
+        i = np.searchsorted(levels, limit)
+        switch = 0.5 * (levels[i - 1] + levels[i])
+        expected = ((grid > 0) & (grid < switch)).astype(float)
+        np.testing.assert_array_equal(gathered[name].values, np.broadcast_to(expected, gathered[name].shape))
 
 
 def test_gather_names_missing_samples():

@@ -14,7 +14,7 @@ from __future__ import annotations
 
 import hashlib
 import json
-from typing import Any, Mapping
+from typing import Any, Callable, Mapping
 
 import numpy as np
 import xarray as xr
@@ -73,24 +73,47 @@ def make_plan(
     job_inputs: Mapping[str, Any],
     shift_invariant: bool,
     analytic: bool,
+    unloading_levels: Callable[[float, float], np.ndarray] | None = None,
+    reference_curvature: float | None = None,
 ) -> xr.Dataset:
-    """The samples of a scene on the grid heights x curvatures.
+    """The samples of a scene on the grid heights x curvatures (x unloading levels).
 
     `job_inputs` is everything a sample's job depends on besides its own
     height and curvature (material, effects, accuracy, model options); it
     goes into the key.  `shift_invariant`: the response depends on the
     interference only, not on the peak height (samples of one curvature
     share a key).  `analytic`: a closed form, no job of its own.
+    `unloading_levels(height, curvature)`: the interferences [m] from which
+    the sample is unloaded (report 8.3: three or four per asperity), one
+    sample (and key) per level; None: loading only (level NaN).
+    `reference_curvature`: the samples form a self-similar family (every
+    asperity the same shape scaled by lambda = reference / curvature, and
+    a body whose response scales with it: DESIGN.md); one job per
+    unloading level computes the asperity of the reference curvature and
+    every sample is derived from it by scaling (``scale`` = lambda).  The
+    ``unloading_level`` of a sample is then that of its job.
     """
     heights = np.asarray(heights, float)
     curvatures = np.asarray(curvatures, float)
     hh, kk = np.meshgrid(heights, curvatures, indexing="ij")
     hh, kk = hh.ravel(), kk.ravel()
+    scaled = reference_curvature is not None
+    if scaled and not shift_invariant:
+        raise ValueError("a self-similar family must also be shift invariant in height")
+    jk = np.full(kk.size, float(reference_curvature)) if scaled else kk
+    if unloading_levels is None:
+        ll = np.full(hh.size, np.nan)
+    else:
+        per = [np.asarray(unloading_levels(h, k), float) for h, k in zip(hh, jk)]
+        counts = np.array([p.size for p in per])
+        hh, kk, jk = (np.repeat(a, counts) for a in (hh, kk, jk))
+        ll = np.concatenate(per)
     base = {"model": model, "interference": np.asarray(interferences, float), **job_inputs}
     keys = np.array(
         [
-            sample_key({**base, "curvature": k, **({} if shift_invariant else {"height": h})})
-            for h, k in zip(hh, kk)
+            sample_key({**base, "curvature": k, **({} if shift_invariant else {"height": h}),
+                        **({} if np.isnan(lv) else {"unloading_level": lv})})
+            for h, k, lv in zip(hh, jk, ll)
         ]
     )
     _, first = np.unique(keys, return_index=True)
@@ -109,17 +132,19 @@ def make_plan(
             ),
             "unloading_level": (
                 "sample",
-                np.full(keys.size, np.nan),
-                {"units": "m", "long_name": "interference from which the sample unloads (NaN: none)"},
+                ll,
+                {"units": "m", "long_name": "interference from which the sample unloads (NaN: loading only)"},
             ),
+            "job_curvature": ("sample", jk, {"units": "1/m", "long_name": "tip curvature of the asperity the sample's job computes"}),
+            "scale": ("sample", jk / kk, {"units": "1", "long_name": "length scale of the sample over its job's asperity (1: computed as is)"}),
             "key": ("sample", keys, {"units": "1", "long_name": "hash of the inputs of the sample's job"}),
             "derived_from": (
                 "sample",
                 derived_from,
                 {
                     "units": "1",
-                    "long_name": "key of the sample this one is derived from by a shift in height "
-                    "(empty: computed itself)",
+                    "long_name": "key of the job this sample is derived from by a shift in height "
+                    "or a scaling (empty: computed itself)",
                 },
             ),
             "job": ("sample", job, {"units": "1", "long_name": "sample needs a finite element job"}),
@@ -136,12 +161,15 @@ def make_plan(
         },
     )
     ds.attrs["model"] = model
+    how = "a shift in height and a scaling (self-similar family)" if scaled else \
+        "a shift in height (response depends on interference only)"
     ds.attrs["derived"] = (
-        f"{int((~representative).sum())} of {keys.size} samples derived by a shift in height "
-        "(response depends on interference only)"
+        f"{int((~representative).sum())} of {keys.size} samples derived by {how}"
         if shift_invariant
         else "no sample derived"
     )
+    if scaled:
+        ds.attrs["reference_curvature"] = float(reference_curvature)
     return ds
 
 

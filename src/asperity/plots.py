@@ -112,32 +112,50 @@ def expectation_figure(density_values: np.ndarray, z: np.ndarray, kappa: np.ndar
     return fig
 
 
+def _branch(ds: xr.Dataset, name: str) -> xr.Dataset | None:
+    if "branch" not in ds.dims:
+        return ds if name == "loading" else None
+    return ds.sel(branch=name) if name in ds["branch"].values else None
+
+
+FRACTIONS = {"elastic_fraction": "elastic", "small_strain_fraction": "strains below 8 %",
+             "extrapolated_fraction": "beyond the FE range"}
+
+
 def interface_figure(interface: xr.Dataset, verification: xr.Dataset | None = None,
                      length_unit: str = "m", pressure_unit: str = "Pa",
                      others: dict[str, xr.Dataset] | None = None) -> plt.Figure:
     """Pressure and real contact area versus separation, and pressure versus area
-    (Figs. 7.1, 7.4); `others`: interfaces of compared scenes, drawn beside."""
+    (Figs. 7.1, 7.4, 7.11-7.13, 8.18, 8.19), the unloading branch dashed (Fig. 8.28);
+    with inelastic asperities a fourth panel: the shares of contacting asperities
+    still elastic and inside small-strain theory (Figs. 7.10, 7.14, 8.24);
+    `others`: interfaces of compared scenes (their loading branch), drawn beside."""
     ls_ = units.length_scale(length_unit)
     ps = units.pressure_scale(pressure_unit)
-    h = interface["separation"].values / ls_
-    p = interface["nominal_pressure"].values / ps
-    a = interface["contact_area_ratio"].values
-    fig, axes = plt.subplots(1, 3, figsize=(15, 4.2))
-    axes[0].semilogy(h, p, "o-", ms=3, label="homogenized")
-    axes[1].semilogy(h, a, "o-", ms=3, label="homogenized")
-    axes[2].loglog(a, p, "o-", ms=3, label="homogenized")
+    shares = [n for n in FRACTIONS if n in interface and float(interface[n].max()) > 0]
+    fig, axes = plt.subplots(1, 3 + bool(shares), figsize=(5 * (3 + bool(shares)), 4.2))
+
+    def draw(ds, label, **style):
+        h = ds["separation"].values / ls_
+        p = ds["nominal_pressure"].values / ps
+        a = ds["contact_area_ratio"].values
+        axes[0].semilogy(h, p, label=label, **style)
+        axes[1].semilogy(h, a, label=label, **style)
+        axes[2].loglog(a, p, label=label, **style)
+
+    draw(_branch(interface, "loading"), "homogenized" if "branch" not in interface.dims else "loading",
+         marker="o", ms=3, color="C0")
+    unloading = _branch(interface, "unloading")
+    if unloading is not None:
+        draw(unloading, f"unloading from {interface.attrs.get('unloading_from', np.nan) / ls_:.3g} "
+             f"{length_unit}", ls="--", marker=".", ms=3, color="C3")
     for i, (name, other) in enumerate((others or {}).items()):
-        ho = other["separation"].values / ls_
-        po = other["nominal_pressure"].values / ps
-        ao = other["contact_area_ratio"].values
-        style = dict(ls=":", marker="s", ms=3, color=f"C{i + 1}", label=name)
-        axes[0].semilogy(ho, po, **style)
-        axes[1].semilogy(ho, ao, **style)
-        axes[2].loglog(ao, po, **style)
+        draw(_branch(other, "loading"), name, ls=":", marker="s", ms=3, color=f"C{i + 1}")
     if "extrapolated_fraction" in interface and float(interface["extrapolated_fraction"].max()) > 0:
         axes[1].set_title(f"largest share of contacts beyond the FE range: "
                           f"{100 * float(interface['extrapolated_fraction'].max()):.2g} %")
     if verification is not None:
+        h = interface["separation"].values / ls_
         pc = verification["nominal_pressure_closed_form"].values / ps
         ac = verification["contact_area_ratio_closed_form"].values
         axes[0].semilogy(h, pc, "k--", label="closed form")
@@ -148,9 +166,64 @@ def interface_figure(interface: xr.Dataset, verification: xr.Dataset | None = No
     axes[0].set(xlabel=f"separation [{length_unit}]", ylabel=f"nominal pressure [{pressure_unit}]")
     axes[1].set(xlabel=f"separation [{length_unit}]", ylabel="real contact area ratio A/A0")
     axes[2].set(xlabel="real contact area ratio A/A0", ylabel=f"nominal pressure [{pressure_unit}]")
+    if shares:
+        load = _branch(interface, "loading")
+        for i, name in enumerate(shares):
+            axes[3].plot(load["separation"].values / ls_, 100 * load[name].values, marker="o",
+                         ms=3, color=f"C{i + 4}", label=FRACTIONS[name])
+        for j, (oname, other) in enumerate((others or {}).items()):
+            for i, name in enumerate(shares):
+                if name in other:
+                    o = _branch(other, "loading")
+                    axes[3].plot(o["separation"].values / ls_, 100 * o[name].values, ls=":",
+                                 color=f"C{i + 4}", label=f"{oname}: {FRACTIONS[name]}")
+        axes[3].set(xlabel=f"separation [{length_unit}]", ylim=(-2, 102),
+                    ylabel="share of contacting asperities [%]")
     for ax in axes:
         ax.legend(fontsize=8)
         ax.grid(True, which="both", alpha=0.3)
+    fig.tight_layout()
+    return fig
+
+
+def unloading_figure(unloading: xr.Dataset, length_unit: str = "m", count: int = 8) -> plt.Figure:
+    """The family of unloading paths of one asperity (Figs. 8.26, 8.27): its
+    loading curve, the computed paths (thick), `count` blended paths (thin)
+    and the path left out of the blend against the blend from its level."""
+    ls_ = units.length_scale(length_unit)
+    i = unloading.sizes["curvature"] // 2
+    one = unloading.isel(curvature=i)
+    w = one["interference"].values
+    fig, ax = plt.subplots(figsize=(7, 5))
+    top = float(np.nanmax(one["computed_maximum_interference"].values))
+    load = np.diag(one["force"].values)  # F on the path from w_max at w = w_max
+    keep = (w > 0) & (w <= top)
+    ax.plot(w[keep] / ls_, load[keep], "k-", lw=1.5, label="loading")
+    lo = float(one["lowest_level"])
+    wm_all = one["maximum_interference"].values
+    picks = np.unique(np.searchsorted(wm_all, np.geomspace(lo, top, count)).clip(0, wm_all.size - 1))
+    for n, j in enumerate(picks):
+        path = one["force"].values[j]
+        sel = (w <= wm_all[j]) & (path > 0)
+        sel[np.flatnonzero(sel)[0] - 1 if sel.any() and np.flatnonzero(sel)[0] > 0 else 0] = True
+        ax.plot(w[sel] / ls_, path[sel], color="C0", lw=0.7, label="blended" if n == 0 else None)
+    W, F = one["computed_unloading_interference"].values, one["computed_unloading_force"].values
+    left = one["computed_left_out"].values
+    for j in range(W.shape[0]):
+        ok = np.isfinite(W[j])
+        if not ok.any():
+            continue
+        style = dict(color="C3", ls="--", lw=2, label="computed, left out (γ0)") if left[j] else \
+            dict(color="C1", lw=2, label="computed" if j == 0 else None)
+        ax.plot(W[j][ok] / ls_, F[j][ok], **style)
+    err = float(one["check_force_error"])
+    title = f"κ = {float(one['curvature']) * ls_:.3g} 1/{length_unit}"
+    if np.isfinite(err):
+        title += f"; blend vs left-out path: {100 * err:.2g} % of its peak force"
+    ax.set(xlabel=f"interference [{length_unit}]", ylabel="force [N]", title=title,
+           xlim=(0, 1.05 * top / ls_))
+    ax.legend(fontsize=8)
+    ax.grid(True, alpha=0.3)
     fig.tight_layout()
     return fig
 

@@ -15,8 +15,10 @@ from typing import Any, Mapping
 import numpy as np
 import xarray as xr
 
-from asperity import greenwood_williamson, hertz, homogenize, models, peaks, surface, units
+from asperity import greenwood_williamson, hertz, homogenize, materials, models, peaks, surface, units
 from asperity.plan import interference_grid, make_plan, sample_grid
+from asperity.unloading import family_table as unloading_family_table
+from asperity.unloading import unloading_asperities
 
 log = logging.getLogger("asperity")
 
@@ -31,13 +33,15 @@ def length_factor(units_cfg: Config) -> float:
     return units.length_scale(units_cfg["length"])
 
 
-def material_si(material: Config, units_cfg: Config) -> dict[str, float]:
-    """Young's modulus in Pa and Poisson's ratio from a scene's material."""
-    pressure = units.pressure_scale(units_cfg.get("pressure", "Pa"))
-    out = {"youngs_modulus": material["youngs_modulus"] * pressure, "poisson": material["poisson"]}
-    if "yield_stress" in material:
-        out["yield_stress"] = material["yield_stress"] * pressure
-    return out
+def material_si(material: Config, units_cfg: Config) -> dict[str, Any]:
+    """The scene's material in SI (`asperity.materials.material_si`)."""
+    return materials.material_si(material, units_cfg)
+
+
+def velocity_si(asperity: Config, units_cfg: Config) -> float | None:
+    """The flat's loading velocity [m/s] (report 8.2.2), None if the scene gives none."""
+    v = asperity.get("velocity")
+    return None if v is None else float(v) * length_factor(units_cfg)
 
 
 # ---------------------------------------------------------------- surface
@@ -272,12 +276,51 @@ def plan_dataset(
         "accuracy": "exact" if analytic else accuracy,
         "asperity": dict(asperity),
     }
+    if "velocity" in asperity:
+        job_inputs["velocity"] = velocity_si(asperity, units_cfg)
     width_to_height = None
     if asperity.get("geometry") == "cosine" and "width_to_height" not in asperity:
         width_to_height = models.representative_width_to_height(_population_stat(surface_ds, "sigma_slope"))
         job_inputs["width_to_height"] = width_to_height
+    shift_invariant = models.is_shift_invariant(asperity)
+    scaled = models.self_similar(asperity, job_inputs["material"], effects) and curvatures.size > 1
+    reference = None
+    if scaled:
+        given = asperity.get("reference_curvature")
+        reference = given / length_factor(units_cfg) if given else float(np.sqrt(curvatures[0] * curvatures[-1]))
+    levels_of, check_of = None, None
+    if "unloading" in effects:
+        if analytic or "plasticity" not in effects:
+            raise ValueError("effect `unloading` needs an FE asperity with effect `plasticity` "
+                             "(an elastic asperity unloads along its loading curve)")
+        if not shift_invariant:
+            raise ValueError("effect `unloading` needs an asperity whose response does not depend "
+                             "on its peak height (mapping: representative, sphere or paraboloid)")
+
+        def family(h, k):
+            geometry = models.fe_geometry(asperity, k, width_to_height, h)
+            _, top = models.job_range(geometry, asperity, grid, k, curvatures if scaled else None)
+            return models.unloading_levels(top, asperity)
+
+        def levels_of(h, k):
+            levels, check = family(h, k)
+            return np.sort(np.append(levels, check)) if np.isfinite(check) else levels
+
+        def check_of(h, k):
+            return family(h, k)[1]
     plan = make_plan(heights, curvatures, grid, model=model, job_inputs=job_inputs,
-                     shift_invariant=models.is_shift_invariant(asperity), analytic=analytic)
+                     shift_invariant=shift_invariant, analytic=analytic,
+                     unloading_levels=levels_of, reference_curvature=reference)
+    if scaled and not materials.rate_independent(job_inputs["material"], effects):
+        plan.attrs["scaling_assumption"] = (
+            "self-similar scaling of a rate-dependent body (asperity.scaling: self_similar): "
+            "rate effects of the scaled strain rates ignored, as the report does in 8.2.2")
+    plan.attrs["shift_invariant"] = int(shift_invariant)
+    if check_of is not None:
+        check = np.array([check_of(h, k) for h, k in
+                          zip(plan["sample_height"].values, plan["job_curvature"].values)])
+        plan["left_out"] = ("sample", plan["unloading_level"].values == check, _attrs(
+            "1", "unloading path computed to check the blend, left out of it (report 8.3, gamma_0)"))
     if width_to_height is not None:
         plan.attrs["width_to_height"] = width_to_height
     plan.attrs["support"] = f"height [{z0:.6g}, {z1:.6g}] m, curvature [{k0:.6g}, {k1:.6g}] 1/m"
@@ -315,35 +358,112 @@ def separations(homogenization: Config, surface_ds: xr.Dataset, units_cfg: Confi
     return np.linspace(sep["start"], sep["stop"], sep["count"]) * scale
 
 
+def _fraction(out: xr.Dataset, name: str, long_name: str) -> xr.Dataset:
+    """``<name>_per_unit_area`` over the contact count, as ``<name>_fraction`` (0 without contact)."""
+    source = f"{name}_per_unit_area"
+    if source not in out:
+        return out
+    fraction = xr.where(out["contact_count"] > 0, out[source] / out["contact_count"], 0.0)
+    out[f"{name}_fraction"] = fraction.assign_attrs(_attrs("1", long_name))
+    return out.drop_vars([source, f"raw_{name}"])
+
+
+def _homogenized(asperities: xr.Dataset, density, h: np.ndarray, rect, homogenization: Config,
+                 surface_ds: xr.Dataset) -> xr.Dataset:
+    rule = homogenization.get("rule", "gauss")
+    grid_dims = {"height", "curvature", "interference"}
+    asperities = asperities[[v for v in asperities.data_vars if set(asperities[v].dims) == grid_dims]]
+    out = homogenize.interface_response(
+        asperities, density, h, bounds=rect, cells=tuple(homogenization.get("cells", (40, 40))),
+        rule=rule, peak_density=peak_density(surface_ds))
+    out = _fraction(out, "extrapolated", "fraction of contacting asperities beyond their FE job's "
+                    "largest interference")
+    out = _fraction(out, "elastic", "fraction of contacting asperities still elastic (report 7.3, "
+                    "Fig. 7.10)")
+    return _fraction(out, "small_strain", "fraction of contacting asperities inside small-strain "
+                     "theory, all strains below 8 % (report 7.3, Figs. 7.10, 7.14)")
+
+
+#: separations added between unloading_from and the largest asperity rebound
+REBOUND_POINTS = 25
+
+
+def unloading_from(homogenization: Config, surface_ds: xr.Dataset, units_cfg: Config) -> float:
+    """Separation [m] from which the interface unloads: ``unloading_from`` (in the
+    separations' unit) or the smallest separation."""
+    h = separations(homogenization, surface_ds, units_cfg)
+    if "unloading_from" not in homogenization:
+        return float(h.min())
+    sep = homogenization.get("separations", {})
+    scale = height_scale(surface_ds) if sep.get("unit", "sigma") == "sigma" else length_factor(units_cfg)
+    return float(homogenization["unloading_from"]) * scale
+
+
 def interface_dataset(
     asperities: xr.Dataset, surface_ds: xr.Dataset, plan: xr.Dataset,
     population: Config, homogenization: Config, units_cfg: Config,
+    unloading: xr.Dataset | None = None,
 ) -> xr.Dataset:
-    """Nominal pressure, contact area ratio, stiffness versus separation (2.5)."""
+    """Nominal pressure, contact area ratio, stiffness versus separation (2.5).
+
+    With an `unloading` family (`unloading_dataset`), a ``branch``
+    dimension: ``loading``, and ``unloading`` from the separation
+    `unloading_from` back up (NaN below it), each asperity on the path from
+    its own maximum interference (report 8.3).
+    """
     density = population_density(surface_ds, population)
     threshold = float(plan.attrs.get("support_threshold", 1e-4))
     rect = bounds(density, homogenization, units_cfg, threshold)
     rule = homogenization.get("rule", "gauss")
     if isinstance(density, peaks.SampledDensity) and rule != "peaks":
         log.info("sampled density: rule %s over histogram cells", rule)
-    out = homogenize.interface_response(
-        asperities, density, separations(homogenization, surface_ds, units_cfg),
-        bounds=rect, cells=tuple(homogenization.get("cells", (40, 40))), rule=rule,
-        peak_density=peak_density(surface_ds),
-    )
-    if "extrapolated_per_unit_area" in out:
-        fraction = xr.where(out["contact_count"] > 0,
-                            out["extrapolated_per_unit_area"] / out["contact_count"], 0.0)
-        out["extrapolated_fraction"] = fraction.assign_attrs(_attrs(
-            "1", "fraction of contacting asperities beyond their FE job's largest interference"))
-        out = out.drop_vars(["extrapolated_per_unit_area", "raw_extrapolated"])
+    h = separations(homogenization, surface_ds, units_cfg)
+    if unloading is not None:
+        # the unloading branch is steep (elastic rebound, 8.3): resolve the largest
+        # rebound of the asperities present with REBOUND_POINTS more separations
+        h0 = unloading_from(homogenization, surface_ds, units_cfg)
+        w_max = unloading["maximum_interference"].values
+        reach = w_max <= rect[1] - h0
+        rebound = (w_max - unloading["residual_interference"].values)[:, reach]
+        if rebound.size:
+            extra = h0 + np.linspace(0.0, float(np.nanmax(rebound)), REBOUND_POINTS)[1:]
+            h = np.unique(np.concatenate([h, extra]))
+    out = _homogenized(asperities, density, h, rect, homogenization, surface_ds)
+    if unloading is not None:
+        up = h[h >= h0 - 1e-12 * abs(h0)]
+        log.info("unloading branch from separation %.6g m over %d separations", h0, up.size)
+        heights = asperities["height"].values
+        parts = []
+        for hk in up:  # one table per separation: each asperity on its own path (8.3)
+            back = unloading_asperities(unloading, heights, h0, float(hk))
+            parts.append(_homogenized(back, density, np.array([hk]), rect, homogenization, surface_ds))
+        unl = xr.concat(parts, dim="separation", data_vars="all")
+        unl["contact_count"] = unl["in_contact_per_unit_area"].assign_attrs(
+            _attrs("1/m^2", "asperities pressing the flat per unit nominal area"))
+        p = unl["nominal_pressure"].values
+        unl["normal_stiffness"] = ("separation", -np.gradient(p, up) if up.size > 1 else np.full(1, np.nan),
+                                   _attrs("Pa/m", "normal stiffness -dp/dh of the unloading branch"))
+        unl = unl.drop_vars(["in_contact_per_unit_area", "raw_in_contact"]).reindex(separation=h)
+        for name in set(out.data_vars) - set(unl.data_vars):  # loading only (fractions, radius)
+            unl[name] = xr.full_like(out[name], np.nan)
+        out = xr.concat([out, unl[list(out.data_vars)]], dim="branch", data_vars="all",
+                        coords="minimal", compat="override")
+        out["density_integral"] = out["density_integral"].isel(branch=0, drop=True)
+        out = out.assign_coords(branch=("branch", ["loading", "unloading"], _attrs(
+            "1", "loading, or unloading from the separation unloading_from (report 8.3)")))
+        out.attrs["unloading_from"] = h0
     out.attrs["rule"] = rule
     out.attrs["cells"] = str(tuple(homogenization.get("cells", (40, 40))))
     for name in ("accuracy", "fe_jobs", "fe_cpu_time", "max_newton_iterations", "max_step_cuts",
-                 "max_dofs"):  # what the asperities cost (FE scenes)
+                 "max_dofs", "max_time_steps"):  # what the asperities cost (FE scenes)
         if name in asperities.attrs:
             out.attrs[name] = asperities.attrs[name]
     return out
+
+
+def unloading_dataset(asperities: xr.Dataset) -> xr.Dataset:
+    """The blended family of unloading paths of every curvature (8.3, unloading.nc)."""
+    return unloading_family_table(asperities)
 
 
 def expectation_dataset(
@@ -419,6 +539,7 @@ def verification_dataset(
 
 def sample_dataset(
     plan: xr.Dataset, key: str, asperity: Config, material: Config, units_cfg: Config, accuracy: str,
+    effects=(),
 ) -> xr.Dataset:
     """The response of one sample of the plan (DESIGN.md: samples/<key>.nc)."""
     match = np.flatnonzero(plan["key"].values == key)
@@ -427,7 +548,8 @@ def sample_dataset(
     row = plan.isel(sample=int(match[0]))
     model = asperity["model"]
     if model == "fe":
-        return models.solve_sample(plan, key, asperity, material_si(material, units_cfg), accuracy)
+        return models.solve_sample(plan, key, asperity, material_si(material, units_cfg), accuracy,
+                                   effects, velocity_si(asperity, units_cfg))
     if model != "hertz":
         raise ValueError(f"sample {key}: asperity.model {model!r} has no per-sample model")
     mat = material_si(material, units_cfg)

@@ -362,3 +362,191 @@ def residual_interference(loading, paths, w_max, *, residual: str = "pchip",
     fam = UnloadingFamily(loading, paths, residual=residual, param=param,
                           corner_rtol=corner_rtol)
     return fam.residual(w_max)
+
+
+# ------------------------------------------------------------------ pipeline
+
+
+#: corners C, D of a computed path may miss the gathered loading curve by this
+#: (the paths' own loading branches ran on meshes adapted to their own w_max)
+CORNER_RTOL = 0.03
+
+
+def _rowwise_interp(x: np.ndarray, y: np.ndarray, targets: np.ndarray | None,
+                    row_targets: np.ndarray | None = None) -> np.ndarray:
+    """np.interp row by row, vectorized: x, y (n, m) with x non-decreasing in each
+    row, at `targets` (p,) shared by all rows or `row_targets` (n, p) -> (n, p)
+    (clamped at the row ends)."""
+    n, m = x.shape
+    tg = np.broadcast_to(targets[None, :], (n, targets.size)) if row_targets is None else row_targets
+    span = float(np.nanmax(x) - np.nanmin(x)) + float(np.nanmax(tg) - np.nanmin(tg)) + 1.0
+    offset = (np.arange(n) * 3.0 * span)[:, None]
+    base = min(float(np.nanmin(x)), float(np.nanmin(tg)))
+    xx = (x - base + offset).ravel()
+    tt = (tg - base + offset)
+    j = np.clip(np.searchsorted(xx, tt.ravel()) - 1, 0, xx.size - 2).reshape(tt.shape)
+    row0 = (np.arange(n) * m)[:, None]
+    j = np.clip(j, row0, row0 + m - 2)
+    x0, x1 = xx[j], xx[j + 1]
+    y0, y1 = y.ravel()[j], y.ravel()[j + 1]
+    a = np.clip((tt - x0) / np.where(x1 > x0, x1 - x0, 1.0), 0.0, 1.0)
+    return y0 + a * (y1 - y0)
+
+
+def family_table(asperities, n_t: int = 201):
+    """The blended unloading family of every curvature, for every maximum interference (8.3).
+
+    From the computed paths of ``asperities.nc`` (`asperity.models.gather`:
+    ``unloading_interference``/``_force``/``_contact_area`` on (curvature,
+    unloading_level, point)) and its loading curves: for every maximum
+    interference w_max of the grid, the unloading path as points
+    t = 0 .. 1 (``path_interference``, ``path_force``,
+    ``path_contact_area`` on dims curvature, maximum_interference,
+    path_point), from the residual interference (F = 0, t = 0) up to w_max
+    (on the loading curve, t = 1).  Paths are kept as curves rather than on
+    the interference grid: an unloading path spans a few per cent of
+    w_max, finer than any grid spacing.
+
+    Below the smallest computed level (``lowest_level``) the asperity is
+    taken to unload along its loading curve (elastic rebound of a barely
+    yielded tip); above the largest (``highest_level``) the largest path
+    is shifted to start at w_max and scaled to the loading force there
+    (extrapolation: the extra flattening taken as permanent).  A path
+    marked ``left_out`` is not blended but compared with the blend from its
+    level (``check_force_error``: largest force difference at equal
+    interference over its largest force; ``check_residual_error``:
+    difference of residual interferences over w_max).
+    """
+    import xarray as xr
+
+    grid = asperities["interference"].values
+    w_max = grid[grid > 0]
+    curv = asperities["curvature"].values
+    nk, nm = curv.size, w_max.size
+    t = np.linspace(0.0, 1.0, n_t)
+    out = {name: np.full((nk, nm, n_t), np.nan) for name in ("interference", "force", "contact_area")}
+    f_err = np.full(nk, np.nan)
+    r_err = np.full(nk, np.nan)
+    lowest = np.full(nk, np.nan)
+    highest = np.full(nk, np.nan)
+    for i in range(nk):  # one family per curvature; everything inside is vectorized over w_max
+        loads = {v: asperities[v].isel(height=0, curvature=i).values[grid > 0]
+                 for v in ("force", "contact_area")}
+        W = asperities["unloading_interference"].values[i]
+        level = asperities["maximum_interference"].values[i]
+        left = asperities["left_out"].values[i]
+        use = np.isfinite(level) & ~left
+        fams = {}
+        for v, var in (("force", "unloading_force"), ("contact_area", "unloading_contact_area")):
+            Y = asperities[var].values[i]
+            paths = [(level[j], W[j][np.isfinite(W[j])], Y[j][np.isfinite(W[j])])
+                     for j in np.flatnonzero(use)]
+            # the area need not fall strictly with the force: parametrized by interference
+            fams[v] = UnloadingFamily((w_max, loads[v]), paths, corner_rtol=CORNER_RTOL,
+                                      param="force" if v == "force" else "interference")
+        lo, hi = fams["force"].w_range
+        lowest[i], highest[i] = lo, hi
+        inside = (w_max >= lo) & (w_max <= hi)
+        wb, fb = fams["force"].blend(w_max[inside], t=t)
+        out["interference"][i, inside], out["force"][i, inside] = wb, fb
+        # the area path on the force path's interferences
+        wa, ya = fams["contact_area"].blend(w_max[inside], t=t)
+        out["contact_area"][i, inside] = _rowwise_interp(wa, ya, None, wb)
+        below = w_max < lo  # reversible: back along the loading curve
+        wl = t[None, :] * w_max[below][:, None]
+        out["interference"][i, below] = wl
+        for v in ("force", "contact_area"):
+            out[v][i, below] = np.interp(wl, w_max, loads[v], left=0.0)
+        beyond = w_max > hi  # the largest path shifted and scaled
+        if beyond.any():
+            top = np.flatnonzero(inside)[-1]
+            shift = w_max[beyond] - hi
+            out["interference"][i, beyond] = out["interference"][i, top][None, :] + shift[:, None]
+            for v in ("force", "contact_area"):
+                scale = loads[v][beyond] / max(loads[v][top], np.finfo(float).tiny)
+                out[v][i, beyond] = out[v][i, top][None, :] * scale[:, None]
+        check = np.flatnonzero(left & np.isfinite(level))
+        if check.size:
+            j = int(check[0])
+            ok = np.isfinite(W[j])
+            wc, fc = W[j][ok], asperities["unloading_force"].values[i, j][ok]
+            wbj, fbj = fams["force"].blend(level[j], t=t)
+            mask = wc >= wbj[0]
+            if mask.any():
+                f_err[i] = float(np.max(np.abs(np.interp(wc[mask], wbj, fbj) - fc[mask])) / fc.max())
+            res = asperities["residual_interference"].values[i, j]
+            r_err[i] = float(abs(fams["force"].residual(level[j]) - res) / level[j])
+    dims = ("curvature", "maximum_interference", "path_point")
+    ds = xr.Dataset(
+        {
+            "path_interference": (dims, out["interference"], {"units": "m", "long_name": "interference along the unloading path from maximum_interference"}),
+            "path_force": (dims, out["force"], {"units": "N", "long_name": "contact force along the unloading path"}),
+            "path_contact_area": (dims, out["contact_area"], {"units": "m^2", "long_name": "real contact area along the unloading path"}),
+            "lowest_level": ("curvature", lowest, {"units": "m", "long_name": "smallest computed unloading level (below it: unloading along the loading curve)"}),
+            "highest_level": ("curvature", highest, {"units": "m", "long_name": "largest computed unloading level (above it: its path shifted, extrapolated)"}),
+            "check_force_error": ("curvature", f_err, {"units": "1", "long_name": "largest force error of the blend against the left-out computed path, over its largest force"}),
+            "check_residual_error": ("curvature", r_err, {"units": "1", "long_name": "residual interference error of the blend against the left-out path, over its w_max"}),
+        },
+        coords={
+            "curvature": ("curvature", curv, {"units": "1/m", "long_name": "tip curvature"}),
+            "maximum_interference": ("maximum_interference", w_max, {"units": "m", "long_name": "interference from which the asperity unloads"}),
+            "path_point": ("path_point", t, {"units": "1", "long_name": "position t along a path: 0 at zero force, 1 at the maximum interference"}),
+        },
+    )
+    ds["residual_interference"] = ds["path_interference"].isel(path_point=0, drop=True).assign_attrs(
+        units="m", long_name="interference where the unloading path returns to zero force")
+    for v in ("unloading_interference", "unloading_force", "unloading_contact_area",
+              "maximum_interference", "residual_interference", "left_out"):
+        src = asperities[v]
+        ds[f"computed_{v}"] = (tuple(f"computed_{d}" if d in ("unloading_level", "point") else d
+                                     for d in src.dims), src.values, dict(src.attrs))
+    for d in ("unloading_level", "point"):
+        ds = ds.assign_coords({f"computed_{d}": (f"computed_{d}", asperities[d].values, dict(asperities[d].attrs))})
+    ds.attrs["blend"] = ("Coons patch of report 8.3 between consecutive computed unloading paths, "
+                         "force-fraction parametrization; below the smallest level the loading curve")
+    return ds
+
+
+def unloading_asperities(table, heights: np.ndarray, unloading_from: float, separation: float):
+    """Unloading responses on (height, curvature) at `separation` [m] when the
+    interface unloads from `unloading_from` [m] (report 8.3: each asperity is
+    caught at its own stage).
+
+    The asperity of peak height z was pressed to w_max = z - unloading_from
+    and is now at w = z - separation = w_max - (separation - unloading_from);
+    its force and area come from the family's path from w_max (linear in
+    w_max between the table's rows at equal t).  Returned as a table on
+    (height, curvature, interference) constant along interference (two
+    points, 0 and 1), the form `homogenize.interface_response` takes; with
+    ``in_contact`` (1 where the force is positive) for the contact count.
+    """
+    import xarray as xr
+
+    heights = np.asarray(heights, float)
+    grid = table["maximum_interference"].values
+    wm = heights - unloading_from
+    j = np.clip(np.searchsorted(grid, wm) - 1, 0, grid.size - 2)
+    a = np.clip((wm - grid[j]) / (grid[j + 1] - grid[j]), 0.0, 1.0)[None, :, None]
+
+    def at(v):  # (curvature, height, t)
+        x = table[v].values
+        return (1 - a) * x[:, j, :] + a * x[:, j + 1, :]
+
+    pw = at("path_interference")
+    nk, nh, nt = pw.shape
+    w = (wm - (separation - unloading_from))[None, :].repeat(nk, 0).reshape(-1, 1)
+    rows = pw.reshape(-1, nt)
+    data = {}
+    for v, name in (("path_force", "force"), ("path_contact_area", "contact_area")):
+        y = _rowwise_interp(rows, at(v).reshape(-1, nt), None, w)[:, 0]
+        y = np.where((w[:, 0] < rows[:, 0]) | (w[:, 0] <= 0), 0.0, y)
+        data[name] = y.reshape(nk, nh).T
+    data["in_contact"] = (data["force"] > 0).astype(float)
+    attrs = {"force": ("N", "contact force on unloading"), "contact_area": ("m^2", "real contact area on unloading"),
+             "in_contact": ("1", "1 where the asperity still presses the flat")}
+    return xr.Dataset(
+        {k: (("height", "curvature", "interference"), np.repeat(v[:, :, None], 2, axis=2),
+             {"units": attrs[k][0], "long_name": attrs[k][1]}) for k, v in data.items()},
+        coords={"height": ("height", heights, {"units": "m", "long_name": "asperity peak height"}),
+                "curvature": table["curvature"].copy(),
+                "interference": ("interference", [0.0, 1.0], {"units": "m", "long_name": "interference (the response is constant along it)"})})

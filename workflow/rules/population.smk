@@ -44,6 +44,7 @@ rule sample:
         key=lambda w: w.key,
         asperity=scene_part("asperity", {}),
         material=scene_part("material", {}),
+        effects=scene_part("effects", []),
         units=scene_part("units"),
         accuracy=config["accuracy"],
     log:
