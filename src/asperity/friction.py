@@ -1,0 +1,236 @@
+"""Static coefficient of friction of the homogenized interface (report 9.1).
+
+The report's estimate rests on two assumptions (9.1): sliding resistance
+between similar metals comes from the formation and shearing of junctions
+between contacting asperities, and shearing a junction takes the tangential
+force (9.41)::
+
+    T = tau_s A_c
+
+with tau_s the shear strength of the junction, "in the first approximation
+independent of normal pressure and equal to the shear strength of the bulk
+material".  Per unit nominal area, with A_c the real contact area ratio and
+F = p the nominal pressure (9.1, the formula after 9.41)::
+
+    mu_shear = tau_s A_c / F
+
+For a rough surface the report adds "the interlocking of asperities",
+estimated "based on relative motion of inclined surfaces" as "the average
+slope of the asperities" (9.1, Experimental Surface, refs. [32, 89])::
+
+    mu = mu_shear + mu_interlocking
+
+Which slope?  The report took 0.16 for the steel of section 8, whose
+*standard deviation* of slope is 0.160 (8.2.1): it used the rms slope.  The
+mean absolute slope E|z'| of a Gaussian surface is smaller by sqrt(2/pi)::
+
+    E|z'| = sqrt(2/pi) sigma_slope  (= 0.1277 for sigma_slope = 0.160)
+
+(z' ~ N(0, sigma_slope^2): the slope of a profile in the sliding direction,
+whose variance is m2 = sigma_slope^2, report 2.3).  A scene chooses with
+``interlocking``: ``mean_absolute_slope`` (the default, the issue's
+definition), ``rms_slope`` (what the report's 0.16 is), ``none``, or a number.
+
+tau_s: the scene's ``junction_shear_strength`` (pressure unit), else the bulk
+shear strength from the material's yield stress by von Mises,
+tau_s = yield_stress / sqrt(3).  Neither given is an error (a Bodner-Partom
+material has no yield stress of its own: give tau_s).
+
+The dataset is on dim ``separation`` (that of ``interface.nc``), with the
+nominal pressure as a coordinate along it: with adhesion the pressure can be
+negative and non-monotonic, which a ``nominal_pressure`` dimension could not
+hold.  mu is NaN where the pressure is not positive (no load, or net
+adhesive tension: the coefficient is undefined there).  Plot
+``ds.mu.plot(x="nominal_pressure", xscale="log")``.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any, Mapping
+
+import numpy as np
+import xarray as xr
+
+from . import units
+
+__all__ = ["mean_absolute_slope", "slope_deviation", "junction_shear_strength",
+           "mu_shear", "interlocking", "friction_dataset", "at_pressure", "loading_branch"]
+
+Config = Mapping[str, Any]
+
+SQRT_2_OVER_PI = math.sqrt(2.0 / math.pi)
+INTERLOCKING = ("mean_absolute_slope", "rms_slope", "none")
+
+
+def _attrs(units_: str, long_name: str) -> dict[str, str]:
+    return {"units": units_, "long_name": long_name}
+
+
+def loading_branch(interface: xr.Dataset) -> xr.Dataset:
+    """The loading branch of an interface (``branch`` dim, where the scene unloads)."""
+    if "branch" in interface.dims:
+        return interface.sel(branch="loading")
+    return interface
+
+
+def mean_absolute_slope(sigma_slope):
+    """E|z'| = sqrt(2/pi) sigma_slope for a Gaussian slope z' ~ N(0, sigma_slope^2)."""
+    return SQRT_2_OVER_PI * np.asarray(sigma_slope, dtype=float)
+
+
+def slope_deviation(surface: xr.Dataset) -> float:
+    """The rms profile slope sigma_slope = sqrt(m2) of the surface (report 2.3).
+
+    The statistic of the method that feeds the population when the dataset
+    has a ``method`` dim; for a map or anisotropic profiles (no isotropic
+    sigma_slope) the direction average sqrt((m20 + m02)/2) of the
+    directional slope variance m(theta) = m20 cos^2 + 2 m11 cos sin + m02 sin^2.
+    """
+    if "sigma_slope" in surface and "direction" not in surface["sigma_slope"].dims:
+        value = surface["sigma_slope"]
+        if "method" in value.dims:
+            method = surface.attrs.get("population_method")
+            if method in value["method"].values:
+                value = value.sel({"method": method})
+            else:
+                value = value.isel({"method": 0})
+        return float(value)
+    if "m20" in surface and "m02" in surface:
+        return math.sqrt(0.5 * (float(surface["m20"]) + float(surface["m02"])))
+    raise ValueError("the surface has no slope statistic (sigma_slope or m20, m02); "
+                     "give friction.interlocking as a number or `none`")
+
+
+def interlocking(surface: xr.Dataset, choice: Any = "mean_absolute_slope") -> tuple[float, str]:
+    """mu_interlocking and how it was obtained (report 9.1, refs. [32, 89])."""
+    if isinstance(choice, (int, float)) and not isinstance(choice, bool):
+        if choice < 0:
+            raise ValueError(f"friction.interlocking {choice} is negative")
+        return float(choice), "given in the scene"
+    if choice == "none":
+        return 0.0, "neglected (smooth surface)"
+    if choice == "rms_slope":
+        return slope_deviation(surface), "rms slope sigma_slope (what the report's 0.16 is, 9.1)"
+    if choice == "mean_absolute_slope":
+        return (float(mean_absolute_slope(slope_deviation(surface))),
+                "mean absolute slope sqrt(2/pi) sigma_slope of a Gaussian surface")
+    raise ValueError(f"friction.interlocking {choice!r}: one of {', '.join(INTERLOCKING)} or a number")
+
+
+def junction_shear_strength(friction_cfg: Config, material_si: Mapping[str, Any],
+                            units_cfg: Config) -> tuple[float, str]:
+    """tau_s [Pa] and its origin: the scene's value, or yield_stress / sqrt(3)."""
+    if friction_cfg.get("junction_shear_strength") is not None:
+        scale = units.pressure_scale(units_cfg.get("pressure", "Pa"))
+        return float(friction_cfg["junction_shear_strength"]) * scale, "given in the scene"
+    y = material_si.get("yield_stress") if material_si else None
+    if y is not None and math.isfinite(float(y)):
+        return float(y) / math.sqrt(3.0), "bulk shear strength yield_stress / sqrt(3) (von Mises)"
+    raise ValueError(
+        "friction: no junction shear strength tau_s (9.41): give friction.junction_shear_strength "
+        "(in the scene's pressure unit) or material.yield_stress (tau_s = yield_stress / sqrt(3))")
+
+
+def mu_shear(contact_area_ratio, nominal_pressure, tau_s: float) -> np.ndarray:
+    """tau_s A_c / F per unit nominal area (9.41); NaN where F <= 0."""
+    a = np.asarray(contact_area_ratio, dtype=float)
+    p = np.asarray(nominal_pressure, dtype=float)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return np.where(p > 0.0, tau_s * a / np.where(p > 0.0, p, 1.0), np.nan)
+
+
+def at_pressure(pressure: np.ndarray, values: np.ndarray, target) -> np.ndarray:
+    """`values` at nominal pressure(s) `target`, linear in log pressure over the
+    positive-pressure points; NaN outside their range."""
+    p = np.asarray(pressure, dtype=float)
+    v = np.asarray(values, dtype=float)
+    ok = (p > 0.0) & np.isfinite(v)
+    target = np.atleast_1d(np.asarray(target, dtype=float))
+    if ok.sum() < 2:
+        return np.full(target.shape, np.nan)
+    order = np.argsort(p[ok])
+    lp, lv = np.log(p[ok][order]), v[ok][order]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        lt = np.log(target)
+    out = np.interp(lt, lp, lv)
+    return np.where(np.isfinite(lt) & (lt >= lp[0]) & (lt <= lp[-1]), out, np.nan)
+
+
+def friction_dataset(interface: xr.Dataset, surface: xr.Dataset, friction_cfg: Config,
+                     material_si: Mapping[str, Any], units_cfg: Config) -> xr.Dataset:
+    """mu_shear, mu_interlocking and mu of the loading branch (report 9.1, Figs. 9.1-9.3).
+
+    Parameters
+    ----------
+    interface : interface.nc (dim ``separation``; ``branch`` selected to loading)
+    surface : surface.nc (the slope statistic)
+    friction_cfg : the scene's ``friction`` section (scene units):
+        ``junction_shear_strength``, ``interlocking``, ``measured`` (list of
+        label, value, uncertainty, nominal_pressure, source), ``report``
+        (the report's own estimate: shear, interlocking, total,
+        nominal_pressure, source; for comparison only)
+    material_si : the scene's material in SI (``yield_stress`` used if tau_s is not given)
+    units_cfg : the scene's units (pressure unit of tau_s and of the pressures)
+    """
+    interface = loading_branch(interface)
+    pscale = units.pressure_scale(units_cfg.get("pressure", "Pa"))
+    tau_s, tau_origin = junction_shear_strength(friction_cfg, material_si, units_cfg)
+    mu_i, mu_i_origin = interlocking(surface, friction_cfg.get("interlocking", "mean_absolute_slope"))
+    p = interface["nominal_pressure"].values
+    shear = mu_shear(interface["contact_area_ratio"].values, p, tau_s)
+    sep = interface["separation"]
+    ds = xr.Dataset(
+        coords={
+            "separation": ("separation", sep.values, dict(sep.attrs)),
+            "nominal_pressure": ("separation", p, _attrs("Pa", "nominal contact pressure (loading)")),
+        })
+    ds["mu_shear"] = ("separation", shear, _attrs(
+        "1", "coefficient of friction from junction shearing tau_s A_c / F (9.41)"))
+    ds["mu_interlocking"] = ((), mu_i, _attrs("1", f"interlocking part of friction: {mu_i_origin}"))
+    ds["mu"] = ("separation", shear + mu_i, _attrs("1", "coefficient of friction, shearing plus interlocking"))
+    ds["contact_area_ratio"] = ("separation", interface["contact_area_ratio"].values,
+                                _attrs("1", "real contact area per unit nominal area (loading)"))
+    ds["junction_shear_strength"] = ((), tau_s, _attrs("Pa", f"junction shear strength tau_s: {tau_origin}"))
+    try:
+        s = slope_deviation(surface)
+    except ValueError:
+        s = math.nan
+    ds["sigma_slope"] = ((), s, _attrs("1", "rms slope of the surface (standard deviation of profile slope)"))
+    ds["mean_absolute_slope"] = ((), float(mean_absolute_slope(s)),
+                                 _attrs("1", "mean absolute slope sqrt(2/pi) sigma_slope (Gaussian surface)"))
+
+    measured = list(friction_cfg.get("measured", []) or [])
+    if measured:
+        labels = [str(m["label"]) for m in measured]
+        get = lambda key, scale=1.0: np.array(  # noqa: E731
+            [float(m[key]) * scale if m.get(key) is not None else np.nan for m in measured])
+        mp = get("nominal_pressure", pscale)
+        ds = ds.assign_coords(measurement=("measurement", labels, _attrs("1", "friction test")))
+        ds["measured_mu"] = ("measurement", get("value"), _attrs("1", "measured static coefficient of friction"))
+        ds["measured_mu_uncertainty"] = ("measurement", get("uncertainty"),
+                                         _attrs("1", "estimated error of the measured coefficient"))
+        ds["measured_nominal_pressure"] = ("measurement", mp, _attrs("Pa", "nominal pressure of the test"))
+        ds["mu_shear_at_measurement"] = ("measurement", at_pressure(p, shear, mp), _attrs(
+            "1", "computed mu_shear at the test's nominal pressure (NaN outside the computed range)"))
+        ds["mu_at_measurement"] = ("measurement", at_pressure(p, shear + mu_i, mp), _attrs(
+            "1", "computed mu at the test's nominal pressure (NaN outside the computed range)"))
+        ds["measured_source"] = ("measurement", [str(m.get("source", "")) for m in measured],
+                                 _attrs("1", "where the measurement is reported"))
+    report = dict(friction_cfg.get("report", {}) or {})
+    if report:
+        names = {"shear": "mu_shear", "interlocking": "mu_interlocking", "total": "mu"}
+        for key, name in names.items():
+            if report.get(key) is not None:
+                ds[f"report_{name}"] = ((), float(report[key]), _attrs(
+                    "1", f"the report's {name} (for comparison, not computed here)"))
+        if report.get("nominal_pressure") is not None:
+            ds["report_nominal_pressure"] = ((), float(report["nominal_pressure"]) * pscale,
+                                             _attrs("Pa", "nominal pressure of the report's estimate"))
+        ds.attrs["report_source"] = str(report.get("source", ""))
+    positive = p > 0
+    if positive.any():
+        ds.attrs["pressure_range"] = f"[{p[positive].min():.6g}, {p[positive].max():.6g}] Pa"
+    ds.attrs["junction_shear_strength_origin"] = tau_origin
+    ds.attrs["interlocking"] = mu_i_origin
+    return ds

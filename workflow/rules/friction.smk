@@ -1,0 +1,78 @@
+# Static friction (report 9.1) -> friction.nc, and analytic laws (section 10) -> laws.nc,
+# with their figures. Only for scenes with a `friction:` or `laws:` section.
+
+
+def friction_compared(wildcards):
+    """The compared scenes that have a friction section (their friction.nc is drawn)."""
+    return [other for other in SCENES[wildcards.scene].get("compare_with", [])
+            if "friction" in SCENES[other]]
+
+
+rule friction:
+    """mu = tau_s A_c / F plus interlocking, on the loading branch (9.41)."""
+    input:
+        interface=f"{RESULTS}/{{scene}}/interface.nc",
+        surface=f"{RESULTS}/{{scene}}/surface.nc",
+    output:
+        f"{RESULTS}/{{scene}}/friction.nc",
+    params:
+        scene=lambda w: w.scene,
+        friction=scene_part("friction", {}),
+        material=scene_part("material", {}),
+        units=scene_part("units"),
+    log:
+        f"{RESULTS}/{{scene}}/logs/friction.log",
+    script:
+        "../scripts/friction.py"
+
+
+rule laws:
+    """Oden-Martins (10.42, 10.43) and exponential laws fitted to the loading curve."""
+    input:
+        interface=f"{RESULTS}/{{scene}}/interface.nc",
+    output:
+        f"{RESULTS}/{{scene}}/laws.nc",
+    params:
+        scene=lambda w: w.scene,
+        laws=scene_part("laws", {}),
+        units=scene_part("units"),
+    log:
+        f"{RESULTS}/{{scene}}/logs/laws.log",
+    script:
+        "../scripts/laws.py"
+
+
+rule friction_figure:
+    input:
+        friction=f"{RESULTS}/{{scene}}/friction.nc",
+        others=lambda w: [f"{RESULTS}/{other}/friction.nc" for other in friction_compared(w)],
+    output:
+        report(
+            f"{RESULTS}/{{scene}}/figures/friction.png",
+            category="{scene}",
+            caption="../report/friction.rst",
+        ),
+    params:
+        units=scene_part("units"),
+        compare_with=friction_compared,
+    log:
+        f"{RESULTS}/{{scene}}/logs/friction_figure.log",
+    script:
+        "../scripts/friction_figure.py"
+
+
+rule laws_figure:
+    input:
+        laws=f"{RESULTS}/{{scene}}/laws.nc",
+    output:
+        report(
+            f"{RESULTS}/{{scene}}/figures/laws.png",
+            category="{scene}",
+            caption="../report/laws.rst",
+        ),
+    params:
+        units=scene_part("units"),
+    log:
+        f"{RESULTS}/{{scene}}/logs/laws_figure.log",
+    script:
+        "../scripts/laws_figure.py"

@@ -1,0 +1,16 @@
+"""friction.nc: static coefficient of friction of the interface (report 9.1)."""
+
+from asperity import stages
+from asperity.friction import friction_dataset
+from asperity.io.netcdf import read_dataset, write_dataset
+from asperity.joblog import job_log
+
+with job_log(snakemake.log[0], "friction") as log:
+    p, i = snakemake.params, snakemake.input
+    ds = friction_dataset(read_dataset(i.interface), read_dataset(i.surface), p.friction,
+                          stages.material_si(p.material, p.units) if p.material else {}, p.units)
+    log.info("tau_s %.6g Pa (%s); mu_interlocking %.4g; mu from %.4g to %.4g",
+             float(ds["junction_shear_strength"]), ds.attrs["junction_shear_strength_origin"],
+             float(ds["mu_interlocking"]), float(ds["mu"].min()), float(ds["mu"].max()))
+    write_dataset(ds, snakemake.output[0], scene=p.scene, title="static coefficient of friction (9.1)",
+                  config={"friction": p.friction, "material": p.material, "units": p.units})
