@@ -24,11 +24,14 @@ include: "workflow/rules/surface.smk"
 include: "workflow/rules/population.smk"
 include: "workflow/rules/homogenize.smk"
 include: "workflow/rules/figures.smk"
+include: "workflow/rules/friction.smk"
 include: "workflow/rules/accuracy.smk"
+include: "workflow/rules/uniaxial.smk"
 
 
 rule all:
     input:
         [target for name in config["scenes"] for target in scene_targets(name)],
         f"{RESULTS}/accuracy/hertz.nc",
+        f"{RESULTS}/accuracy/bodner_partom.nc",
     default_target: True

@@ -170,6 +170,10 @@ def unloading_levels(top: float, asperity: Config) -> tuple[np.ndarray, float]:
     return levels, check
 
 
+#: the first step of an inelastic history, as a fraction of the job's largest interference
+FIRST_STEP = 1e-4
+
+
 def _history(level: float, top: float, velocity: float | None):
     """Load at `velocity` to `level` and back to zero force (NaN level: load to `top`)."""
     from asperity import fe
@@ -211,9 +215,12 @@ def solve_sample(plan: xr.Dataset, key: str, asperity: Config, material_si: Conf
         if hasattr(material, "update"):
             # one mesh for every unloading level of the asperity, adapted to its whole range,
             # so that their loading branches coincide (the corners of the blend, 8.3)
-            ds = fe.solve_asperity_history(geometry, material, _history(level, top, velocity),
-                                           accuracy=accuracy,
-                                           mesh_levels=np.geomspace(0.01 * top, top, 6))
+            # the first step presses 1e-4 of the range (first touch, where most asperities
+            # of an interface are, is resolved; steps grow geometrically from there)
+            history = _history(level, top, velocity)
+            ds = fe.solve_asperity_history(geometry, material, history, accuracy=accuracy,
+                                           mesh_levels=np.geomspace(0.01 * top, top, 6),
+                                           initial_time_step=FIRST_STEP * top / history.velocity(0.0))
         else:
             if not math.isnan(level):
                 raise ValueError(f"sample {key}: unloading an elastic asperity retraces its "

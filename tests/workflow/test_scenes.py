@@ -22,10 +22,14 @@ SCENES = ["profile_cosine", "profile_quasirandom", "expectation_unit", "greenwoo
           "asperity_shape", "asperity_shape_hertz", "asperity_shape_coupled"]
 
 
+#: this module's scenes only (the inelastic scenes have their own module)
+ONLY = ("--config", f"scenes=[{','.join(SCENES)}]")
+
+
 @pytest.fixture(scope="module")
 def run(tmp_path_factory):
     workdir = copy_workflow(tmp_path_factory.mktemp("workflow"))
-    snakemake(workdir)
+    snakemake(workdir, *ONLY)
     return workdir
 
 
@@ -199,7 +203,7 @@ def test_figures_are_pngs(run):
 
 
 def test_nothing_changed_runs_no_job(run):
-    proc = snakemake(run, "-n")
+    proc = snakemake(run, "-n", *ONLY)
     assert planned_jobs(proc) == {}, proc.stdout
 
 
@@ -208,7 +212,7 @@ def test_homogenization_change_reruns_only_downstream(run):
     scene = yaml.safe_load(path.read_text())
     scene["homogenization"]["cells"] = [300, 1]
     path.write_text(yaml.safe_dump(scene))
-    jobs = planned_jobs(snakemake(run, "-n"))
+    jobs = planned_jobs(snakemake(run, "-n", *ONLY))
     assert set(jobs) == {"interface", "verification", "interface_figure", "all"}, jobs
 
 
@@ -217,6 +221,6 @@ def test_material_change_reruns_the_fe_jobs_not_the_surface(run):
     scene = yaml.safe_load(path.read_text())
     scene["material"]["youngs_modulus"] = 300.0
     path.write_text(yaml.safe_dump(scene))
-    jobs = planned_jobs(snakemake(run, "-n"))
+    jobs = planned_jobs(snakemake(run, "-n", *ONLY))
     assert "surface" not in jobs, jobs
     assert {"plan", "asperities", "interface"} <= set(jobs), jobs

@@ -120,6 +120,8 @@ def scene_targets(name):
     out = f"{RESULTS}/{name}"
     if "single_asperity" in SCENES[name]:
         return [f"{out}/verification.nc", f"{out}/figures/verification.png"]
+    if "uniaxial" in SCENES[name]:
+        return [f"{out}/uniaxial.nc", f"{out}/figures/uniaxial.png"]
     targets = [f"{out}/surface.nc", f"{out}/figures/surface.png"]
     gen = generated(name)
     if gen and gen.get("convergence_spacings"):
@@ -131,4 +133,10 @@ def scene_targets(name):
                     f"{out}/figures/asperities.png"]
         if SCENES[name].get("verification"):
             targets.append(f"{out}/verification.nc")
+        if "unloading" in SCENES[name].get("effects", []):
+            targets += [f"{out}/unloading.nc", f"{out}/figures/unloading.png"]
+        if "friction" in SCENES[name]:
+            targets += [f"{out}/friction.nc", f"{out}/figures/friction.png"]
+        if "laws" in SCENES[name]:
+            targets += [f"{out}/laws.nc", f"{out}/figures/laws.png"]
     return targets

@@ -110,3 +110,20 @@ rule verification_figure:
         f"{RESULTS}/{{scene}}/logs/verification_figure.log",
     script:
         "../scripts/verification_figure.py"
+
+
+rule unloading_figure:
+    input:
+        unloading=f"{RESULTS}/{{scene}}/unloading.nc",
+    output:
+        report(
+            f"{RESULTS}/{{scene}}/figures/unloading.png",
+            category="{scene}",
+            caption="../report/unloading.rst",
+        ),
+    params:
+        units=scene_part("units"),
+    log:
+        f"{RESULTS}/{{scene}}/logs/unloading_figure.log",
+    script:
+        "../scripts/unloading_figure.py"

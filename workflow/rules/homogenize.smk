@@ -19,12 +19,37 @@ rule expectation:
         "../scripts/expectation.py"
 
 
-rule interface:
-    """Nominal pressure, real contact area, stiffness versus separation."""
+def unloads(name):
+    return "unloading" in SCENES[name].get("effects", [])
+
+
+rule unloading:
+    """The blended family of unloading paths of every asperity (report 8.3)."""
     input:
-        surface=f"{RESULTS}/{{scene}}/surface.nc",
-        plan=f"{RESULTS}/{{scene}}/plan.nc",
         asperities=f"{RESULTS}/{{scene}}/asperities.nc",
+    output:
+        f"{RESULTS}/{{scene}}/unloading.nc",
+    params:
+        scene=lambda w: w.scene,
+    log:
+        f"{RESULTS}/{{scene}}/logs/unloading.log",
+    script:
+        "../scripts/unloading.py"
+
+
+def interface_inputs(wildcards):
+    out = f"{RESULTS}/{wildcards.scene}"
+    inputs = {"surface": f"{out}/surface.nc", "plan": f"{out}/plan.nc",
+              "asperities": f"{out}/asperities.nc"}
+    if unloads(wildcards.scene):
+        inputs["unloading"] = f"{out}/unloading.nc"
+    return inputs
+
+
+rule interface:
+    """Nominal pressure, real contact area, stiffness versus separation (and branch)."""
+    input:
+        unpack(interface_inputs),
     output:
         f"{RESULTS}/{{scene}}/interface.nc",
     params:

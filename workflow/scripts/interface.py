@@ -7,7 +7,8 @@ from asperity.joblog import job_log
 with job_log(snakemake.log[0], "interface"):
     p, i = snakemake.params, snakemake.input
     ds = stages.interface_dataset(read_dataset(i.asperities), read_dataset(i.surface),
-                                  read_dataset(i.plan), p.population, p.homogenization, p.units)
+                                  read_dataset(i.plan), p.population, p.homogenization, p.units,
+                                  read_dataset(i.unloading) if "unloading" in i.keys() else None)
     write_dataset(ds, snakemake.output[0], scene=p.scene, title="homogenized interface",
                   config={"population": p.population, "homogenization": p.homogenization,
                           "units": p.units})

@@ -1,0 +1,68 @@
+"""The inelastic scenes end to end at `draft`: loading and unloading of the steel
+interface of section 8, and elastic against elasto-plastic smooth aluminum (7.3)."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from asperity.io.netcdf import missing_attributes, read_dataset
+
+from .conftest import copy_workflow, snakemake
+
+pytestmark = [pytest.mark.workflow, pytest.mark.slow]
+
+SCENES = ["steel_glass_bead", "smooth_aluminum", "smooth_aluminum_elastic"]
+ONLY = ("--config", f"scenes=[{','.join(SCENES)}]", "accuracy=draft")
+
+
+@pytest.fixture(scope="module")
+def run(tmp_path_factory):
+    workdir = copy_workflow(tmp_path_factory.mktemp("inelastic"))
+    snakemake(workdir, *ONLY)
+    return workdir
+
+
+def result(run, scene, name):
+    return read_dataset(run / "results" / scene / name)
+
+
+def test_steel_unloads_steeply_from_where_it_was_loaded(run):
+    """8.3, Fig. 8.28: the unloading branch starts on the loading branch and is much steeper."""
+    ds = result(run, "steel_glass_bead", "interface.nc")
+    assert list(ds["branch"].values) == ["loading", "unloading"]
+    h = ds["separation"].values
+    h0 = ds.attrs["unloading_from"]
+    load = ds["nominal_pressure"].sel(branch="loading").values
+    unload = ds["nominal_pressure"].sel(branch="unloading").values
+    at = np.argmin(np.abs(h - h0))
+    assert unload[at] == pytest.approx(load[at], rel=0.02)
+    up = h > h0
+    assert np.all(unload[up] <= load[up] * (1 + 1e-9))
+    # the report: the rebound "does not exceed 1.0 um"; back to zero within 1.5 um here
+    assert np.all(unload[h > h0 + 1.5e-6] == 0.0)
+    assert np.all(np.isnan(unload[h < h0]))
+    assert ds.attrs["fe_jobs"] == 5  # one asperity, four levels and the check path
+
+
+def test_steel_blend_against_its_left_out_path(run):
+    """8.3, Fig. 8.27: the blended path from the left-out level is within 3 % of the computed one."""
+    unl = result(run, "steel_glass_bead", "unloading.nc")
+    err = unl["check_force_error"].values
+    assert np.all(np.isfinite(err)) and np.all(err < 0.03), err
+    assert not missing_attributes(unl)
+
+
+def test_smooth_aluminum_elastic_share_and_small_strains(run):
+    """7.3, Fig. 7.10: many contacting asperities yield, none leaves small-strain theory;
+    the elasto-plastic interface is the softer one."""
+    plastic = result(run, "smooth_aluminum", "interface.nc")
+    elastic = result(run, "smooth_aluminum_elastic", "interface.nc")
+    share = plastic["elastic_fraction"].values
+    assert 0.1 < share.min() and share.max() < 0.9, share
+    assert np.all(plastic["small_strain_fraction"].values == 1.0)
+    # the elastic scene flags the same asperities as yielding (von Mises above the yield stress)
+    assert np.all(elastic["elastic_fraction"].values <= 1.0)
+    p, pe = plastic["nominal_pressure"].values, elastic["nominal_pressure"].values
+    assert np.all(p <= pe * (1 + 1e-6))
+    assert result(run, "smooth_aluminum", "friction.nc")["mu"].notnull().any()

@@ -1,0 +1,14 @@
+"""results/<scene>/uniaxial.nc: the scene's uniaxial material-point tests."""
+
+from asperity.io.netcdf import write_dataset
+from asperity.joblog import job_log
+from asperity.uniaxial_study import run_uniaxial_scene
+
+p = snakemake.params
+with job_log(snakemake.log[0], f"uniaxial tests of {p.scene}") as log:
+    ds = run_uniaxial_scene(p.uniaxial, p.units)
+    for name, steps, wall in zip(ds["test"].values, ds["steps"].values, ds["wall_time"].values):
+        log.info("%s: %d steps, %.2f s", name, steps, wall)
+    ds.attrs["report"] = p.report
+    write_dataset(ds, snakemake.output[0], scene=p.scene, title=p.title,
+                  config={"units": p.units, "uniaxial": p.uniaxial})
