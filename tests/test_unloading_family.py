@@ -60,6 +60,7 @@ def test_family_reproduces_computed_paths_and_measures_the_left_out_one():
     err = float(table["check_force_error"][0])
     assert 0.0 < err < 0.01, err
     assert float(table["check_residual_error"][0]) < 1e-9
+    assert float(table["corner_mismatch"][0]) < 1e-6  # paths start on the loading curve
     # below the smallest level: back along the loading curve (reversible)
     below = np.flatnonzero(wm < levels[0])[-1]
     w, f = table["path_interference"].values[0, below], table["path_force"].values[0, below]

@@ -367,9 +367,12 @@ def residual_interference(loading, paths, w_max, *, residual: str = "pchip",
 # ------------------------------------------------------------------ pipeline
 
 
-#: corners C, D of a computed path may miss the gathered loading curve by this
-#: (the paths' own loading branches ran on meshes adapted to their own w_max)
-CORNER_RTOL = 0.03
+#: corners C, D of a computed path may miss the gathered loading curve by this:
+#: the paths' loading branches share one mesh but not their time steps (each job
+#: caps its steps relative to its own maximum interference), and at `draft` the
+#: backward-Euler error of the coarser steps of the largest level reaches ~4 %.
+#: The largest mismatch is recorded in unloading.nc (``corner_mismatch``).
+CORNER_RTOL = 0.1
 
 
 def _rowwise_interp(x: np.ndarray, y: np.ndarray, targets: np.ndarray | None,
@@ -429,6 +432,7 @@ def family_table(asperities, n_t: int = 201):
     r_err = np.full(nk, np.nan)
     lowest = np.full(nk, np.nan)
     highest = np.full(nk, np.nan)
+    mismatch = np.full(nk, np.nan)
     for i in range(nk):  # one family per curvature; everything inside is vectorized over w_max
         loads = {v: asperities[v].isel(height=0, curvature=i).values[grid > 0]
                  for v in ("force", "contact_area")}
@@ -446,6 +450,10 @@ def family_table(asperities, n_t: int = 201):
                                       param="force" if v == "force" else "interference")
         lo, hi = fams["force"].w_range
         lowest[i], highest[i] = lo, hi
+        ok = np.flatnonzero(use)
+        tops = np.array([np.nanmax(asperities["unloading_force"].values[i, j]) for j in ok])
+        load_at = np.interp(level[ok], w_max, loads["force"])
+        mismatch[i] = float(np.max(np.abs(tops / load_at - 1)))
         inside = (w_max >= lo) & (w_max <= hi)
         wb, fb = fams["force"].blend(w_max[inside], t=t)
         out["interference"][i, inside], out["force"][i, inside] = wb, fb
@@ -484,6 +492,7 @@ def family_table(asperities, n_t: int = 201):
             "path_contact_area": (dims, out["contact_area"], {"units": "m^2", "long_name": "real contact area along the unloading path"}),
             "lowest_level": ("curvature", lowest, {"units": "m", "long_name": "smallest computed unloading level (below it: unloading along the loading curve)"}),
             "highest_level": ("curvature", highest, {"units": "m", "long_name": "largest computed unloading level (above it: its path shifted, extrapolated)"}),
+            "corner_mismatch": ("curvature", mismatch, {"units": "1", "long_name": "largest relative difference between a computed path's peak force and the loading curve at its level"}),
             "check_force_error": ("curvature", f_err, {"units": "1", "long_name": "largest force error of the blend against the left-out computed path, over its largest force"}),
             "check_residual_error": ("curvature", r_err, {"units": "1", "long_name": "residual interference error of the blend against the left-out path, over its w_max"}),
         },
