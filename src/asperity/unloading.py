@@ -452,7 +452,7 @@ def family_table(asperities, n_t: int = 201):
         lowest[i], highest[i] = lo, hi
         ok = np.flatnonzero(use)
         tops = np.array([np.nanmax(asperities["unloading_force"].values[i, j]) for j in ok])
-        load_at = np.interp(level[ok], w_max, loads["force"])
+        load_at = PchipInterpolator(w_max, loads["force"])(level[ok])  # as the family does
         mismatch[i] = float(np.max(np.abs(tops / load_at - 1)))
         inside = (w_max >= lo) & (w_max <= hi)
         wb, fb = fams["force"].blend(w_max[inside], t=t)
