@@ -193,20 +193,17 @@ def unloading_figure(unloading: xr.Dataset, length_unit: str = "m", count: int =
     ls_ = units.length_scale(length_unit)
     i = unloading.sizes["curvature"] // 2
     one = unloading.isel(curvature=i)
-    w = one["interference"].values
     fig, ax = plt.subplots(figsize=(7, 5))
     top = float(np.nanmax(one["computed_maximum_interference"].values))
-    load = np.diag(one["force"].values)  # F on the path from w_max at w = w_max
-    keep = (w > 0) & (w <= top)
-    ax.plot(w[keep] / ls_, load[keep], "k-", lw=1.5, label="loading")
-    lo = float(one["lowest_level"])
     wm_all = one["maximum_interference"].values
+    load = one["path_force"].values[:, -1]  # every path starts on the loading curve
+    keep = wm_all <= top
+    ax.plot(wm_all[keep] / ls_, load[keep], "k-", lw=1.5, label="loading")
+    lo = float(one["lowest_level"])
     picks = np.unique(np.searchsorted(wm_all, np.geomspace(lo, top, count)).clip(0, wm_all.size - 1))
     for n, j in enumerate(picks):
-        path = one["force"].values[j]
-        sel = (w <= wm_all[j]) & (path > 0)
-        sel[np.flatnonzero(sel)[0] - 1 if sel.any() and np.flatnonzero(sel)[0] > 0 else 0] = True
-        ax.plot(w[sel] / ls_, path[sel], color="C0", lw=0.7, label="blended" if n == 0 else None)
+        ax.plot(one["path_interference"].values[j] / ls_, one["path_force"].values[j], color="C0",
+                lw=0.7, label="blended" if n == 0 else None)
     W, F = one["computed_unloading_interference"].values, one["computed_unloading_force"].values
     left = one["computed_left_out"].values
     for j in range(W.shape[0]):
