@@ -63,9 +63,11 @@ def test_smooth_aluminum_elastic_share_and_small_strains(run):
     elastic = result(run, "smooth_aluminum_elastic", "interface.nc")
     share = plastic["elastic_fraction"].values
     assert 0.1 < share.min() and share.max() < 0.9, share
-    assert np.all(plastic["small_strain_fraction"].values == 1.0)
+    np.testing.assert_allclose(plastic["small_strain_fraction"].values, 1.0, atol=1e-12)
     # the elastic scene flags the same asperities as yielding (von Mises above the yield stress)
     assert np.all(elastic["elastic_fraction"].values <= 1.0)
     p, pe = plastic["nominal_pressure"].values, elastic["nominal_pressure"].values
     assert np.all(p <= pe * (1 + 1e-6))
+    # the report: "less than 5 %" apart; measured 5 to 9 % at draft (J2 perfectly plastic)
+    assert np.all(p >= 0.85 * pe), p / pe
     assert result(run, "smooth_aluminum", "friction.nc")["mu"].notnull().any()
