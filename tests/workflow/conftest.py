@@ -53,3 +53,17 @@ def planned_jobs(proc: subprocess.CompletedProcess) -> dict[str, int]:
 @pytest.fixture
 def workflow_copy(tmp_path):
     return copy_workflow(tmp_path)
+
+
+def run_scenes(tmp_path_factory, name: str, *args: str) -> Path:
+    """A workflow copy with `args` (e.g. --config scenes=[...]) run to completion."""
+    workdir = copy_workflow(tmp_path_factory.mktemp(name))
+    snakemake(workdir, *args)
+    return workdir
+
+
+def result(run: Path, scene: str, name: str):
+    """A result file of a run, read through the netCDF contract."""
+    from asperity.io.netcdf import read_dataset
+
+    return read_dataset(run / "results" / scene / name)

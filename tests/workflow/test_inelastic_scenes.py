@@ -6,9 +6,9 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from asperity.io.netcdf import missing_attributes, read_dataset
+from asperity.io.netcdf import missing_attributes
 
-from .conftest import copy_workflow, snakemake
+from .conftest import result, run_scenes
 
 pytestmark = [pytest.mark.workflow, pytest.mark.slow]
 
@@ -18,13 +18,7 @@ ONLY = ("--config", f"scenes=[{','.join(SCENES)}]", "accuracy=draft")
 
 @pytest.fixture(scope="module")
 def run(tmp_path_factory):
-    workdir = copy_workflow(tmp_path_factory.mktemp("inelastic"))
-    snakemake(workdir, *ONLY)
-    return workdir
-
-
-def result(run, scene, name):
-    return read_dataset(run / "results" / scene / name)
+    return run_scenes(tmp_path_factory, "inelastic", *ONLY)
 
 
 def test_steel_unloads_steeply_from_where_it_was_loaded(run):

@@ -13,7 +13,7 @@ import yaml
 
 from asperity.io.netcdf import missing_attributes, read_dataset, scene_config
 
-from .conftest import copy_workflow, planned_jobs, snakemake
+from .conftest import planned_jobs, result, run_scenes, snakemake
 
 pytestmark = [pytest.mark.workflow, pytest.mark.slow]
 
@@ -28,13 +28,7 @@ ONLY = ("--config", f"scenes=[{','.join(SCENES)}]")
 
 @pytest.fixture(scope="module")
 def run(tmp_path_factory):
-    workdir = copy_workflow(tmp_path_factory.mktemp("workflow"))
-    snakemake(workdir, *ONLY)
-    return workdir
-
-
-def result(run, scene, name):
-    return read_dataset(run / "results" / scene / name)
+    return run_scenes(tmp_path_factory, "workflow", *ONLY)
 
 
 def test_profile_cosine_within_0p1_percent(run):
