@@ -4,7 +4,9 @@ One asperity, a body of revolution or a plane-strain section standing on a
 block of bulk material, pressed by a rigid flat; elastic, small strain,
 P2 elements on a curved graded mesh refined adaptively near the contact
 edge; contact by the C1 penalty of report 3.3.2 or exactly (augmented
-Lagrangian); Newton-Raphson with step cutting.
+Lagrangian); Newton-Raphson with step cutting; Lennard-Jones adhesion
+on the free surface with jumps into and out of contact (`adhesion`,
+`adhesive`).
 
 Modules: `geometry` (profiles), `mesh` (graded curved meshes, refinement),
 `material` (stress and tangent at quadrature points), `assembly` (P2
@@ -20,6 +22,8 @@ a fixed mesh, adaptive time steps).
     ...                     [0.001, 0.002, 0.005, 0.01, 0.02])  # doctest: +SKIP
 """
 
+from .adhesion import LennardJones
+from .adhesive import interpolate_adhesive, smooth_aluminum_curves, solve_asperity_adhesive
 from .errors import ContactZoneError, ConvergenceError
 from .geometry import CosineHill, Cylinder, Paraboloid, Profile, Sphere, TruncatedV
 from .inelastic import History, solve_asperity_history
@@ -32,6 +36,7 @@ __all__ = [
     "ContactZoneError",
     "History",
     "ConvergenceError",
+    "LennardJones",
     "CosineHill",
     "Cylinder",
     "LinearElastic",
@@ -40,7 +45,10 @@ __all__ = [
     "Sphere",
     "TruncatedV",
     "hertz",
+    "interpolate_adhesive",
     "penalty_error",
+    "smooth_aluminum_curves",
     "solve_asperity",
+    "solve_asperity_adhesive",
     "solve_asperity_history",
 ]

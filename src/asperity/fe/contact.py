@@ -38,7 +38,9 @@ active set creeps a few points per iteration (measured: 20-30 iterations
 against 4-8 with the nodal rule, independent of the penalty factor).
 Contact area and radius are not counted at the points (the report's
 Fig. 8.15 staircase): the edge is interpolated between nodes
-(`contact_edge`).
+(`contact_edge`).  An explicit rule ``(points, weights)`` on the facet
+coordinate [0, 1] may be passed instead of a name (the adhesion traction
+of `asperity.fe.adhesion` is integrated with a composite Gauss rule).
 
 Exact option: the same point-wise condition enforced exactly by an
 augmented Lagrangian (Uzawa updates of the multipliers lambda at the
@@ -95,13 +97,19 @@ class ContactZone:
         fn = top.facet_nodes(nfacets)  # (3, nf)
         self.facet_nodes = fn
         rule = FACET_RULE if rule is None else rule
-        if rule == "nodal":
-            xi, wq = np.array([0.0, 0.5, 1.0]), np.array([1.0, 4.0, 1.0]) / 6.0
-        elif rule == "gauss":
-            xi, wq = np.polynomial.legendre.leggauss(GAUSS_POINTS)
-            xi, wq = 0.5 * (xi + 1), 0.5 * wq
-        else:
-            raise ValueError(f"unknown contact integration rule {rule!r}")
+        if isinstance(rule, str):
+            if rule == "nodal":
+                xi, wq = np.array([0.0, 0.5, 1.0]), np.array([1.0, 4.0, 1.0]) / 6.0
+            elif rule == "gauss":
+                xi, wq = np.polynomial.legendre.leggauss(GAUSS_POINTS)
+                xi, wq = 0.5 * (xi + 1), 0.5 * wq
+            else:
+                raise ValueError(f"unknown contact integration rule {rule!r}")
+        else:  # an explicit rule (points, weights) on the facet coordinate [0, 1]
+            xi, wq = (np.asarray(x, dtype=float) for x in rule)
+            if xi.ndim != 1 or xi.shape != wq.shape or np.any((xi < 0) | (xi > 1)):
+                raise ValueError("an explicit facet rule is (points in [0, 1], weights) of one shape")
+            rule = "explicit"
         self.rule = rule
         N, dN = _lagrange_quadratic(xi)  # (3, ng)
         self.N = N
