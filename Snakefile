@@ -27,6 +27,7 @@ include: "workflow/rules/figures.smk"
 include: "workflow/rules/friction.smk"
 include: "workflow/rules/accuracy.smk"
 include: "workflow/rules/uniaxial.smk"
+include: "workflow/rules/sliding.smk"
 
 
 rule all:

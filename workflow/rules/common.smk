@@ -122,6 +122,8 @@ def scene_targets(name):
         return [f"{out}/verification.nc", f"{out}/figures/verification.png"]
     if "uniaxial" in SCENES[name]:
         return [f"{out}/uniaxial.nc", f"{out}/figures/uniaxial.png"]
+    if "sliding" in SCENES[name]:
+        return [f"{out}/sliding.nc", f"{out}/figures/sliding.png"]
     targets = [f"{out}/surface.nc", f"{out}/figures/surface.png"]
     gen = generated(name)
     if gen and gen.get("convergence_spacings"):

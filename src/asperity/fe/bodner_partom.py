@@ -49,7 +49,12 @@ sign(x)|x|^r1, so that Z^I recovers towards Z2 from either side.
 Arrays follow `asperity.fe.material`: strains and stresses are
 ``(4, *shape)`` with components (11, 22, 33, 12) and the tensor shear
 component, tangents ``(4, 4, *shape)`` (d stress / d strain in the same
-components, as ``LinearElastic.tangent``); ``shape`` is that of the
+components, as ``LinearElastic.tangent``), or, for three-dimensional
+bodies, ``(6, *shape)`` with components (11, 22, 33, 12, 13, 23) and
+tangents ``(6, 6, *shape)``: every function decides by the first axis of
+the strain (or stress) array, and the state carries the same number of
+components (``initial_state(shape, components=6)``); the 4-component path
+is unchanged.  ``shape`` is that of the
 quadrature points (e.g. (ne, nq), or () for one point).  Internally all
 points are flattened and everything is vectorized (no loop over points);
 tensors are handled in Mandel form (shear times sqrt 2) so that
@@ -94,31 +99,87 @@ SQRT3 = math.sqrt(3.0)
 MANDEL = np.array([1.0, 1.0, 1.0, SQRT2])
 #: the identity in 4 components
 IDENTITY = np.array([1.0, 1.0, 1.0, 0.0])
+#: the same for the 6 components (11, 22, 33, 12, 13, 23) of a 3-D body
+MANDEL6 = np.array([1.0, 1.0, 1.0, SQRT2, SQRT2, SQRT2])
+IDENTITY6 = np.array([1.0, 1.0, 1.0, 0.0, 0.0, 0.0])
 _I = IDENTITY[:, None]
+_I6 = IDENTITY6[:, None]
 _W = MANDEL[:, None]
 _MPA = 1.0e6
+#: the supported numbers of components
+COMPONENTS = (4, 6)
+
+
+def _components(x) -> int:
+    n = int(np.shape(x)[0])
+    if n not in COMPONENTS:
+        raise ValueError(f"strain/stress arrays have 4 or 6 components on their first axis, got {n}")
+    return n
+
+
+def _mandel_of(n: int) -> np.ndarray:
+    return MANDEL if n == 4 else MANDEL6
+
+
+def identity_of(n: int) -> np.ndarray:
+    """The identity tensor in `n` (4 or 6) components."""
+    return IDENTITY if n == 4 else IDENTITY6
+
+
+def _ident(x) -> np.ndarray:
+    """The identity (n, 1) matching the component count of x (n, N)."""
+    return _I if np.shape(x)[0] == 4 else _I6
 
 
 def to_mandel(x: np.ndarray) -> np.ndarray:
-    """Tensor components (4, ...) -> Mandel components (shear times sqrt 2)."""
+    """Tensor components (4 or 6, ...) -> Mandel components (shear times sqrt 2)."""
     x = np.asarray(x)
-    return x * MANDEL.reshape((4,) + (1,) * (x.ndim - 1))
+    n = _components(x)
+    return x * _mandel_of(n).reshape((n,) + (1,) * (x.ndim - 1))
 
 
 def from_mandel(x: np.ndarray) -> np.ndarray:
     x = np.asarray(x)
-    return x / MANDEL.reshape((4,) + (1,) * (x.ndim - 1))
+    n = _components(x)
+    return x / _mandel_of(n).reshape((n,) + (1,) * (x.ndim - 1))
 
 
 def tangent_from_mandel(D: np.ndarray) -> np.ndarray:
-    """Mandel d sigma / d eps (4, 4, ...) -> tensor-component tangent."""
-    s = (1.0 / MANDEL)[:, None] * MANDEL[None, :]
-    return D * s.reshape((4, 4) + (1,) * (D.ndim - 2))
+    """Mandel d sigma / d eps (n, n, ...) -> tensor-component tangent (n = 4 or 6)."""
+    n = _components(D)
+    m = _mandel_of(n)
+    s = (1.0 / m)[:, None] * m[None, :]
+    return D * s.reshape((n, n) + (1,) * (D.ndim - 2))
 
 
 def _dot(a, b):
-    """Contraction of Mandel vectors (4, N) without conjugation (complex-step safe)."""
-    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2] + a[3] * b[3]
+    """Contraction of Mandel vectors (n, N) without conjugation (complex-step safe)."""
+    if len(a) == 4:
+        return a[0] * b[0] + a[1] * b[1] + a[2] * b[2] + a[3] * b[3]
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2] + a[3] * b[3] + a[4] * b[4] + a[5] * b[5]
+
+
+def _largest_principal6(sig):
+    """Largest principal value of Mandel stresses (6, N), complex-step safe.
+
+    The trigonometric solution of the characteristic cubic: with
+    m = tr/3, p = sqrt(|dev|^2 / 6), r = det(dev / p) / 2 (clipped to
+    [-1, 1]), sigma_1 = m + 2 p cos(arccos(r) / 3); sigma_1 = m where the
+    deviator vanishes.
+    """
+    a, b, c = sig[0], sig[1], sig[2]
+    t12, t13, t23 = sig[3] / SQRT2, sig[4] / SQRT2, sig[5] / SQRT2
+    m = (a + b + c) / 3.0
+    da, db, dc = a - m, b - m, c - m
+    p2 = (da * da + db * db + dc * dc + 2.0 * (t12 * t12 + t13 * t13 + t23 * t23)) / 6.0
+    ok = np.real(p2) > 1e-30 * (np.real(m) ** 2 + 1e-300)
+    p = np.sqrt(np.where(ok, p2, 1.0))
+    det = (da * (db * dc - t23 * t23) - t12 * (t12 * dc - t23 * t13)
+           + t13 * (t12 * t23 - db * t13))
+    r = det / (2.0 * p**3)
+    r = np.where(np.real(r) >= 1.0, 1.0 - 1e-15, np.where(np.real(r) <= -1.0, -1.0 + 1e-15, r))
+    phi = np.arccos(r) / 3.0
+    return np.where(ok, m + 2.0 * p * np.cos(phi), m)
 
 
 def _sgnpow(x, r):
@@ -138,7 +199,8 @@ def _where_pos(x, fn, default=0.0):
 class BPState:
     """State of Bodner-Partom material points (arrays over the point shape).
 
-    Vectors are (4, *shape) tensor components; scalars (*shape).
+    Vectors are (4, *shape) (or (6, *shape) in 3-D) tensor components;
+    scalars (*shape).
     ``kappa`` = [ln(1/w)]^(-1/p) is the rescaled damage that is integrated,
     ``damage`` = w.  ``converged`` and ``iterations`` describe the last local
     solve, ``dt_sub`` the last explicit sub-step (reused by the next call).
@@ -162,6 +224,11 @@ class BPState:
     @property
     def shape(self) -> tuple:
         return self.plastic_work.shape
+
+    @property
+    def components(self) -> int:
+        """Number of tensor components of the vectors (4 or 6)."""
+        return int(np.shape(self.strain)[0])
 
     @property
     def hardness_dir(self) -> np.ndarray:
@@ -188,7 +255,7 @@ class BPState:
         for f in fields(self):
             v = np.asarray(getattr(self, f.name))
             if f.name in _VECTOR_FIELDS:
-                v = to_mandel(v.reshape(4, N))
+                v = to_mandel(v.reshape(v.shape[0], N))
             else:
                 v = v.reshape(N)
             out[f.name] = v
@@ -200,7 +267,7 @@ class BPState:
         for f in fields(cls):
             v = d[f.name]
             if f.name in _VECTOR_FIELDS:
-                kw[f.name] = from_mandel(v).reshape((4,) + shape)
+                kw[f.name] = from_mandel(v).reshape((v.shape[0],) + shape)
             else:
                 kw[f.name] = np.asarray(v).reshape(shape)
         return cls(**kw)
@@ -407,16 +474,19 @@ class BodnerPartom(IsotropicElasticity):
         return 1.0 - w
 
     def damage_stress(self, sig):
-        """Q_hat(sigma) [Pa] of Mandel stresses (4, N) (complex-step safe)."""
-        a, b, c, t = sig[0], sig[1], sig[2], sig[3] / SQRT2
-        mid = 0.5 * (a + b)
-        rad = np.sqrt((0.5 * (a - b)) ** 2 + t * t)
-        e1 = mid + rad
-        smax = np.where(np.real(e1) >= np.real(c), e1, c)
+        """Q_hat(sigma) [Pa] of Mandel stresses (4 or 6, N) (complex-step safe)."""
+        if len(sig) == 6:
+            smax = _largest_principal6(sig)
+        else:
+            a, b, c, t = sig[0], sig[1], sig[2], sig[3] / SQRT2
+            mid = 0.5 * (a + b)
+            rad = np.sqrt((0.5 * (a - b)) ** 2 + t * t)
+            e1 = mid + rad
+            smax = np.where(np.real(e1) >= np.real(c), e1, c)
         smax = np.where(np.real(smax) > 0, smax, 0.0)
-        tr = a + b + c
+        tr = sig[0] + sig[1] + sig[2]
         i1 = np.where(np.real(tr) > 0, tr, 0.0)
-        dev = sig - tr / 3.0 * _I
+        dev = sig - tr / 3.0 * _ident(sig)
         q = np.sqrt(1.5 * _dot(dev, dev))
         return self.damage_A * smax + self.damage_B * q + self.damage_C * i1
 
@@ -427,9 +497,12 @@ class BodnerPartom(IsotropicElasticity):
         return self.damage_rate * _where_pos(Qh, lambda x: (x / H) ** nu, 0.0)
 
     # -------------------------------------------------------------- state
-    def initial_state(self, shape=()) -> BPState:
+    def initial_state(self, shape=(), components: int = 4) -> BPState:
+        """Unstrained state at `shape` points with `components` (4, or 6 for 3-D) tensor components."""
         shape = tuple(shape) if np.iterable(shape) else (int(shape),)
-        z4 = np.zeros((4,) + shape)
+        if components not in COMPONENTS:
+            raise ValueError(f"components must be 4 or 6, got {components!r}")
+        z4 = np.zeros((components,) + shape)
         z = np.zeros(shape)
         return BPState(strain=z4.copy(), stress=z4.copy(), inelastic_strain=z4.copy(),
                        beta=z4.copy(), plastic_work=z.copy(),
@@ -440,9 +513,9 @@ class BodnerPartom(IsotropicElasticity):
 
     # ------------------------------------------------------- rates (explicit)
     def _rates(self, sig, zi, beta, kappa, ruptured):
-        """Rates of the state for Mandel stresses (4, N) (real arrays)."""
+        """Rates of the state for Mandel stresses (4 or 6, N) (real arrays)."""
         tr = sig[0] + sig[1] + sig[2]
-        s = sig - tr / 3.0 * _I
+        s = sig - tr / 3.0 * _ident(sig)
         q = np.sqrt(1.5 * _dot(s, s))
         nrm = np.sqrt(_dot(sig, sig))
         u = np.where(nrm > 0, sig / np.where(nrm > 0, nrm, 1.0), 0.0)
@@ -499,9 +572,10 @@ class BodnerPartom(IsotropicElasticity):
             wd = self._damage_rate(d["kappa"], w, r["kappa"])
         else:
             wd = np.zeros_like(w)
-        return dict(inelastic_strain=from_mandel(r["epsn"]).reshape((4,) + shape),
+        nc = state.components
+        return dict(inelastic_strain=from_mandel(r["epsn"]).reshape((nc,) + shape),
                     plastic_work=r["wp"].reshape(shape), hardness_iso=r["zi"].reshape(shape),
-                    beta=from_mandel(r["beta"]).reshape((4,) + shape),
+                    beta=from_mandel(r["beta"]).reshape((nc,) + shape),
                     kappa=r["kappa"].reshape(shape), damage=wd.reshape(shape))
 
     # ------------------------------------------------- implicit (backward Euler)
@@ -509,7 +583,11 @@ class BodnerPartom(IsotropicElasticity):
         shape = state.shape
         N = max(int(np.prod(shape)), 1)
         d = state.flat()
-        eps = to_mandel(np.asarray(strain, float).reshape(4, N))
+        strain = np.asarray(strain, float)
+        nc = _components(strain)
+        if nc != state.components:
+            raise ValueError(f"strain has {nc} components but the state {state.components}")
+        eps = to_mandel(strain.reshape(nc, N))
         dtv = np.broadcast_to(np.asarray(dt, float), shape).reshape(N).astype(float)
         ctx = dict(epsn=d["inelastic_strain"], zi=d["hardness_iso"], beta=d["beta"],
                    kappa=d["kappa"], dt=dtv, c0=(2.0 / SQRT3) * self.D0 * dtv,
@@ -520,7 +598,7 @@ class BodnerPartom(IsotropicElasticity):
         ee = eps - ctx["epsn"]
         tr = ee[0] + ee[1] + ee[2]
         p = self.K * tr
-        s_tr = 2.0 * self.G * (ee - tr / 3.0 * _I)
+        s_tr = 2.0 * self.G * (ee - tr / 3.0 * _ident(ee))
         q_tr = np.sqrt(1.5 * _dot(s_tr, s_tr))
         return p, s_tr, q_tr
 
@@ -530,7 +608,7 @@ class BodnerPartom(IsotropicElasticity):
         q = q_tr - 3.0 * self.G * dp
         ok = np.real(q_tr) > 0
         ratio = np.where(ok, q / np.where(ok, q_tr, 1.0), 1.0)
-        sig = s_tr * ratio + p * _I
+        sig = s_tr * ratio + p * _ident(s_tr)
         return sig, q, dp, s_tr, q_tr
 
     def _direction(self, sig):
@@ -642,9 +720,10 @@ class BodnerPartom(IsotropicElasticity):
                tangent: bool = True):
         """Backward-Euler stress update.
 
-        strain: total strain (4, *shape) at the end of the increment; state:
+        strain: total strain (4, *shape) (or (6, *shape) in 3-D, with a
+        state of as many components) at the end of the increment; state:
         at its start; dt [s] (scalar or per point).  Returns
-        ``(stress (4, *shape), tangent (4, 4, *shape) or None, new_state)``;
+        ``(stress (n, *shape), tangent (n, n, *shape) or None, new_state)``;
         ``new_state.converged`` flags the points whose local Newton converged
         (``iterations`` counts its iterations).
         """
@@ -689,38 +768,40 @@ class BodnerPartom(IsotropicElasticity):
                         damage=w, time=d["time"] + ctx["dt"], ruptured=ruptured,
                         rupture_time=t_r, converged=conv, iterations=iters, dt_sub=d["dt_sub"])
         new_state = BPState.from_flat(new_flat, shape)
-        stress = from_mandel(sig).reshape((4,) + shape)
+        nc = eps.shape[0]
+        stress = from_mandel(sig).reshape((nc,) + shape)
         if not tangent:
             return stress, None, new_state
-        C = self.elastic_mandel()
-        D = np.broadcast_to(C[:, :, None], (4, 4, N)).copy()
+        C = self.elastic_mandel(nc)
+        D = np.broadcast_to(C[:, :, None], (nc, nc, N)).copy()
         ip = np.nonzero(active & (dp > 0))[0]
         if ip.size:
             D[:, :, ip] = self._consistent(y[ip], eps[:, ip], _take(ctx, ip))
-        D = tangent_from_mandel(D).reshape((4, 4) + shape)
+        D = tangent_from_mandel(D).reshape((nc, nc) + shape)
         return stress, D, new_state
 
     def _consistent(self, y, eps, ctx):
-        """Consistent tangent (Mandel, (4, 4, n)) at converged plastic points:
+        """Consistent tangent (Mandel, (nc, nc, n)) at converged plastic points:
         d sigma / d eps = partial_eps sigma + partial_y sigma (x) d y / d eps,
         d y / d eps = -partial_eps R / partial_y R (R the reduced residual)."""
         n = y.shape[0]
+        nc = eps.shape[0]
         with np.errstate(all="ignore"):
             hy = 1e-20 * (1.0 + np.abs(y))
             R, s, _ = self._flow(y + 1j * hy, eps, ctx)
             R_y = np.imag(R) / hy
             sig_y = np.imag(s) / hy
-            R_e = np.empty((4, n))
-            sig_e = np.empty((4, 4, n))
+            R_e = np.empty((nc, n))
+            sig_e = np.empty((nc, nc, n))
             he = 1e-20 * np.maximum(np.max(np.abs(eps), axis=0), 1e-3)
-            for j in range(4):
+            for j in range(nc):
                 e = eps.astype(complex)
                 e[j] = e[j] + 1j * he
                 R, s, _ = self._flow(y.astype(complex), e, ctx)
                 R_e[j] = np.imag(R) / he
                 sig_e[:, j] = np.imag(s) / he
         good = np.isfinite(R_y) & (R_y != 0)
-        dy_de = np.where(good, -R_e / np.where(good, R_y, 1.0), 0.0)      # (4, n)
+        dy_de = np.where(good, -R_e / np.where(good, R_y, 1.0), 0.0)      # (nc, n)
         return sig_e + sig_y[:, None, :] * dy_de[None, :, :]
 
     def _solve_flow(self, eps, ctx, q_tr, tol, maxit):
@@ -740,7 +821,7 @@ class BodnerPartom(IsotropicElasticity):
         Zest = ctx["zi"].copy()
         if self.directional_hardening:
             p, s_tr, _ = self._trial(eps, ctx)
-            Zest = Zest + _dot(ctx["beta"], self._direction(s_tr + p * _I))
+            Zest = Zest + _dot(ctx["beta"], self._direction(s_tr + p * _ident(s_tr)))
         if self.damage:
             Zest = Zest * self._softening(self.damage_from_kappa(ctx["kappa"]))
         Zest = np.maximum(Zest, 1e-6 * self.stress_scale)
@@ -749,7 +830,7 @@ class BodnerPartom(IsotropicElasticity):
             # better: the flow rate at the start of the step (small steps)
             sn = ctx["stress"]
             trn = sn[0] + sn[1] + sn[2]
-            dn = sn - trn / 3.0 * _I
+            dn = sn - trn / 3.0 * _ident(sn)
             qn = np.sqrt(1.5 * _dot(dn, dn))
             Zn = ctx["zi"].copy()
             if self.directional_hardening:
@@ -820,20 +901,24 @@ class BodnerPartom(IsotropicElasticity):
         """
         ctx, d, eps1, N, shape = self._context(strain, state, dt)
         dtv = ctx["dt"]
-        mask = np.zeros(4, bool) if stress_mask is None else np.asarray(stress_mask, bool)
-        C = self.elastic_mandel()
+        nc = eps1.shape[0]
+        mask = np.zeros(nc, bool) if stress_mask is None else np.asarray(stress_mask, bool)
+        C = self.elastic_mandel(nc)
+        # slices of the stacked state (for nc = 4: 0:4, 4:8, 8:12, 12, 13:17, 17, 18)
+        iE, iS, iN = slice(0, nc), slice(nc, 2 * nc), slice(2 * nc, 3 * nc)
+        iZ, iB, iK, iW = 3 * nc, slice(3 * nc + 1, 4 * nc + 1), 4 * nc + 1, 4 * nc + 2
         a, b = ~mask, mask
         mixed = bool(b.any())
-        # stacked state: eps 0:4, sig 4:8, eps_n 8:12, Z^I 12, beta 13:17, kappa 17, W_p 18
+        # stacked state: eps iE, sig iS, eps_n iN, Z^I iZ, beta iB, kappa iK, W_p iW
         Y = np.concatenate([d["strain"], d["stress"], d["inelastic_strain"],
                             d["hardness_iso"][None], d["beta"], d["kappa"][None],
                             d["plastic_work"][None]])
         pos = dtv > 0
         inv_dt = np.where(pos, 1.0 / np.where(pos, dtv, 1.0), 0.0)
-        rate_eps = (eps1 - Y[0:4]) * inv_dt
+        rate_eps = (eps1 - Y[iE]) * inv_dt
         if mixed:
-            sig1 = to_mandel(np.asarray(stress, float).reshape(4, N))
-            rate_sig = (sig1 - Y[4:8]) * inv_dt
+            sig1 = to_mandel(np.asarray(stress, float).reshape(nc, N))
+            rate_sig = (sig1 - Y[iS]) * inv_dt
             Cbb_inv = np.linalg.inv(C[np.ix_(b, b)])
             Cba = C[np.ix_(b, a)]
             # eps_dot_b = Cbb^-1 (sig_dot_b - Cba eps_dot_a + (C eps_n_dot)_b)
@@ -847,10 +932,10 @@ class BodnerPartom(IsotropicElasticity):
             e_new = eps1[:, z].copy()
             if mixed:
                 s1 = sig1[:, z]
-                en = Y[8:12][:, z]
+                en = Y[iN][:, z]
                 e_new[b] = Cbb_inv @ (s1[b] - Cba @ e_new[a] + (C @ en)[b])
-            Y[0:4, z] = e_new
-            Y[4:8, z] = C @ (e_new - Y[8:12][:, z])
+            Y[iE, z] = e_new
+            Y[iS, z] = C @ (e_new - Y[iN][:, z])
         ruptured = d["ruptured"].copy()
         t_r = d["rupture_time"].copy()
         t = np.zeros(N)
@@ -867,7 +952,7 @@ class BodnerPartom(IsotropicElasticity):
         full = todo.size == N
 
         def f(Yv, re, g1, rup):
-            r = self._rates(Yv[4:8], Yv[12], Yv[13:17], Yv[17], rup)
+            r = self._rates(Yv[iS], Yv[iZ], Yv[iB], Yv[iK], rup)
             en = r["epsn"]
             if mixed:
                 epsd = re.copy()
@@ -879,7 +964,7 @@ class BodnerPartom(IsotropicElasticity):
             F = np.concatenate([epsd, sigd, en, r["zi"][None], r["beta"], r["kappa"][None],
                                 r["wp"][None]])
             if mixed:
-                F[4:8][b] = rate_sig[b][:, idx] if not full else rate_sig[b]
+                F[iS][b] = rate_sig[b][:, idx] if not full else rate_sig[b]
             return F, r["damage"]
 
         def n2(x):
@@ -898,19 +983,19 @@ class BodnerPartom(IsotropicElasticity):
             F0, w0 = f(Yt, re, g1, rup)
             YP = Yt + hh * F0
             if self.damage:
-                YP[17] = np.minimum(YP[17], kr)
+                YP[iK] = np.minimum(YP[iK], kr)
             FP, wP = f(YP, re, g1, rup)
             dF = hh * (FP - F0)
-            E = n2(dF[4:8]) / (2.0 * (n2(YP[4:8]) + fs))
-            E = np.maximum(E, n2(dF[8:12]) / (2.0 * (n2(YP[0:4]) + fe)))
-            zs = 2.0 * (np.abs(YP[12]) + fs)
+            E = n2(dF[iS]) / (2.0 * (n2(YP[iS]) + fs))
+            E = np.maximum(E, n2(dF[iN]) / (2.0 * (n2(YP[iE]) + fe)))
+            zs = 2.0 * (np.abs(YP[iZ]) + fs)
             if hard:
-                E = np.maximum(E, np.abs(dF[12]) / zs)
+                E = np.maximum(E, np.abs(dF[iZ]) / zs)
             if self.directional_hardening:
-                E = np.maximum(E, n2(dF[13:17]) / zs)
+                E = np.maximum(E, n2(dF[iB]) / zs)
             if self.damage:
-                wd0 = self._damage_rate(Yt[17], w0, F0[17])
-                wdP = self._damage_rate(YP[17], wP, FP[17])
+                wd0 = self._damage_rate(Yt[iK], w0, F0[iK])
+                wdP = self._damage_rate(YP[iK], wP, FP[iK])
                 Ew = np.abs(hh * (wdP - wd0)) / (2.0 * (np.abs(wP) + 1e-4))
                 E = np.maximum(E, Ew)
             E = np.where(np.isfinite(E), E, np.inf)
@@ -918,15 +1003,15 @@ class BodnerPartom(IsotropicElasticity):
             Yc = Yt + 0.5 * hh * (F0 + FP)
             ia = todo[acc]
             if self.damage and ia.size:
-                kold, knew = Yt[17][acc], Yc[17][acc]
+                kold, knew = Yt[iK][acc], Yc[iK][acc]
                 new = (knew >= kr) & ~ruptured[ia]
                 with np.errstate(divide="ignore", invalid="ignore"):
                     frac = np.clip((kr - kold) / (knew - kold), 0.0, 1.0)
                 t_r[ia] = np.where(new, d["time"][ia] + t[ia] + frac * hh[acc], t_r[ia])
                 ruptured[ia] |= new
-                Yc[17] = np.minimum(Yc[17], kr)
-                lost = self._runaway(Yc[4:8][:, acc], Yc[12][acc], Yc[13:17][:, acc],
-                                     Yc[17][acc]) & ~ruptured[ia]
+                Yc[iK] = np.minimum(Yc[iK], kr)
+                lost = self._runaway(Yc[iS][:, acc], Yc[iZ][acc], Yc[iB][:, acc],
+                                     Yc[iK][acc]) & ~ruptured[ia]
                 t_r[ia] = np.where(lost, d["time"][ia] + t[ia] + hh[acc], t_r[ia])
                 ruptured[ia] |= lost
             Y[:, ia] = Yc[:, acc]
@@ -944,10 +1029,10 @@ class BodnerPartom(IsotropicElasticity):
             over = nsub[todo] + nrej[todo] >= max_substeps
             conv[todo[over & left]] = False
             todo = todo[left & ~over]
-        w = self.damage_from_kappa(Y[17]) if self.damage else d["damage"]
-        new_flat = dict(strain=Y[0:4], stress=Y[4:8], inelastic_strain=Y[8:12],
-                        beta=Y[13:17], plastic_work=Y[18], hardness_iso=Y[12],
-                        kappa=Y[17], damage=w, time=d["time"] + dtv, ruptured=ruptured,
+        w = self.damage_from_kappa(Y[iK]) if self.damage else d["damage"]
+        new_flat = dict(strain=Y[iE], stress=Y[iS], inelastic_strain=Y[iN],
+                        beta=Y[iB], plastic_work=Y[iW], hardness_iso=Y[iZ],
+                        kappa=Y[iK], damage=w, time=d["time"] + dtv, ruptured=ruptured,
                         rupture_time=t_r, converged=conv, iterations=nsub, dt_sub=h)
         st = BPState.from_flat(new_flat, shape)
         return st.stress, st, dict(substeps=nsub.reshape(shape), rejected=nrej.reshape(shape))

@@ -7,6 +7,12 @@ direction (axisymmetric, e_33 = u_r / r) or the out-of-plane direction
 (plane strain, e_33 = 0).  The work product is ``sum(METRIC * s * e)``
 with ``METRIC = (1, 1, 1, 2)``.
 
+Three-dimensional bodies use 6 components (shape ``(6, ...)``):
+``[e_11, e_22, e_33, e_12, e_13, e_23]``, tensor shears, work product with
+``METRIC6 = (1, 1, 1, 2, 2, 2)``.  `IsotropicElasticity`, `von_mises`,
+`equivalent_strain` and `complementary_energy_density` decide by the
+first axis of their array (4 or 6); `metric(n)` gives the weights.
+
 A material is any object with
 
 - ``response(strain) -> (stress, tangent)``: stress (4, ...) and the
@@ -28,6 +34,16 @@ from dataclasses import dataclass
 import numpy as np
 
 METRIC = np.array([1.0, 1.0, 1.0, 2.0])
+METRIC6 = np.array([1.0, 1.0, 1.0, 2.0, 2.0, 2.0])
+
+
+def metric(components: int) -> np.ndarray:
+    """Work-product weights of `components` (4 or 6) tensor components."""
+    if components == 4:
+        return METRIC
+    if components == 6:
+        return METRIC6
+    raise ValueError(f"strain/stress arrays have 4 or 6 components, got {components}")
 
 
 class IsotropicElasticity:
@@ -57,22 +73,27 @@ class IsotropicElasticity:
         """Plane-strain modulus E' = E / (1 - nu^2) [Pa]."""
         return self.E / (1 - self.nu**2)
 
-    def elastic_mandel(self) -> np.ndarray:
-        """The elastic tangent in Mandel components (shear scaled by sqrt 2)."""
-        identity = np.array([1.0, 1.0, 1.0, 0.0])
-        deviator = np.eye(4) - np.outer(identity, identity) / 3.0
+    def elastic_mandel(self, components: int = 4) -> np.ndarray:
+        """The elastic tangent in Mandel components (shear scaled by sqrt 2),
+        (4, 4) or, for ``components=6``, (6, 6)."""
+        metric(components)
+        identity = np.zeros(components)
+        identity[:3] = 1.0
+        deviator = np.eye(components) - np.outer(identity, identity) / 3.0
         return self.K * np.outer(identity, identity) + 2.0 * self.G * deviator
 
-    def tangent(self) -> np.ndarray:
+    def tangent(self, components: int = 4) -> np.ndarray:
+        """d stress / d strain in tensor components, (4, 4) or (6, 6)."""
+        metric(components)
         lam, mu = self.lame
-        D = np.zeros((4, 4))
+        D = np.zeros((components, components))
         D[:3, :3] = lam
         D[[0, 1, 2], [0, 1, 2]] += 2 * mu
-        D[3, 3] = 2 * mu
+        D[range(3, components), range(3, components)] = 2 * mu
         return D
 
     def response(self, strain: np.ndarray):
-        D = self.tangent()
+        D = self.tangent(np.shape(strain)[0])
         stress = np.tensordot(D, strain, axes=(1, 0))
         return stress, D
 
@@ -101,14 +122,24 @@ class LinearElastic(IsotropicElasticity):
 
 
 def von_mises(stress: np.ndarray) -> np.ndarray:
-    """Von Mises equivalent stress of 4-component stresses."""
+    """Von Mises equivalent stress of 4- (or 6-) component stresses."""
+    if len(stress) == 6:
+        s11, s22, s33, s12, s13, s23 = stress
+        return np.sqrt(0.5 * ((s11 - s22) ** 2 + (s22 - s33) ** 2 + (s33 - s11) ** 2)
+                       + 3.0 * (s12**2 + s13**2 + s23**2))
     s11, s22, s33, s12 = stress
     return np.sqrt(0.5 * ((s11 - s22) ** 2 + (s22 - s33) ** 2 + (s33 - s11) ** 2)
                    + 3.0 * s12**2)
 
 
 def equivalent_strain(strain: np.ndarray) -> np.ndarray:
-    """Von Mises equivalent strain sqrt(2/3 e':e') of 4-component strains."""
+    """Von Mises equivalent strain sqrt(2/3 e':e') of 4- (or 6-) component strains."""
+    if len(strain) == 6:
+        e11, e22, e33, e12, e13, e23 = strain
+        mean = (e11 + e22 + e33) / 3.0
+        dev2 = ((e11 - mean) ** 2 + (e22 - mean) ** 2 + (e33 - mean) ** 2
+                + 2 * (e12**2 + e13**2 + e23**2))
+        return np.sqrt(2.0 / 3.0 * dev2)
     e11, e22, e33, e12 = strain
     mean = (e11 + e22 + e33) / 3.0
     dev2 = (e11 - mean) ** 2 + (e22 - mean) ** 2 + (e33 - mean) ** 2 + 2 * e12**2
@@ -117,7 +148,8 @@ def equivalent_strain(strain: np.ndarray) -> np.ndarray:
 
 def complementary_energy_density(material, stress: np.ndarray) -> np.ndarray:
     """sigma : C : sigma with C the inverse tangent (for error norms)."""
-    _, D = material.response(np.zeros((4, 1)))
+    nc = len(stress)
+    _, D = material.response(np.zeros((nc, 1)))
     D = np.asarray(D)
     if D.ndim == 2:
         C = np.linalg.inv(D)
@@ -125,4 +157,4 @@ def complementary_energy_density(material, stress: np.ndarray) -> np.ndarray:
     else:  # per point tangents (4, 4, ...)
         Dm = np.moveaxis(D, (0, 1), (-2, -1))
         e = np.moveaxis(np.linalg.solve(Dm, np.moveaxis(stress, 0, -1)[..., None])[..., 0], -1, 0)
-    return np.tensordot(METRIC, stress * e, axes=(0, 0))
+    return np.tensordot(metric(nc), stress * e, axes=(0, 0))

@@ -1,0 +1,1306 @@
+"""Three-dimensional asperity pressed and slid by a rigid flat (report 3.3, 3.4, 9.2).
+
+Body.  A hill z = surface(r) (a `geometry.Profile`, e.g. the `CosineHill`
+of report 9.2, 2 um high and 10 um across its base) standing on a block.
+The sliding direction is x, so the plane y = 0 is a plane of symmetry and
+only the half y >= 0 is modelled (u_y = 0 on y = 0; the reported forces
+are twice those of the half).  Support (3.3.1): u = 0 on the cut-off
+boundary (the bottom of the block and its sides |x| = L, y = L).
+
+Mesh (`MeshSpec`, `build_mesh`).  A uniform tensor grid of the box
+[-L, L] x [0, L] x [-D, 0] in *reference* coordinates, cut into tetrahedra
+(`skfem.MeshTet.init_tensor`) and refined by longest-edge bisection until
+every element's longest edge is below ``tip_size + grading * d``, d the
+distance of its centroid beyond ``refine_radius`` from the apex (or from a
+segment along x through it).  The quadratic (10-node) mesh is then mapped
+onto the body, vertices and edge midpoints alike (isoparametric P2
+elements, curved faces):
+
+    Z = foot + z + (body_surface(r) - foot) (1 + z / D),
+
+so the reference top z = 0 becomes the hill's surface exactly at the nodes
+and the bottom z = -D stays flat (foot = the height of the hill's foot
+relative to the apex).  Displacements are P2 (`ElementTetP2`), four
+quadrature points per element (degree 2), with the volumetric strain
+replaced by its element mean (B-bar, the P2/P0 mixed element;
+``volumetric="mean"``): with the full volumetric strain at four points
+the 10-node tetrahedron locks under isochoric plastic flow (about one
+constraint per displacement dof); on the sliding scene (standard preset)
+the locked mesh separated from the flat after 0.3 um of sliding, with
+B-bar the junction stays in contact.
+
+Weak form: the incremental (backward-Euler) counterpart of report (3.22):
+at each time step the equilibrium
+
+    R(u) = int B^T sigma(eps(u); state_n, dt) dV - int N^T t(u) ds = 0
+
+is solved by Newton with the material's consistent tangent at the
+quadrature points (`BodnerPartom.update` with 6 strain components, or a
+linear elastic body), plus the contact tangent alpha_ij of (3.26, 3.27)
+(`sliding.contact_tangent`).  Strains are [e11, e22, e33, e12, e13, e23]
+(tensor shears, work product weights 1, 1, 1, 2, 2, 2).
+
+Contact (3.3.2, 3.4.1).  The flat is the plane z = -w(t) (w the approach
+from first touch at the apex) moved by delta(t) along x.  At the
+quadrature points of the top facets near the apex (3 Gauss points per
+6-node facet) the penetration is a = Z + gap_offset + u_z + w and the
+C1 penalty of 3.3.2 (`contact.C1Penalty`, kappa = c E' / h_facet) gives
+the normal pressure t_N; the tangential traction is the regularized
+sliding resistance of 3.3.4 (`sliding.FrictionLaw`) of the relative
+displacement b = (X + u_x - delta, Y + u_y) - anchor, with the anchors
+dragged after each accepted step (`sliding.drag_anchor`).  The traction
+vector on the body is (t_x, t_y, -t_N).  The contact area is the
+quadrature weight of the contact points with t_N > 0 (a staircase of
+about a third of a facet).
+
+Shear resistance and the normal pressure (``friction_pressure``).
+"current" is the law as printed: h(t_N) at the current pressure, with its
+full linearization (the d t / d a terms of 3.26, 3.27).  It converges for
+moderate coefficients (the tests use mu = 0.2 to 0.5), but with mu = 20
+(report 9.2) the coupling d t_T / d a = mu d t_N / d a (20 times the
+penalty stiffness) makes the incremental problem near singular once the
+junction starts to slide: Newton needed steps below a second (the
+sliding lasts 2200 s) and still stalled (measured with and without the
+coupling term in the tangent, and with h of min(current, last) pressure).
+"lagged" evaluates h at the pressure of the last accepted step (the
+explicit treatment of the friction bound), so that the tangent within a
+step has no d t / d a coupling; points that separate from the flat during
+the step lose their shear resistance (the step is solved again without it,
+`SlidingModel.release_separated`).  The price: where the pressure falls
+steeply the bound lags by a step, and at the edge of the junction the
+contact flickers between steps (visible as step-to-step scatter of the
+forces while sliding).
+
+Predictor: each step starts from the Euler predictor of the converged
+state (the tangent and d R / d(w, delta) of the last step: the contact
+points keep their stick or slip state), which carries a sticking junction
+along with the flat.
+
+Linear algebra.  The tangent is non-symmetric (friction); it is assembled
+into one CSC pattern built once (elastic element matrices precomputed,
+only elements whose points' tangent differs from the elastic one and the
+contact facets are recomputed per iteration) and solved with SuperLU; a
+factorization is reused as the preconditioner of GMRES for the next
+iterations and steps while that converges in a few iterations.
+
+Time stepping (`solve_sliding`): the flat's motion is piecewise linear in
+time (`FlatMotion`); steps end on its knots; a step is cut in half when
+Newton fails, gives non-finite values or the local update fails, or when
+the equivalent inelastic strain changed anywhere by more than
+``max_inelastic_step``; the time step grows back (x1.5) after easy steps,
+up to the preset's cap (the segment's duration / its step count).
+"""
+
+from __future__ import annotations
+
+import logging
+import math
+import time
+from dataclasses import dataclass
+
+import numpy as np
+import scipy.sparse as sp
+import scipy.sparse.linalg as spl
+import xarray as xr
+from skfem import Basis, ElementTetP2, ElementVector, FacetBasis, MeshTet, MeshTet2
+
+from .contact import SMOOTHING, C1Penalty
+from .errors import ContactZoneError, ConvergenceError
+from .material import METRIC6, equivalent_strain, von_mises
+from .sliding import FrictionLaw, ShearResistance, contact_tangent, drag_anchor
+
+#: the 6 edges of a tetrahedron (local vertex pairs)
+_TET_EDGES = np.array([[0, 1], [0, 2], [0, 3], [1, 2], [1, 3], [2, 3]])
+#: quadrature order in the volume (4 points per tetrahedron)
+INTORDER = 2
+#: quadrature order on the contact facets (3 Gauss points per facet)
+CONTACT_INTORDER = 2
+#: default penalty factor c in kappa = c E' / h_facet
+PENALTY_FACTOR_3D = 100.0
+#: smoothing pressure of the C1 penalty / E' (the quadratic branch covers
+#: pressures below half of it)
+SMOOTHING_3D = SMOOTHING
+#: a point's tangent counts as elastic when |D - C| <= this * |C|
+TANGENT_ELASTIC_TOL = 1e-10
+#: time step growth after an easy step (<= FAST Newton iterations)
+GROWTH, FAST = 1.5, 5
+#: a point has yielded once its equivalent inelastic strain exceeds this
+INELASTIC_THRESHOLD = 1e-8
+#: "at the junction": the largest inelastic strain lies less than this
+#: fraction of the equivalent contact radius sqrt(A / pi) below the flat
+JUNCTION_DEPTH_FRACTION = 0.25
+
+#: accuracy presets of the sliding model: mesh sizes relative to the
+#: contact radius estimate r (the geometric intersection radius at the
+#: largest approach): the longest element edge ``tip_fraction`` r within
+#: ``refine_fraction`` r of the apex, growing by ``grading`` per unit
+#: distance, at most ``coarse_fraction`` x the footprint radius; time steps
+#: per segment of the motion (caps: cuts may add steps); Newton tolerance;
+#: the largest change of the equivalent inelastic strain in a step.
+SLIDING_ACCURACY: dict[str, dict] = {
+    "draft": dict(tip_fraction=1.0, refine_fraction=0.5, grading=0.7, coarse_fraction=0.5,
+                  normal_steps=6, tangential_steps=12, tolerance=1e-6, max_iterations=40,
+                  max_cuts=10, max_inelastic_step=0.3),
+    "standard": dict(tip_fraction=0.75, refine_fraction=0.5, grading=0.7, coarse_fraction=0.5,
+                     normal_steps=8, tangential_steps=16, tolerance=1e-7, max_iterations=40,
+                     max_cuts=10, max_inelastic_step=1.0),
+    "fine": dict(tip_fraction=0.5, refine_fraction=0.8, grading=0.5, coarse_fraction=0.35,
+                 normal_steps=16, tangential_steps=32, tolerance=1e-8, max_iterations=40,
+                 max_cuts=10, max_inelastic_step=0.1),
+}
+
+
+def sliding_preset(accuracy) -> dict:
+    """A sliding preset by name, or a dict overriding 'standard' (or its 'base')."""
+    if isinstance(accuracy, str):
+        try:
+            return dict(SLIDING_ACCURACY[accuracy])
+        except KeyError:
+            raise ValueError(f"unknown accuracy {accuracy!r}; known: "
+                             f"{', '.join(SLIDING_ACCURACY)}") from None
+    extra = dict(accuracy)
+    base = sliding_preset(extra.pop("base", "standard"))
+    unknown = set(extra) - set(base)
+    if unknown:
+        raise ValueError(f"unknown sliding accuracy keys: {sorted(unknown)}")
+    base.update(extra)
+    return base
+
+
+# ----------------------------------------------------------------------------- mesh
+@dataclass(frozen=True)
+class MeshSpec:
+    """The half model's block and its grading (lengths in m).
+
+    half_width L: the block spans |x| <= L, 0 <= y <= L; depth D below the
+    foot of the hill; coarse_size: spacing of the initial tensor grid;
+    tip_size: longest element edge within ``refine_radius`` of the
+    refinement segment x in [refine_x0, refine_x1], y = 0, z = 0 (the top
+    surface, reference coordinates); grading: growth of the longest edge
+    per unit distance beyond that.
+    """
+
+    half_width: float
+    depth: float
+    coarse_size: float
+    tip_size: float
+    grading: float = 0.5
+    refine_x0: float = 0.0
+    refine_x1: float = 0.0
+    refine_radius: float = 0.0
+
+    def __post_init__(self):
+        for k in ("half_width", "depth", "coarse_size", "tip_size", "grading"):
+            v = getattr(self, k)
+            if not (math.isfinite(v) and v > 0):
+                raise ValueError(f"mesh {k} must be positive, got {v!r}")
+        if self.refine_x1 < self.refine_x0:
+            raise ValueError("refine_x1 must be >= refine_x0")
+        if not self.refine_radius >= 0:
+            raise ValueError("refine_radius must be >= 0")
+
+    @classmethod
+    def for_hill(cls, geometry, contact_radius: float, preset: dict | None = None) -> "MeshSpec":
+        """Default block of a hill: L = 1.4 x its footprint radius, D = its
+        footprint radius, the finest elements within the preset's
+        ``refine_fraction`` x the contact radius estimate of the apex."""
+        p = sliding_preset("standard") if preset is None else preset
+        ext = float(geometry.extent)
+        return cls(half_width=1.4 * ext, depth=ext, coarse_size=p["coarse_fraction"] * ext,
+                   tip_size=p["tip_fraction"] * contact_radius, grading=p["grading"],
+                   refine_radius=p["refine_fraction"] * contact_radius)
+
+
+@dataclass
+class HalfModelMesh:
+    """The linear reference mesh, the mapped quadratic mesh and node sets."""
+
+    reference: MeshTet          # box coordinates, linear
+    mesh: MeshTet2              # physical (mapped) isoparametric mesh
+    nodes_ref: np.ndarray       # (3, nnodes) reference coordinates of the P2 nodes
+    spec: MeshSpec
+    foot: float
+
+
+def _refine(m: MeshTet, spec: MeshSpec, max_rounds: int = 80) -> MeshTet:
+    for _ in range(max_rounds):
+        p, t = m.p, m.t
+        le = np.max(np.linalg.norm(p[:, t[_TET_EDGES[:, 0]]] - p[:, t[_TET_EDGES[:, 1]]], axis=0),
+                    axis=0)
+        c = p[:, t].mean(axis=1)
+        xs = np.clip(c[0], spec.refine_x0, spec.refine_x1)
+        d = np.maximum(np.sqrt((c[0] - xs) ** 2 + c[1] ** 2 + c[2] ** 2) - spec.refine_radius, 0.0)
+        marked = np.nonzero(le > spec.tip_size + spec.grading * d)[0]
+        if marked.size == 0:
+            return m
+        m = m.refined(marked)
+    raise RuntimeError("mesh refinement did not finish; check tip_size and grading")
+
+
+def build_mesh(geometry, spec: MeshSpec) -> HalfModelMesh:
+    """Graded tetrahedral half model of `geometry` on its block (module docstring)."""
+    # skfem warns that it copies large refined arrays to C order: harmless
+    logger = logging.getLogger("skfem")
+    level = logger.level
+    logger.setLevel(logging.ERROR)
+    try:
+        return _build_mesh(geometry, spec)
+    finally:
+        logger.setLevel(level)
+
+
+def _build_mesh(geometry, spec: MeshSpec) -> HalfModelMesh:
+    L, D, h0 = spec.half_width, spec.depth, spec.coarse_size
+    if L <= geometry.extent * (1 - 1e-12) and not geometry.shallow:
+        raise ValueError(f"the block half width {L:.4g} m must exceed the hill's footprint "
+                         f"radius {geometry.extent:.4g} m")
+    nx, ny, nz = (max(1, int(math.ceil(v / h0))) for v in (2 * L, L, D))
+    m = MeshTet.init_tensor(np.linspace(-L, L, nx + 1), np.linspace(0.0, L, ny + 1),
+                            np.linspace(-D, 0.0, nz + 1))
+    m = _refine(m, spec)
+    m = MeshTet(np.ascontiguousarray(m.p), np.ascontiguousarray(m.t))
+    ref2 = MeshTet2.from_mesh(m)
+    X = np.array(ref2.doflocs, dtype=float)
+    foot = float(geometry.body_surface(np.array([geometry.extent]))[0])
+    r = np.hypot(X[0], X[1])
+    top = np.asarray(geometry.body_surface(r), float)
+    Z = foot + X[2] + (top - foot) * (1.0 + X[2] / D)
+    phys = X.copy()
+    phys[2] = Z
+    return HalfModelMesh(reference=m, mesh=MeshTet2(phys, np.ascontiguousarray(ref2.t)),
+                         nodes_ref=X, spec=spec,
+                         foot=foot)
+
+
+# ------------------------------------------------------------------------ materials
+class _ElasticState:
+    """State of a linear elastic body (no internal variables)."""
+
+    def __init__(self, shape, components=6):
+        self.strain = np.zeros((components,) + tuple(shape))
+        self.stress = np.zeros_like(self.strain)
+        self.inelastic_strain = np.zeros_like(self.strain)
+        self.converged = np.ones(tuple(shape), bool)
+
+
+class ElasticUpdate:
+    """A linear elastic material (`LinearElastic`) behind the incremental interface."""
+
+    is_linear = True
+
+    def __init__(self, material):
+        self.material = material
+        self.E, self.nu = material.E, material.nu
+        self.contact_modulus = material.contact_modulus
+        self.D = material.tangent(6)
+
+    def initial_state(self, shape, components=6):
+        return _ElasticState(shape, components)
+
+    def update(self, strain, state, dt, tangent=True):
+        stress = np.tensordot(self.D, strain, axes=(1, 0))
+        new = _ElasticState(strain.shape[1:])
+        new.strain, new.stress = strain, stress
+        return stress, (self.D if tangent else None), new
+
+
+def _incremental(material):
+    if hasattr(material, "update"):
+        return material
+    return ElasticUpdate(material)
+
+
+def _elastic_tangent6(material) -> np.ndarray:
+    lam, mu = material.lame
+    D = np.zeros((6, 6))
+    D[:3, :3] = lam
+    D[[0, 1, 2], [0, 1, 2]] += 2 * mu
+    D[[3, 4, 5], [3, 4, 5]] = 2 * mu
+    return D
+
+
+# ------------------------------------------------------------------------- linear solver
+class _LinearSolver:
+    """SuperLU factorizations reused as GMRES preconditioners while they work."""
+
+    def __init__(self, rtol: float = 1e-10, max_krylov: int = 15):
+        self.lu = None
+        self.rtol = rtol
+        self.max_krylov = max_krylov
+        self.factorizations = 0
+        self.krylov_solves = 0
+
+    def reset(self):
+        self.lu = None
+
+    def _factor(self, K):
+        self.lu = spl.splu(K, permc_spec="MMD_AT_PLUS_A", diag_pivot_thresh=0.1,
+                           options=dict(SymmetricMode=True))
+        self.factorizations += 1
+
+    def solve(self, K, rhs) -> np.ndarray:
+        if self.lu is not None:
+            lu = self.lu
+            M = spl.LinearOperator(K.shape, matvec=lu.solve, dtype=float)
+            count = [0]
+
+            def cb(_):
+                count[0] += 1
+
+            x, info = spl.gmres(K, rhs, M=M, rtol=self.rtol, atol=0.0, restart=self.max_krylov,
+                                maxiter=1, callback=cb, callback_type="pr_norm")
+            if info == 0 and np.all(np.isfinite(x)):
+                self.krylov_solves += 1
+                return x
+        self._factor(K)
+        return self.lu.solve(rhs)
+
+
+# ------------------------------------------------------------------------------ model
+class HalfModel:
+    """P2 displacement fields on the half model, contact surface, operators."""
+
+    def __init__(self, geometry, mesh: HalfModelMesh, contact_radius: float,
+                 volumetric: str = "mean"):
+        self.geometry = geometry
+        self.hm = mesh
+        m2 = mesh.mesh
+        element = ElementVector(ElementTetP2())
+        self.basis = basis = Basis(m2, element, intorder=INTORDER)
+        self.ndofs = basis.N
+        self.element_dofs = basis.element_dofs            # (30, ne)
+        ne, nq = basis.dx.shape
+        self.shape = (ne, nq)
+        self.weights = np.asarray(basis.dx)
+        self.x = np.array(basis.global_coordinates())      # (3, ne, nq)
+        nloc = self.element_dofs.shape[0]
+        B = np.zeros((6, nloc, ne, nq))
+        Nv = np.zeros((3, nloc, ne, nq))
+        for i, (phi, *_) in enumerate(basis.basis):
+            g = phi.grad
+            B[0, i], B[1, i], B[2, i] = g[0][0], g[1][1], g[2][2]
+            B[3, i] = 0.5 * (g[0][1] + g[1][0])
+            B[4, i] = 0.5 * (g[0][2] + g[2][0])
+            B[5, i] = 0.5 * (g[1][2] + g[2][1])
+            Nv[:, i] = np.asarray(phi)
+        if volumetric == "mean":
+            # B-bar: the volumetric strain replaced by its element mean (the
+            # P2/P0 mixed element): 10-node tetrahedra with 4 points lock
+            # under isochoric plastic flow (about one volume constraint per
+            # displacement dof), the element mean leaves ~4 dofs per constraint
+            vol = B[0] + B[1] + B[2]                                       # (30, ne, nq)
+            mean = np.sum(vol * self.weights, axis=2) / np.sum(self.weights, axis=1)
+            B[:3] += (mean[:, :, None] - vol)[None] / 3.0
+        elif volumetric != "full":
+            raise ValueError("volumetric is 'mean' (B-bar) or 'full'")
+        self.volumetric = volumetric
+        self.B = B
+        rows = np.broadcast_to(np.arange(6 * ne * nq).reshape(6, 1, ne, nq), B.shape)
+        cols = np.broadcast_to(self.element_dofs[None, :, :, None], B.shape)
+        self.Bsp = sp.csr_matrix((B.ravel(), (rows.ravel(), cols.ravel())),
+                                 shape=(6 * ne * nq, self.ndofs))
+        rows = np.broadcast_to(np.arange(3 * ne * nq).reshape(3, 1, ne, nq), Nv.shape)
+        cols = np.broadcast_to(self.element_dofs[None, :, :, None], Nv.shape)
+        self.Nsp = sp.csr_matrix((Nv.ravel(), (rows.ravel(), cols.ravel())),
+                                 shape=(3 * ne * nq, self.ndofs))
+        self.MW = (METRIC6[:, None, None] * self.weights[None]).ravel()
+        self._absBT = abs(self.Bsp).T.tocsr()
+        self._Bm = np.ascontiguousarray(np.transpose(B, (2, 3, 0, 1)))          # (ne, nq, 6, 30)
+        self._BtW = np.ascontiguousarray(np.swapaxes(
+            self._Bm * (METRIC6[:, None] * self.weights[:, :, None, None]), 2, 3))  # (ne, nq, 30, 6)
+        # node -> dofs (3, nnodes): vertices then edge midpoints, as doflocs
+        self.dofmap = np.hstack((basis.nodal_dofs, basis.edge_dofs))
+        if not np.allclose(basis.doflocs[:, self.dofmap[0]], m2.doflocs):
+            raise RuntimeError("unexpected dof numbering of the P2 tetrahedra")
+        self._supports()
+        self._pattern()
+        self._contact_surface(contact_radius)
+        self._symmetry_plane()
+
+    # --- supports ------------------------------------------------------------------
+    def _supports(self, tol=1e-9):
+        X = self.hm.nodes_ref
+        s = self.hm.spec
+        L, D = s.half_width, s.depth
+        scale = max(L, D)
+        clamp = ((np.abs(X[2] + D) < tol * scale) | (np.abs(np.abs(X[0]) - L) < tol * scale)
+                 | (np.abs(X[1] - L) < tol * scale))
+        sym = np.abs(X[1]) < tol * scale
+        self.node_top = np.abs(X[2]) < tol * scale
+        self.node_sym = sym
+        fixed = np.concatenate((self.dofmap[:, clamp].ravel(), self.dofmap[1, sym]))
+        self.fixed = np.unique(fixed)
+        self.boundary_dofs = np.unique(np.concatenate(
+            (self.dofmap[:, clamp].ravel(), self.dofmap[:, sym].ravel(),
+             self.dofmap[:, self.node_top].ravel())))
+        free = np.ones(self.ndofs, bool)
+        free[self.fixed] = False
+        self.free = np.nonzero(free)[0]
+
+    def _pattern(self):
+        """CSC pattern of the free-free tangent and the slot of every element entry."""
+        n = len(self.free)
+        pos = np.full(self.ndofs, -1)
+        pos[self.free] = np.arange(n)
+        self._pos = pos
+        ed = pos[self.element_dofs]                           # (30, ne)
+        nl, ne = ed.shape
+        rows = np.broadcast_to(ed.T[:, :, None], (ne, nl, nl))   # entry (e, i, j): row i
+        cols = np.broadcast_to(ed.T[:, None, :], (ne, nl, nl))
+        keep = (rows >= 0) & (cols >= 0)
+        key = np.where(keep, cols.astype(np.int64) * n + rows, -1)
+        ukey, inverse = np.unique(key[keep], return_inverse=True)
+        slot = np.full(key.shape, -1, dtype=np.int64)
+        slot[keep] = inverse
+        self._slot = slot                                     # (ne, 30, 30)
+        self._nnz = len(ukey)
+        self._indices = (ukey % n).astype(np.int32)
+        counts = np.bincount(ukey // n, minlength=n)
+        self._indptr = np.concatenate(([0], np.cumsum(counts))).astype(np.int32)
+        self._n = n
+
+    def _scatter(self, elements, Ke) -> np.ndarray:
+        s = self._slot[elements].ravel()
+        v = Ke.ravel()
+        k = s >= 0
+        return np.bincount(s[k], weights=v[k], minlength=self._nnz)
+
+    def element_matrices(self, D, elements=None) -> np.ndarray:
+        """sum_q B^T W D B for `elements` (all by default); D (6, 6) or (6, 6, ne, nq)."""
+        e = slice(None) if elements is None else elements
+        Bm, BtW = self._Bm[e], self._BtW[e]
+        ne = Bm.shape[0]
+        nq = Bm.shape[1]
+        D = np.asarray(D)
+        if D.ndim == 2:
+            DB = np.matmul(D, Bm)
+        else:
+            Dm = np.transpose(D, (2, 3, 0, 1))[e]
+            DB = np.matmul(Dm, Bm)
+        return np.matmul(BtW.transpose(0, 2, 1, 3).reshape(ne, -1, nq * 6),
+                         DB.reshape(ne, nq * 6, -1))
+
+    def matrix(self, data) -> sp.csc_matrix:
+        return sp.csc_matrix((data, self._indices, self._indptr), shape=(self._n, self._n))
+
+    # --- contact surface ---------------------------------------------------------------
+    def _top_facets(self, radius: float) -> np.ndarray:
+        m = self.hm.reference
+        bf = m.boundary_facets()
+        f = m.facets[:, bf]
+        on_top = np.all(np.abs(m.p[2, f]) < 1e-9 * self.hm.spec.depth, axis=0)
+        c = m.p[:, f].mean(axis=1)
+        near = np.hypot(c[0], c[1]) < radius
+        return bf[on_top & near]
+
+    def _contact_surface(self, radius: float):
+        facets = self._top_facets(radius)
+        if facets.size == 0:
+            raise ValueError("no top facet within the contact candidate radius")
+        self.contact_radius = float(radius)
+        element = ElementVector(ElementTetP2())
+        fb = FacetBasis(self.hm.mesh, element, facets=facets, intorder=CONTACT_INTORDER)
+        self.cfacets = facets
+        self.ctind = np.asarray(fb.tind)
+        self.cdofs = np.asarray(fb.element_dofs)                 # (30, nf)
+        if not np.array_equal(self.cdofs, self.element_dofs[:, self.ctind]):
+            raise RuntimeError("unexpected dof order of the facet basis")
+        val = np.array([np.asarray(phi) for phi, *_ in fb.basis])   # (30, 3, nf, nq)
+        comp = np.argmax(np.abs(val).sum(axis=(2, 3)), axis=1)
+        self.ccomp = comp
+        self.cval = val[np.arange(len(comp)), comp]             # (30, nf, nq)
+        self.csel = np.eye(3)[:, comp]                           # (3, 30)
+        self.cw = np.asarray(fb.dx)                              # (nf, nq)
+        X = np.array(fb.global_coordinates())                    # (3, nf, nq)
+        self.cX = X
+        r = np.hypot(X[0], X[1])
+        self.cz0 = X[2] + self.geometry.gap_offset(r)
+        area = self.cw.sum(axis=1)
+        self.facet_size = np.sqrt(4.0 * area / math.sqrt(3.0))
+        mref = self.hm.reference
+        cref = mref.p[:, mref.facets[:, facets]].mean(axis=1)
+        self.cfacet_r = np.hypot(cref[0], cref[1])
+
+    def contact_displacement(self, u) -> np.ndarray:
+        """u at the contact points (3, nf, nq)."""
+        ul = u[self.cdofs]                                       # (30, nf)
+        return np.einsum("ci,ifq->cfq", self.csel, self.cval * ul[:, :, None])
+
+    # --- symmetry plane (outputs) ------------------------------------------------------------
+    def _symmetry_plane(self):
+        m = self.hm.reference
+        bf = m.boundary_facets()
+        f = m.facets[:, bf]
+        on = np.all(np.abs(m.p[1, f]) < 1e-9 * self.hm.spec.half_width, axis=0)
+        f = f[:, on]
+        nv = m.p.shape[1]
+        edges = np.sort(m.edges, axis=0)
+        ekey = edges[0].astype(np.int64) * nv + edges[1]
+        order = np.argsort(ekey)
+
+        def edge_id(a, b):
+            k = np.minimum(a, b).astype(np.int64) * nv + np.maximum(a, b)
+            i = np.searchsorted(ekey[order], k)
+            return order[i]
+
+        a, b, c = f
+        ab, bc, ca = nv + edge_id(a, b), nv + edge_id(b, c), nv + edge_id(c, a)
+        tri = np.hstack((np.vstack((a, ab, ca)), np.vstack((ab, b, bc)),
+                         np.vstack((ca, bc, c)), np.vstack((ab, bc, ca))))
+        nodes, inv = np.unique(tri, return_inverse=True)
+        self.plane_nodes = nodes
+        self.plane_triangles = inv.reshape(tri.shape)            # (3, ntri) into plane_nodes
+        # element averages -> node averages of quadrature fields (for plotting)
+        t2 = self.hm.mesh.t                                        # (4, ne) vertices
+        ne = t2.shape[1]
+        e2n = np.vstack((t2, nv + m.t2e)) if hasattr(m, "t2e") else None
+        self._elem_nodes = e2n                                     # (10, ne)
+        nn = self.hm.mesh.doflocs.shape[1]
+        rows = e2n.ravel()
+        cols = np.broadcast_to(np.arange(ne)[None, :], e2n.shape).ravel()
+        P = sp.csr_matrix((np.ones(rows.size), (rows, cols)), shape=(nn, ne))
+        cnt = np.asarray(P.sum(axis=1)).ravel()
+        self._node_avg = sp.diags(1.0 / np.maximum(cnt, 1.0)) @ P
+
+    def nodal_average(self, q) -> np.ndarray:
+        """A quadrature field (ne, nq) averaged per element, then per node."""
+        return self._node_avg @ np.asarray(q).mean(axis=1)
+
+    def node_displacements(self, u) -> np.ndarray:
+        return u[self.dofmap]                                      # (3, nnodes)
+
+    def point_displacements(self, u) -> np.ndarray:
+        return (self.Nsp @ u).reshape((3,) + self.shape)
+
+
+def solve_prescribed(model: HalfModel, material, displacement) -> tuple[np.ndarray, np.ndarray]:
+    """Linear elastic body with u = displacement(x) on its whole boundary.
+
+    `displacement` maps node coordinates (3, n) to displacements (3, n);
+    returns the displacement dofs (ndofs,) and the stresses (6, ne, nq).
+    For an affine field the exact solution is that field everywhere (the
+    P2 isoparametric space contains it): the patch test.
+    """
+    ne = model.shape[0]
+    Ke = model.element_matrices(material.tangent(6))
+    nl = Ke.shape[1]
+    ed = model.element_dofs
+    rows = np.broadcast_to(ed.T[:, :, None], (ne, nl, nl)).ravel()
+    cols = np.broadcast_to(ed.T[:, None, :], (ne, nl, nl)).ravel()
+    K = sp.csr_matrix((Ke.ravel(), (rows, cols)), shape=(model.ndofs, model.ndofs))
+    X = model.hm.mesh.doflocs
+    U = np.asarray(displacement(X), float)
+    u = np.zeros(model.ndofs)
+    bd = model.boundary_dofs
+    nodes_b = np.unique(np.nonzero(np.isin(model.dofmap, bd))[1])
+    u[model.dofmap[:, nodes_b].ravel()] = U[:, nodes_b].ravel()
+    bmask = np.zeros(model.ndofs, bool)
+    bmask[model.dofmap[:, nodes_b].ravel()] = True
+    inner = np.nonzero(~bmask)[0]
+    rhs = -(K[inner][:, np.nonzero(bmask)[0]] @ u[bmask])
+    u[inner] = spl.spsolve(K[inner][:, inner].tocsc(), rhs)
+    strain = (model.Bsp @ u).reshape((6,) + model.shape)
+    return u, np.tensordot(material.tangent(6), strain, axes=(1, 0))
+
+
+# --------------------------------------------------------------------------- motion
+@dataclass(frozen=True)
+class FlatMotion:
+    """Piecewise linear approach w(t) and tangential displacement delta(t) of the flat.
+
+    times [s], normal [m] (approach from first touch at the apex),
+    tangential [m] (along x), knots of equal length.
+    """
+
+    times: tuple
+    normal: tuple
+    tangential: tuple
+
+    def __post_init__(self):
+        t = np.asarray(self.times, float)
+        w = np.asarray(self.normal, float)
+        d = np.asarray(self.tangential, float)
+        if t.ndim != 1 or t.size < 2 or w.shape != t.shape or d.shape != t.shape:
+            raise ValueError("a motion needs at least two knots of (time, normal, tangential)")
+        if not (np.all(np.isfinite(t)) and np.all(np.isfinite(w)) and np.all(np.isfinite(d))):
+            raise ValueError("motion knots must be finite")
+        if np.any(np.diff(t) <= 0):
+            raise ValueError("motion times must increase")
+
+    @classmethod
+    def press_and_slide(cls, approach: float, slide: float, press_time=(0.0, 1800.0),
+                        slide_time=(1800.0, 4000.0)) -> "FlatMotion":
+        """Report 9.2: press to `approach` during press_time, then slide by
+        `slide` during slide_time at constant approach."""
+        t0, t1 = map(float, press_time)
+        s0, s1 = map(float, slide_time)
+        if not (t1 > t0 and s1 > s0 and s0 >= t1):
+            raise ValueError("need press_time[0] < press_time[1] <= slide_time[0] < slide_time[1]")
+        times = [t0, t1] + ([s0] if s0 > t1 else []) + [s1]
+        normal = [0.0, approach] + ([approach] if s0 > t1 else []) + [approach]
+        tang = [0.0, 0.0] + ([0.0] if s0 > t1 else []) + [slide]
+        return cls(tuple(times), tuple(normal), tuple(tang))
+
+    @property
+    def start(self) -> float:
+        return float(self.times[0])
+
+    @property
+    def end(self) -> float:
+        return float(self.times[-1])
+
+    def __call__(self, t):
+        return (float(np.interp(t, self.times, self.normal)),
+                float(np.interp(t, self.times, self.tangential)))
+
+    def segment(self, t) -> int:
+        tk = np.asarray(self.times)
+        return int(np.clip(np.searchsorted(tk, t, side="right") - 1, 0, len(tk) - 2))
+
+    def phase(self, t) -> str:
+        """'normal' while the approach changes, 'sliding' while delta changes, else 'hold'."""
+        i = self.segment(t)
+        if self.tangential[i + 1] != self.tangential[i]:
+            return "sliding"
+        if self.normal[i + 1] != self.normal[i]:
+            return "normal"
+        return "hold"
+
+    def next_knot(self, t) -> float:
+        tk = np.asarray(self.times, float)
+        later = tk[tk > t + 1e-12 * max(abs(t), 1.0)]
+        return float(later[0]) if later.size else self.end
+
+
+# ------------------------------------------------------------------------------ solver
+@dataclass
+class Interface:
+    """State of the contact points: where each sticks on the flat (anchor,
+    (2, nf, nq), in the flat's frame) and the normal pressure of the last
+    accepted step (nf, nq)."""
+
+    anchor: np.ndarray
+    pressure: np.ndarray
+
+
+class _StepFailed(Exception):
+    def __init__(self, message, iterations=0):
+        super().__init__(message)
+        self.iterations = iterations
+
+
+class SlidingModel:
+    """Residual, tangent and Newton of the 3-D asperity against the moving flat.
+
+    ``trace``: set it to a list to record, per Newton iteration, (iteration,
+    residual norm, force scale, contact points touching, of them slipping).
+    """
+
+    def __init__(self, model: HalfModel, material, friction: FrictionLaw,
+                 penalty_factor: float = PENALTY_FACTOR_3D, tolerance: float = 1e-7,
+                 max_iterations: int = 25, smoothing: float = SMOOTHING_3D,
+                 line_search: int = 8, friction_pressure: str = "current"):
+        self.m = model
+        self.material = _incremental(material)
+        self.elastic = material
+        self.friction = friction
+        self.tolerance = float(tolerance)
+        self.max_iterations = int(max_iterations)
+        Ep = material.contact_modulus
+        self.law = C1Penalty(penalty_factor * Ep / model.facet_size, smoothing * Ep)
+        self.line_search = int(line_search)
+        if friction_pressure not in ("current", "lagged"):
+            raise ValueError("friction_pressure is 'current' or 'lagged'")
+        self.friction_pressure = friction_pressure
+        self.lagged = friction_pressure == "lagged"
+        self.penalty_factor = float(penalty_factor)
+        self.C = _elastic_tangent6(material)
+        self.Ke_el = model.element_matrices(self.C)
+        self.data_el = model._scatter(slice(None), self.Ke_el)
+        self.linear = _LinearSolver()
+        self.trace = None
+
+    # --- contact --------------------------------------------------------------------------
+    def contact(self, u, w, delta, anchors, tangent=True, pressure=None):
+        """Contact tractions at the contact points.  `pressure`: the normal
+        pressure the shear resistance h is evaluated at (default the current
+        one; the lagged scheme passes that of the last accepted step)."""
+        m = self.m
+        U = m.contact_displacement(u)
+        a = m.cz0 + U[2] + w
+        tn, dtn = self.law.traction(a)
+        pos = np.stack((m.cX[0] + U[0] - delta, m.cX[1] + U[1]))
+        b = pos - anchors
+        if self.friction.frictionless:
+            txy = np.zeros_like(b)
+            dt_db = np.zeros((2, 2) + a.shape)
+            dt_dtn = np.zeros_like(b)
+        elif pressure is not None:
+            # lagged: h of the pressure of the last accepted step
+            txy, dt_db, _ = self.friction.traction(b, pressure)
+            dt_dtn = np.zeros_like(b)
+        else:
+            txy, dt_db, dt_dtn = self.friction.traction(b, tn)
+        tv = np.stack((txy[0], txy[1], -tn))                   # traction on the body
+        fc = np.einsum("ci,cfq,ifq,fq->if", m.csel, tv, m.cval, m.cw)   # (30, nf)
+        out = dict(a=a, tn=tn, txy=txy, b=b, position=pos, fc=fc)
+        if tangent:
+            A = contact_tangent(dtn, dt_db, dt_dtn)                # (3, 3, nf, nq)
+            Aij = A[m.ccomp][:, m.ccomp]                            # (30, 30, nf, nq)
+            out["Kc"] = -np.einsum("ifq,jfq,ijfq,fq->fij", m.cval, m.cval, Aij, m.cw)
+            # d R / d w and d R / d delta (R = f_int - f_c; a grows with w like
+            # with u_z, b falls with delta like it grows with u_x)
+            Ai = A[m.ccomp]                                         # (30, 3, nf, nq)
+            out["dR_dw"] = -np.einsum("ifq,ifq,fq->if", m.cval, Ai[:, 2], m.cw)
+            out["dR_ddelta"] = np.einsum("ifq,ifq,fq->if", m.cval, Ai[:, 0], m.cw)
+        return out
+
+    # --- residual and tangent ---------------------------------------------------------------
+    def evaluate(self, u, w, delta, state, iface, dt, tangent=True):
+        m = self.m
+        strain = (m.Bsp @ u).reshape((6,) + m.shape)
+        stress, D, new = self.material.update(strain, state, dt, tangent=tangent)
+        R = m.Bsp.T @ (stress.ravel() * m.MW)
+        c = self.contact(u, w, delta, iface.anchor, tangent=tangent,
+                         pressure=iface.pressure if self.lagged else None)
+        np.subtract.at(R, m.cdofs.ravel(), c["fc"].ravel())
+        return R, dict(strain=strain, stress=stress, D=D, state=new, contact=c)
+
+    def jacobian(self, out) -> sp.csc_matrix:
+        m = self.m
+        data = self.data_el.copy()
+        D = np.asarray(out["D"])
+        if D.ndim == 4:
+            dev = np.max(np.abs(D - self.C[:, :, None, None]), axis=(0, 1))
+            bad = np.nonzero(np.any(dev > TANGENT_ELASTIC_TOL * np.abs(self.C).max(), axis=1))[0]
+            if bad.size:
+                Ke = m.element_matrices(D, bad) - self.Ke_el[bad]
+                data += m._scatter(bad, Ke)
+        data += m._scatter(m.ctind, out["contact"]["Kc"])
+        return m.matrix(data)
+
+    def predict(self, u, out, dw, ddelta) -> np.ndarray:
+        """Euler predictor: u + du with K du = -(dR/dw dw + dR/ddelta ddelta),
+        the tangent and derivatives of the converged state `out` (the contact
+        points keep their stick or slip state of the last step)."""
+        m = self.m
+        c = out["contact"]
+        if "dR_dw" not in c or (dw == 0.0 and ddelta == 0.0):
+            return u.copy()
+        g = np.zeros(self.m.ndofs)
+        np.add.at(g, m.cdofs.ravel(), (c["dR_dw"] * dw + c["dR_ddelta"] * ddelta).ravel())
+        try:
+            du = self.linear.solve(self.jacobian(out), -g[m.free])
+        except Exception:
+            self.linear.reset()
+            return u.copy()
+        if not np.all(np.isfinite(du)):
+            return u.copy()
+        u0 = u.copy()
+        u0[m.free] += du
+        return u0
+
+    def solve_step(self, u0, w, delta, state, iface, dt):
+        """Newton from u0 for the step ending at (w, delta); returns (u, out, its)."""
+        m = self.m
+        free = m.free
+        u = np.array(u0, float)
+        R, out = self.evaluate(u, w, delta, state, iface, dt)
+        scale = 0.0
+        for it in range(self.max_iterations + 1):
+            Rf = R[free]
+            rn = float(np.linalg.norm(Rf))
+            if not np.isfinite(rn):
+                raise _StepFailed("non-finite residual", it)
+            conv = getattr(out["state"], "converged", None)
+            if conv is not None and not np.all(conv):
+                raise _StepFailed("local constitutive update did not converge", it)
+            fc = out["contact"]["fc"]
+            scale = max(scale, float(np.sqrt(np.sum(fc**2))))
+            floor = 1e3 * np.finfo(float).eps * float(np.linalg.norm(
+                (m._absBT @ np.abs(out["stress"].ravel() * m.MW))[free]))
+            if self.trace is not None:
+                c = out["contact"]
+                self.trace.append((it, rn, scale, int(np.sum(c["tn"] > 0)),
+                                   int(np.sum((c["tn"] > 0) & (np.hypot(*c["b"]) >= self.friction.slip_regularization)))))
+            if rn <= max(self.tolerance * scale, floor) or (scale == 0.0 and rn <= floor):
+                return u, out, it
+            if it == self.max_iterations:
+                break
+            K = self.jacobian(out)
+            try:
+                d = self.linear.solve(K, -Rf)
+            except Exception as exc:                          # singular factorization
+                self.linear.reset()
+                raise _StepFailed(f"linear solve failed: {exc}", it) from None
+            if not np.all(np.isfinite(d)):
+                self.linear.reset()
+                raise _StepFailed("non-finite Newton correction", it)
+            alpha = 1.0
+            for _ in range(self.line_search):
+                trial = u.copy()
+                trial[free] += alpha * d
+                R1, out1 = self.evaluate(trial, w, delta, state, iface, dt)
+                r1 = float(np.linalg.norm(R1[free]))
+                if np.isfinite(r1) and r1 < rn:
+                    break
+                alpha *= 0.5
+            u, R, out = trial, R1, out1
+        raise _StepFailed(f"no convergence in {self.max_iterations} iterations", self.max_iterations)
+
+    def release_separated(self, u, out, w, delta, state, iface: "Interface", dt,
+                          max_rounds: int = 10):
+        """Lagged scheme: re-solve the step without shear resistance at the
+        points that carried the last step's pressure but separated from the
+        flat (t_N = 0) in this one, until none is left (the released set only
+        grows, so this ends).  Returns (u, out, Newton iterations)."""
+        total = 0
+        current = iface
+        for _ in range(max_rounds):
+            off = (current.pressure > 0) & ~(out["contact"]["tn"] > 0)
+            if not off.any():
+                break
+            current = Interface(current.anchor, np.where(off, 0.0, current.pressure))
+            u, out, its = self.solve_step(u, w, delta, state, current, dt)
+            total += its
+        return u, out, total
+
+    def initial_interface(self, delta=0.0) -> "Interface":
+        m = self.m
+        return Interface(anchor=np.stack((m.cX[0] - delta, m.cX[1])),
+                         pressure=np.zeros(m.cw.shape))
+
+    def commit(self, out, iface: "Interface") -> "Interface":
+        """The interface state after an accepted step: anchors dragged
+        (`sliding.drag_anchor`), the pressure of this step kept."""
+        c = out["contact"]
+        return Interface(anchor=drag_anchor(iface.anchor, c["position"], c["tn"],
+                                            self.friction.slip_regularization),
+                         pressure=np.array(c["tn"], copy=True))
+
+    # --- outputs ------------------------------------------------------------------------------
+    def record(self, u, w, delta, out) -> dict:
+        m = self.m
+        c = out["contact"]
+        tn, txy = c["tn"], c["txy"]
+        fn = 2.0 * float(np.sum(tn * m.cw))
+        ft = 2.0 * float(np.sum(txy[0] * m.cw))
+        area = 2.0 * float(np.sum(m.cw * (tn > 0)))
+        epn = equivalent_strain(out["state"].inelastic_strain)
+        slip = np.sqrt(c["b"][0] ** 2 + c["b"][1] ** 2) >= self.friction.slip_regularization * (1 - 1e-9)
+        touching = tn > 0
+        wsum = float(np.sum(m.cw * touching))
+        ft_off = 2.0 * float(np.sum(txy[0] * m.cw * ~touching))
+        return dict(
+            tangential_force_off_contact=ft_off,
+            normal_displacement=w, tangential_displacement=delta,
+            normal_force=fn, tangential_force=ft, contact_area=area,
+            mean_pressure=fn / area if area > 0 else 0.0,
+            mean_tangential_traction=ft / area if area > 0 else 0.0,
+            max_pressure=float(tn.max()),
+            slip_fraction=float(np.sum(m.cw * (touching & slip)) / wsum) if wsum > 0 else 0.0,
+            max_inelastic_strain=float(epn.max()),
+            max_von_mises=float(von_mises(out["stress"]).max()),
+            overflow=bool(np.any(touching & (m.cfacet_r[:, None] > 0.85 * m.contact_radius))),
+        )
+
+
+VARIABLES = {
+    "time": ("s", "time"),
+    "normal_displacement": ("m", "approach w of the rigid flat from first touch at the apex"),
+    "tangential_displacement": ("m", "tangential (sliding) displacement delta of the rigid flat along x"),
+    "normal_force": ("N", "normal contact force on the asperity (whole body, twice the half model)"),
+    "tangential_force": ("N", "tangential contact force on the asperity along the sliding direction x"),
+    "contact_area": ("m^2", "real contact area: the quadrature weights of the contact points "
+                     "with a positive pressure (3 points per facet)"),
+    "tangential_force_off_contact": ("N", "part of the tangential force from contact points "
+                                     "without pressure (lagged friction: separated during the step)"),
+    "mean_pressure": ("Pa", "normal force / contact area"),
+    "mean_tangential_traction": ("Pa", "tangential force / contact area (report 9.2: about 64 MPa)"),
+    "max_pressure": ("Pa", "largest contact pressure at the contact quadrature points"),
+    "slip_fraction": ("1", "share of the touching area (quadrature points) whose slip |b| reached eps_b"),
+    "max_inelastic_strain": ("1", "largest von Mises equivalent inelastic strain at the quadrature points"),
+    "max_von_mises": ("Pa", "largest von Mises stress at the quadrature points"),
+    "phase": ("1", "'normal' (pressing), 'sliding' or 'hold' segment of the motion"),
+    "newton_iterations": ("1", "Newton iterations of the step, including those of rejected tries"),
+    "step_cuts": ("1", "times the step was rejected and its time step halved"),
+    "time_step": ("s", "time step of the accepted step"),
+    "wall_time": ("s", "wall time of the step, including its rejected tries"),
+}
+
+
+def _describe(obj) -> str:
+    name = getattr(obj, "name", None)
+    fields_ = getattr(obj, "__dataclass_fields__", {})
+    parts = [f"{k}={getattr(obj, k)!r}" for k in fields_ if k != "name"]
+    return f"{type(obj).__name__}({', '.join(parts)})" + (f" [{name}]" if name else "")
+
+
+def _snapshot(model: HalfModel, u, state) -> dict:
+    nd = model.node_displacements(u)[:, model.plane_nodes]
+    ep = model.nodal_average(equivalent_strain(state.inelastic_strain))[model.plane_nodes]
+    return dict(ux=nd[0], uz=nd[2], ep=ep)
+
+
+def solve_sliding(geometry, material, motion: FlatMotion, friction: FrictionLaw,
+                  accuracy="standard", mesh: MeshSpec | None = None,
+                  contact_radius: float | None = None, penalty_factor: float = PENALTY_FACTOR_3D,
+                  friction_pressure: str = "current", volumetric: str = "mean",
+                  max_steps: int = 100_000,
+                  snapshots: dict | None = None, progress=None) -> xr.Dataset:
+    """A 3-D asperity pressed and slid by the rigid flat (report 9.2).
+
+    Parameters
+    ----------
+    geometry
+        a `Profile` (e.g. ``CosineHill(1e-6, pi / 5e-6)``: 2 um high, 10 um
+        across; or a shallow `Paraboloid` for the Hertz check); its
+        ``axisymmetric`` flag is ignored (the model is 3-D).
+    material
+        `BodnerPartom` (6-component update) or `LinearElastic`.
+    motion
+        `FlatMotion`: approach and tangential displacement versus time.
+    friction
+        `FrictionLaw` (3.21, 3.24, 3.25).
+    accuracy
+        `SLIDING_ACCURACY` preset name or dict: mesh sizes, steps per segment
+        (caps), Newton tolerance, inelastic step limit.
+    mesh
+        override the block and grading (`MeshSpec`); default
+        `MeshSpec.for_hill`.
+    contact_radius
+        estimate r of the contact radius (default: the geometric
+        intersection radius at the largest approach); sizes the tip
+        elements and the candidate contact zone (2.5 r + the sliding
+        distance).
+    snapshots
+        {name: time}: the displacements and inelastic strain on the
+        symmetry plane at these times (default: end of pressing and end).
+    progress
+        optional callable(str) for progress lines.
+
+    Returns an `xarray.Dataset`: per step (dim ``step``) the variables of
+    `VARIABLES`; the symmetry-plane section (dims ``plane_node``,
+    ``plane_triangle``, ``corner``, ``snapshot``); attributes describing
+    the mesh, the solver and where the largest deformation sits.
+    """
+    t_start = time.perf_counter()
+    preset = sliding_preset(accuracy)
+    w_knots = np.asarray(motion.normal, float)
+    d_knots = np.asarray(motion.tangential, float)
+    w_max = float(w_knots.max())
+    slide = float(np.abs(d_knots - d_knots[0]).max())
+    if w_max >= geometry.height and not geometry.shallow:
+        raise ValueError(f"approach {w_max:.4g} m reaches the foot of the hill "
+                         f"(height {geometry.height:.4g} m)")
+    if contact_radius is None:
+        contact_radius = float(geometry.intersection_radius(np.array([max(w_max, 0.0)]))[0])
+        if not contact_radius > 0:
+            contact_radius = 0.1 * geometry.extent
+    spec = mesh if mesh is not None else MeshSpec.for_hill(geometry, contact_radius, preset)
+    hm = build_mesh(geometry, spec)
+    cand = min(2.5 * contact_radius + slide, 0.95 * spec.half_width)
+    model = HalfModel(geometry, hm, cand, volumetric=volumetric)
+    sm = SlidingModel(model, material, friction, penalty_factor, preset["tolerance"],
+                      preset["max_iterations"], friction_pressure=friction_pressure)
+    t_mesh = time.perf_counter() - t_start
+    say = progress or (lambda s: None)
+    say(f"mesh: {hm.reference.t.shape[1]} tetrahedra, {model.ndofs} dofs "
+        f"({len(model.free)} free), {model.cfacets.size} contact facets, {t_mesh:.2f} s")
+
+    # --- time stepping --------------------------------------------------------------------------
+    times = np.asarray(motion.times, float)
+    caps = []
+    for i in range(len(times) - 1):
+        kind = ("sliding" if d_knots[i + 1] != d_knots[i] else
+                "normal" if w_knots[i + 1] != w_knots[i] else "hold")
+        n = preset["tangential_steps"] if kind == "sliding" else preset["normal_steps"]
+        caps.append((times[i + 1] - times[i]) / max(int(n), 1))
+    max_inel = float(preset["max_inelastic_step"])
+    max_cuts = int(preset["max_cuts"])
+    if snapshots is None:
+        snapshots = {}
+        for i in range(len(times) - 1):
+            if motion.phase(times[i]) == "normal" and (i + 1 == len(times) - 1 or
+                                                       motion.phase(times[i + 1]) != "normal"):
+                snapshots["end of pressing"] = float(times[i + 1])
+        snapshots["end"] = float(times[-1])
+    snap_times = {k: float(v) for k, v in snapshots.items()}
+    snap = {}
+
+    t = motion.start
+    w, delta = motion(t)
+    state = sm.material.initial_state(model.shape, components=6)
+    iface = sm.initial_interface(delta)
+    u = np.zeros(model.ndofs)
+    rows = []
+    _, out0 = sm.evaluate(u, w, delta, state, iface, 0.0, tangent=True)
+    out_last = out0
+    rows.append(dict(sm.record(u, w, delta, out0), time=t, phase=motion.phase(t),
+                     newton_iterations=0, step_cuts=0, time_step=0.0, wall_time=0.0))
+    for k, ts in snap_times.items():
+        if ts <= t:
+            snap[k] = (t, _snapshot(model, u, state), {})
+    dt = caps[motion.segment(t)] / 2.0
+    n = 0
+    while t < motion.end * (1 - 1e-12) and n < max_steps:
+        n += 1
+        step_start = time.perf_counter()
+        cuts = iterations = 0
+        phase = motion.phase(t)
+        while True:
+            knot = motion.next_knot(t)
+            t_new = min(t + min(dt, caps[motion.segment(t)]), knot)
+            if knot - t_new < 1e-9 * (knot - t):
+                t_new = knot
+            h = t_new - t
+            w_new, d_new = motion(t_new)
+            reason = None
+            u0 = sm.predict(u, out_last, w_new - w, d_new - delta)
+            try:
+                u_new, out, its = sm.solve_step(u0, w_new, d_new, state, iface, h)
+                iterations += its
+                if sm.lagged:   # no shear on points that separated during the step
+                    u_new, out, its = sm.release_separated(u_new, out, w_new, d_new, state,
+                                                           iface, h)
+                    iterations += its
+                step_inel = float(np.max(equivalent_strain(
+                    out["state"].inelastic_strain - state.inelastic_strain)))
+                if step_inel > max_inel:
+                    reason = f"inelastic strain step {step_inel:.3g} > {max_inel:g}"
+            except _StepFailed as exc:
+                iterations += exc.iterations
+                reason = str(exc)
+            if reason is None:
+                rec = sm.record(u_new, w_new, d_new, out)
+                if rec["overflow"]:
+                    raise ContactZoneError(
+                        f"step {n} (t = {t_new:.6g} s): the contact reached the edge of the "
+                        f"candidate zone (radius {model.contact_radius:.4g} m); give a larger "
+                        f"contact_radius")
+                break
+            cuts += 1
+            if cuts > max_cuts:
+                raise ConvergenceError(n, w_new, w, cuts - 1,
+                                       f"t = {t_new:.6g} s, delta = {d_new:.6g} m: {reason}")
+            dt = 0.5 * h
+            say(f"step {n}: cut to dt = {dt:.4g} s ({reason})")
+        iface = sm.commit(out, iface)
+        u, t, w, delta, state = u_new, t_new, w_new, d_new, out["state"]
+        # the converged state with the dragged anchors, for the next predictor
+        _, out_last = sm.evaluate(u, w, delta, state, iface, h)
+        rows.append(dict(rec, time=t, phase=phase, newton_iterations=iterations, step_cuts=cuts,
+                         time_step=h, wall_time=time.perf_counter() - step_start))
+        for k, ts in snap_times.items():
+            if k not in snap and t >= ts * (1 - 1e-12):
+                a_max = max(r["contact_area"] for r in rows)
+                a_ref = math.sqrt(a_max / math.pi) if a_max > 0 else model.contact_radius / 2.5
+                snap[k] = (t, _snapshot(model, u, state),
+                           _largest_deformation(model, u, w, state, a_ref))
+        say(f"step {n}: t = {t:.6g} s, w = {w:.4g} m, delta = {delta:.4g} m, "
+            f"F_N = {rec['normal_force']:.4g} N, F_T = {rec['tangential_force']:.4g} N, "
+            f"{iterations} Newton iterations, {cuts} cuts")
+        if iterations <= FAST and cuts == 0:
+            dt = GROWTH * h
+        else:
+            dt = h
+        if step_inel > 0:
+            dt = min(dt, h * max(0.5, 0.8 * max_inel / step_inel))
+
+    total = time.perf_counter() - t_start
+    return _sliding_dataset(rows, model, sm, u, w, state, snap, dict(
+        geometry=_describe(geometry), material=_describe(material),
+        friction=_describe(friction.resistance),
+        slip_regularization=float(friction.slip_regularization),
+        accuracy=accuracy if isinstance(accuracy, str) else "custom",
+        accuracy_parameters=repr(preset),
+        mesh=repr(spec),
+        symmetry="half model y >= 0 (plane of symmetry y = 0 contains the sliding direction x)",
+        elements=int(model.shape[0]), element_type="10-node tetrahedra (P2, isoparametric), "
+        "4 quadrature points" + (", B-bar (element-mean volumetric strain)"
+                                 if volumetric == "mean" else ""), dofs=int(model.ndofs), free_dofs=int(len(model.free)),
+        tip_element_size=float(spec.tip_size), contact_facets=int(model.cfacets.size),
+        contact_candidate_radius=float(model.contact_radius),
+        penalty_factor=float(penalty_factor),
+        friction_pressure=friction_pressure,
+        motion_times=np.asarray(motion.times, float), motion_normal=w_knots,
+        motion_tangential=d_knots,
+        steps=len(rows) - 1, total_step_cuts=int(sum(r["step_cuts"] for r in rows)),
+        total_newton_iterations=int(sum(r["newton_iterations"] for r in rows)),
+        factorizations=int(sm.linear.factorizations), krylov_solves=int(sm.linear.krylov_solves),
+        completed=int(t >= motion.end * (1 - 1e-12)),
+        mesh_wall_time=t_mesh, total_wall_time=total))
+
+
+def _largest_deformation(model: HalfModel, u, w, state, a_ref: float) -> dict:
+    """Where the largest equivalent inelastic strain sits, relative to the junction.
+
+    Its depth below the flat (z = -w) in the deformed configuration is
+    compared with ``JUNCTION_DEPTH_FRACTION`` a_ref, a_ref = sqrt(A_max / pi)
+    the equivalent radius of the largest contact area of the run.
+    """
+    ep = equivalent_strain(state.inelastic_strain)
+    if not np.any(ep > INELASTIC_THRESHOLD):
+        return dict(largest_deformation="none (elastic)", largest_deformation_depth=math.nan)
+    i = np.unravel_index(int(np.argmax(ep)), ep.shape)
+    X = model.x[(slice(None),) + i]
+    Ud = model.point_displacements(u)
+    depth_all = -w - (model.x[2] + Ud[2])          # below the flat, deformed
+    depth = float(depth_all[i])
+    limit = JUNCTION_DEPTH_FRACTION * a_ref
+    layer = depth_all <= limit
+    where = "at the junction" if depth <= limit else "below the junction"
+    return dict(
+        largest_deformation=where,
+        largest_deformation_criterion=(
+            f"'at the junction' if the largest equivalent inelastic strain (quadrature points, "
+            f"end of the run) lies less than {JUNCTION_DEPTH_FRACTION:g} a_ref below the flat "
+            f"(deformed configuration; a_ref = sqrt(A_max / pi), A_max the largest contact area "
+            f"of the run), else 'below the junction'"),
+        largest_deformation_depth=depth,
+        largest_deformation_depth_over_radius=depth / a_ref if a_ref > 0 else math.nan,
+        largest_deformation_position=np.asarray(X, float),
+        largest_deformation_displacement=np.asarray(Ud[(slice(None),) + i], float),
+        largest_deformation_value=float(ep[i]),
+        reference_contact_radius=a_ref,
+        max_inelastic_strain_junction_layer=float(ep[layer].max()) if layer.any() else 0.0,
+        max_inelastic_strain_below_layer=float(ep[~layer].max()) if (~layer).any() else 0.0,
+    )
+
+
+def _sliding_dataset(rows, model: HalfModel, sm: SlidingModel, u, w, state, snap, attrs):
+    k = len(rows)
+    data = {}
+    for name, (units, long_name) in VARIABLES.items():
+        vals = np.array([r[name] for r in rows])
+        data[name] = ("step", vals, dict(units=units, long_name=long_name))
+    ds = xr.Dataset(data, coords=dict(step=("step", np.arange(k),
+                                            dict(units="1", long_name="time step index"))))
+    # symmetry-plane section (Fig. 9.5)
+    X = model.hm.mesh.doflocs[:, model.plane_nodes]
+    names = list(snap)
+    if names:
+        ds = ds.assign_coords(snapshot=("snapshot", np.array(names, dtype=object),
+                                        dict(units="1", long_name="instant of the section")))
+        ds["snapshot_time"] = ("snapshot", np.array([snap[n][0] for n in names]),
+                               dict(units="s", long_name="time of the section"))
+        for key, var, units, ln in (("ux", "plane_ux", "m", "horizontal displacement u_x"),
+                                    ("uz", "plane_uz", "m", "vertical displacement u_z"),
+                                    ("ep", "plane_inelastic_strain", "1",
+                                     "von Mises equivalent inelastic strain (element means "
+                                     "averaged at the nodes)")):
+            ds[var] = (("snapshot", "plane_node"), np.array([snap[n][1][key] for n in names]),
+                       dict(units=units, long_name=f"{ln} on the symmetry plane y = 0"))
+    ds["plane_x"] = ("plane_node", X[0], dict(units="m", long_name="x of the node (undeformed)"))
+    ds["plane_z"] = ("plane_node", X[2], dict(units="m", long_name="z of the node above the apex (undeformed)"))
+    ds["plane_triangles"] = (("plane_triangle", "corner"), model.plane_triangles.T.astype(np.int32),
+                             dict(units="1", long_name="node indices (into plane_node) of the "
+                                  "linear sub-triangles of the 6-node faces on y = 0"))
+    ds = ds.assign_coords(
+        plane_node=("plane_node", np.arange(X.shape[1]), dict(units="1", long_name="node on the symmetry plane")),
+        plane_triangle=("plane_triangle", np.arange(model.plane_triangles.shape[1]),
+                        dict(units="1", long_name="triangle on the symmetry plane")),
+        corner=("corner", np.arange(3), dict(units="1", long_name="triangle corner")))
+    # inelastic strain versus depth below the flat, under the apex
+    a_max = max(r["contact_area"] for r in rows)
+    a_ref = math.sqrt(a_max / math.pi) if a_max > 0 else model.contact_radius / 2.5
+    ep = equivalent_strain(state.inelastic_strain)
+    Ud = model.point_displacements(u)
+    xd = model.x + Ud
+    depth = -w - xd[2]
+    nodes = model.hm.nodes_ref
+    apex = int(np.argmin(np.sum(nodes**2, axis=0)))
+    cx = float(model.hm.mesh.doflocs[0, apex] + u[model.dofmap[0, apex]])
+    under = np.hypot(xd[0] - cx, xd[1]) <= a_ref
+    edges = np.linspace(0.0, 3.0 * a_ref, 16)
+    mids = 0.5 * (edges[1:] + edges[:-1])
+    k = np.clip(np.searchsorted(edges, depth, side="right") - 1, -1, mids.size)
+    prof = np.full(mids.size, np.nan)
+    sel = under & (k >= 0) & (k < mids.size)
+    if sel.any():
+        np.fmax.at(prof, k[sel], ep[sel])
+    ds = ds.assign_coords(depth=("depth", mids, dict(units="m", long_name="depth below the flat (bin centre)")))
+    ds["inelastic_strain_below_apex"] = ("depth", prof, dict(
+        units="1", long_name="largest equivalent inelastic strain at this depth within a_ref "
+        "(horizontally) of the apex, end of the run"))
+    attrs.update(_largest_deformation(model, u, w, state, a_ref))
+    for name in names:          # the same at the other sections (e.g. end of pressing)
+        if name != "end":
+            key = name.replace(" ", "_")
+            for k, v in snap[name][2].items():
+                if k.startswith(("largest_deformation", "reference_contact", "max_inelastic")) \
+                        and not k.endswith("criterion"):
+                    attrs[f"{key}_{k}"] = v
+    attrs["apex_x_end"] = cx
+    sliding = np.array([r["phase"] == "sliding" and r["contact_area"] > 0 for r in rows])
+    if sliding.any():
+        tau = np.array([r["mean_tangential_traction"] for r in rows])[sliding]
+        attrs["mean_tangential_traction_sliding"] = float(tau.mean())
+        attrs["mean_tangential_traction_sliding_method"] = (
+            "mean over the sliding steps with contact of tangential force / contact area "
+            "(report 9.2: about 64 MPa)")
+    ds.attrs.update({k: v for k, v in attrs.items()})
+    return ds
+
+
+# ------------------------------------------------------------------------------ scenes
+def sliding_scene_objects(sliding: dict, units: dict):
+    """Geometry, material, motion, friction law and options of a scene's
+    ``sliding`` section (config/schema.yaml), converted to SI.
+
+    The asperity is the cosine hill of report 9.2: peak-to-valley ``height``
+    and ``base_diameter`` (valley to valley), i.e. amplitude height / 2 and
+    wavenumber 2 pi / base_diameter (`geometry.CosineHill`).
+    """
+    from asperity import units as U
+
+    from .bodner_partom import BodnerPartom
+    from .geometry import CosineHill
+    from .material import LinearElastic
+
+    L = U.length_scale(units["length"])
+    P = U.pressure_scale(units.get("pressure", "Pa"))
+    a = sliding["asperity"]
+    geometry = CosineHill(0.5 * a["height"] * L, 2.0 * math.pi / (a["base_diameter"] * L))
+    m = sliding["material"]
+    if m.get("model", "bodner_partom") == "bodner_partom":
+        material = BodnerPartom(
+            E=float(m["youngs_modulus"]) * P, nu=float(m["poisson"]), D0=float(m["D0"]),
+            n=float(m["n"]), Z0=float(m["Z0"]) * P, Z1=float(m.get("Z1", m["Z0"])) * P,
+            m1=float(m.get("m1", 0.0)) / P, isotropic_hardening=bool(float(m.get("m1", 0.0)) > 0),
+            name=m.get("name", "scene material"))
+    else:
+        material = LinearElastic(float(m["youngs_modulus"]) * P, float(m["poisson"]))
+    mo = sliding["motion"]
+    motion = FlatMotion.press_and_slide(mo["approach"] * L, mo["slide"] * L,
+                                        tuple(mo["press_time"]), tuple(mo["slide_time"]))
+    s = sliding["shear_resistance"]
+    law = ShearResistance(c0=s.get("c0", 0.0) * P, c1=s.get("c1", 0.0), c2=s.get("c2", 0.0) / P,
+                          onset_pressure=s.get("onset_pressure", 1.0) * P)
+    friction = FrictionLaw(law, sliding["slip_regularization"] * L)
+    return geometry, material, motion, friction
+
+
+def solve_sliding_scene(sliding: dict, units: dict, accuracy: str = "standard",
+                        progress=None) -> xr.Dataset:
+    """`solve_sliding` for a scene's ``sliding`` section at an accuracy preset
+    (the section's ``steps``, ``mesh`` and ``max_inelastic_step`` override
+    the preset's)."""
+    geometry, material, motion, friction = sliding_scene_objects(sliding, units)
+    preset = sliding_preset(accuracy)
+    steps = sliding.get("steps", {})
+    if "normal" in steps:
+        preset["normal_steps"] = int(steps["normal"])
+    if "tangential" in steps:
+        preset["tangential_steps"] = int(steps["tangential"])
+    for key in ("tip_fraction", "refine_fraction", "grading", "coarse_fraction"):
+        if key in sliding.get("mesh", {}):
+            preset[key] = float(sliding["mesh"][key])
+    if "max_inelastic_step" in sliding:
+        preset["max_inelastic_step"] = float(sliding["max_inelastic_step"])
+    ds = solve_sliding(geometry, material, motion, friction, accuracy=preset,
+                       penalty_factor=float(sliding.get("penalty_factor", PENALTY_FACTOR_3D)),
+                       friction_pressure=sliding.get("friction_pressure", "current"),
+                       progress=progress)
+    ds.attrs["accuracy"] = accuracy
+    return ds

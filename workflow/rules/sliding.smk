@@ -1,0 +1,34 @@
+# One 3-D asperity pressed and slid by a rigid flat (report 9.2, Figs. 9.4 and 9.5).
+
+
+rule sliding:
+    """Normal and tangential force histories, the deformed section y = 0 and where the
+    largest deformation sits (a scene's `sliding` section, at the global accuracy preset)."""
+    output:
+        f"{RESULTS}/{{scene}}/sliding.nc",
+    params:
+        scene=lambda w: w.scene,
+        title=scene_part("title"),
+        report=scene_part("report"),
+        units=scene_part("units"),
+        sliding=scene_part("sliding"),
+        accuracy=config["accuracy"],
+    log:
+        f"{RESULTS}/{{scene}}/logs/sliding.log",
+    script:
+        "../scripts/sliding.py"
+
+
+rule sliding_figure:
+    """Fig. 9.4 (forces versus time) and Fig. 9.5 (deformed section, horizontal displacement)."""
+    input:
+        sliding=f"{RESULTS}/{{scene}}/sliding.nc",
+    output:
+        report(f"{RESULTS}/{{scene}}/figures/sliding.png", category="{scene}",
+               caption="../report/sliding.rst"),
+    params:
+        units=scene_part("units"),
+    log:
+        f"{RESULTS}/{{scene}}/logs/sliding_figure.log",
+    script:
+        "../scripts/sliding_figure.py"
