@@ -5,8 +5,8 @@ by the rigid flat, whose interference is a prescribed piecewise linear
 function of time (`History`, e.g. `History.load_unload`: loading at a
 prescribed velocity, 0.25 um/s in report 8.2.2, then unloading).
 
-Method (the incremental counterpart of report 3.22, in the backward-Euler
-form that FE codes use): the time is divided into steps; at each step the
+Method (the incremental counterpart of report 3.22, in the implicit form
+that FE codes use): the time is divided into steps; at each step the
 global equilibrium
 
     R(u) = int B^T sigma(eps(u); state_n, dt) dV + int t_N(a(u)) N ds = 0
@@ -16,8 +16,8 @@ which only holds for a linear body) with the material's consistent tangent
 at the quadrature points plus the penalty contact tangent.  Internal
 variables are carried per quadrature point and committed only when the
 step is accepted.  Everything is vectorized over elements and quadrature
-points (`Discretization.B`, sparse strain operator, one einsum for the
-element matrices).
+points (`Discretization.B`, sparse strain operator, one batched matmul for
+the element matrices scattered into a sparsity pattern built once).
 
 The mesh is FIXED: it is adapted once, by the existing machinery
 (`solve.adapted_model` with the material's elastic constants), to elastic
@@ -28,15 +28,99 @@ same interference: the candidate contact zone is larger
 (``INELASTIC_CANDIDATE_FACTOR``) and grows if reached, but the mesh is
 not refined again.
 
-Step control: a step is rejected and retried with half the time step
-(counted in ``step_cuts``) when Newton does not converge (or gives
-non-finite values), or when the step is too coarse: the interference
-changed by more than ``max_interference_step`` times the largest
-interference, or the equivalent inelastic strain changed somewhere by more
-than ``max_inelastic_step``.  After an accepted step the time step grows
-(x ``GROWTH``) when Newton converged in few iterations and shrinks when it
-needed many, within those limits.  A step that would cross a knot of the
-history ends on it.
+Time integration of the material (report 3.6).  The material's own update
+is backward Euler (BE): y_n+1 = y_n + dt f(y_n+1) for the internal
+variables y (inelastic strain, hardness, damage).  For a rate-dependent
+material (one with ``rates``: `BodnerPartom`) the solver makes it second
+order, the variable-step BDF2
+
+    y_n+1 = a y_n - b y_n-1 + c h f(y_n+1),   omega = h / h_prev,
+    a = (1 + omega)^2 / (1 + 2 omega), b = omega^2 / (1 + 2 omega),
+    c = (1 + omega) / (1 + 2 omega),
+
+which is the material's backward-Euler update from the start value
+y* = a y_n - b y_n-1 over c h (`bdf2_start`): no change to the material,
+and the consistent tangent stays exact.  BDF2 is L-stable like BE (stiff
+flow at fast-flowing points is damped, not oscillating) and stable for
+step ratios below 1 + sqrt 2 (the controller grows the step at most
+twofold).  The first step and the first step after a knot of the history
+(where the loading rate jumps) are BE.  ``integration="euler"`` keeps BE
+throughout.  A rate-independent material (`J2Plasticity`) has no time
+scale: its "time" is a load parameter, its inelastic rate jumps at first
+yield, at every knot and wherever a point starts or stops yielding, and
+BE is its return map; it is integrated by BE and its steps are not
+estimated (``time_error`` NaN): ``max_interference_step`` and
+``max_inelastic_step`` control them.
+
+Time-integration error (report 3.4, 3.33-3.36, carried over to the
+implicit schemes).  The rate of the flow rule at the end of a step is
+r_n+1 = (y_n+1 - y*) / (c h) (the material's increment over its time
+step); the rates at the ends of the last steps give the local truncation
+error of the step:
+
+    BE:    e = h (r_n+1 - r_n) / 2 = (h^2 / 2) y'',  the difference between
+           the backward-Euler increment and the trapezoidal one
+           h (r_n + r_n+1) / 2 (the report's predictor-corrector
+           difference, 3.36, for an implicit step);
+    BDF2:  e = k h^3 y''',  k = (1 + omega)^2 / (6 omega (1 + 2 omega)),
+           y''' the second divided difference of r_n-1, r_n, r_n+1.
+
+The error of the inelastic strain is measured by what it does to the
+equilibrium: the nodal forces of the stress error 2 G e (the inelastic
+strain is deviatoric), relative to the contact forces, the measure of the
+Newton residual; the error of the damage kappa (3.15) by the largest
+|e_kappa| relative to its rupture value.  Ruptured points are left out.
+The indicator of the step is
+
+    E = max( ||B^T (2 G e) dV|| / ||f_contact||,  max |e_kappa| / kappa_r ).
+
+A step with E > 2 ``time_tolerance`` is rejected and retried with the time
+step h 0.9 (tol / E)^(1/(p+1)) (p the order, at least 0.2 h); after an
+accepted step the time step becomes h min(2, 0.9 (tol / E)^(1/(p+1))).
+(Rejecting only above twice the tolerance: the estimate jumps when a node
+of the surface comes into contact, and rejecting at the tolerance cost 40 %
+more steps for no gain in accuracy.)  E is recorded per step
+(``time_error``), its largest value and the rejections it caused as
+attributes.  With local error control the error of the end of the
+history falls roughly in proportion to the tolerance
+(tests/fe/test_inelastic_time_error.py).  The Newton tolerance of a
+rate-dependent material is 1e-2 ``time_tolerance`` where that is looser
+than the preset's (``NEWTON_FRACTION``): equilibrium two orders tighter
+than the time error of a step, in the same measure.  Newton's scale is
+the contact force of the current iterate (not the largest of the
+iterations: an overshooting predictor pushes a node deep into the stiff
+penalty and would inflate it), or, if larger, up to twice that of the last
+accepted step.
+
+Other step control: a step is rejected and retried with half the time
+step (counted in ``step_cuts``, with the error rejections) when Newton does
+not converge (or gives non-finite values), or when the step is too coarse
+for the output: the interference changed by more than
+``max_interference_step`` times the largest interference, or the
+equivalent inelastic strain changed somewhere by more than
+``max_inelastic_step`` (a safety bound; the error control decides).  Slow
+Newton convergence shrinks the next time step.  A step that would cross a
+knot of the history ends on it.
+
+Points with negligible flow (`InelasticModel.point_time_steps`): a
+rate-dependent material flows at every stressed point, but the exponential
+flow law of Bodner-Partom makes the flow of most of the body vanishingly
+small; the material update treats those points as elastic (time step 0),
+which saves their local Newton iterations and tangents.
+
+Rupture (Bodner-Partom with damage, 3.15: w -> 1).  `BodnerPartom` declares
+a point ruptured when w reaches ``omega_rupture`` or its inelastic strain
+rate runs away past ``rupture_strain_rate``, then freezes its damage and
+keeps a finite, softened state (Z sqrt(1 - w^2)).  The solver reports the
+first rupture (step, time, interference and the position of the point:
+attributes ``rupture_*``) and the number of ruptured points per step
+(``ruptured_points``), and, by ``on_rupture``, continues (default: the
+ruptured points keep the state the material gives them and are left out
+of the time error), stops there (``"stop"``: the dataset ends at the
+rupture step, ``completed`` 0, ``stop_reason`` says why), or raises
+`RuptureError` naming the step, the interference and the position
+(``"raise"``).  A Newton failure after a rupture says how many points
+had ruptured.
 
 Unloading: the history is followed in reverse.  The first time the force
 falls to zero on unloading, the crossing is located by bisection of the
@@ -45,13 +129,17 @@ interference is reported by linear interpolation of the force of the last
 steps (attribute ``residual_interference``, NaN if the force never returned
 to zero); with ``stop_at_zero_force`` (default) the run stops there, else
 it follows the rest of the history.
+
+Linear solves: SuperLU with a symmetric minimum degree ordering of the
+(structurally symmetric) tangent and diagonal pivots; if that fails or is
+not finite, the default partial pivoting.
 """
 
 from __future__ import annotations
 
 import math
 import time
-from dataclasses import dataclass
+from dataclasses import dataclass, fields, replace
 
 import numpy as np
 import scipy.sparse as sp
@@ -71,8 +159,19 @@ INELASTIC_THRESHOLD = 1e-8
 ZERO_FORCE = 1e-6
 #: small strain limit of report 7.3 (largest principal strain magnitude)
 SMALL_STRAIN_LIMIT = 0.08
-#: time step growth after a fast Newton (<= FAST iterations), shrink after a slow one
-GROWTH, FAST, SLOW, SHRINK = 1.5, 4, 10, 0.7
+#: Newton: the next time step does not grow after more than FAST iterations,
+#: and shrinks by SHRINK after SLOW or more
+FAST, SLOW, SHRINK = 4, 10, 0.7
+#: time-error controller: safety factor, largest growth, smallest factor, and
+#: a step is rejected when its indicator exceeds REJECT x the tolerance
+SAFETY, MAX_GROWTH, MIN_FACTOR, REJECT = 0.9, 2.0, 0.2, 2.0
+#: default time tolerance when the accuracy preset has none
+TIME_TOLERANCE = 0.1
+#: Newton tolerance of a rate-dependent material: this x time_tolerance where
+#: that is looser than the preset's
+NEWTON_FRACTION = 1e-2
+#: points with negligible flow (see InelasticModel.point_time_steps)
+FLOW_STRESS_MARGIN, NEGLIGIBLE_FLOW = 1.25, 1e-9
 #: default levels of the one-off mesh adaptation: MESH_LEVELS interferences
 #: from MESH_RANGE x the largest one to the largest
 MESH_LEVELS, MESH_RANGE = 6, 0.01
@@ -80,6 +179,10 @@ MESH_LEVELS, MESH_RANGE = 6, 0.01
 #: geometric intersection radius at the largest interference (plastic
 #: pile-up may lift the surface beyond it); grown if reached.
 INELASTIC_CANDIDATE_FACTOR = 1.5
+#: what the solver does when a point ruptures
+ON_RUPTURE = ("continue", "stop", "raise")
+#: time integration of a rate-dependent material
+INTEGRATION = ("bdf2", "euler")
 
 
 @dataclass(frozen=True)
@@ -145,6 +248,35 @@ def elastic_part(material) -> LinearElastic:
     return LinearElastic(material.E, material.nu)
 
 
+def elastic_part(material) -> LinearElastic:
+    """The elastic constants of an inelastic material, for meshing."""
+    return LinearElastic(material.E, material.nu)
+
+
+class RuptureError(ConvergenceError):
+    """A material point ruptured (report 3.2.2: w -> 1) in a history solved
+    with ``on_rupture="raise"``.
+
+    Attributes as `ConvergenceError` (`step`, `interference` and `reached`
+    the interference of the rupture step, `cuts` 0) plus `time` [s] and
+    `position` (r or x, depth below the surface) [m] of the first ruptured
+    point and `count` (ruptured points).
+    """
+
+    def __init__(self, step: int, interference: float, time_: float, position, count: int):
+        self.step = step
+        self.interference = interference
+        self.reached = interference
+        self.cuts = 0
+        self.time = time_
+        self.position = tuple(position)
+        self.count = count
+        RuntimeError.__init__(
+            self, f"material ruptured at step {step} (time {time_:.6g} s, interference "
+                  f"{interference:.6g} m): {count} point(s), the first at r = {position[0]:.6g} m, "
+                  f"{position[1]:.6g} m below the surface")
+
+
 class _StepFailed(Exception):
     def __init__(self, message: str, iterations: int = 0):
         super().__init__(message)
@@ -168,8 +300,10 @@ class InelasticModel:
         self.shape = disc.weights.shape  # (ne, nq)
         self.W4 = (METRIC[:, None, None] * disc.weights[None]).ravel()
         self._absBT = abs(self.Bsp).T.tocsr()
+        self._BspT = self.Bsp.T.tocsr()
         self._pattern()
         self._set_zone(r_candidate)
+        self.factorizations = 0
 
     def _pattern(self):
         """Sparsity of the free-free tangent, built once (CSC), and the map of
@@ -188,7 +322,7 @@ class InelasticModel:
         keep = (rows >= 0) & (cols >= 0)
         key = cols[keep].astype(np.int64) * n + rows[keep]
         ukey, inverse = np.unique(key, return_inverse=True)
-        self._keep = keep
+        self._keep = np.flatnonzero(keep)
         self._slot = inverse
         self._nnz = len(ukey)
         self._indices = (ukey % n).astype(np.int32)
@@ -198,8 +332,10 @@ class InelasticModel:
         self._n = n
         # strain-displacement matrices per point (ne, nq, 4, 12) for batched matmul
         self._Bm = np.ascontiguousarray(np.transpose(disc.B, (2, 3, 0, 1)))
-        self._BtW = np.ascontiguousarray(np.swapaxes(
-            self._Bm * (METRIC[:, None] * disc.weights[:, :, None, None]), 2, 3))  # (ne, nq, 12, 4)
+        ne, nq = self.shape
+        BtW = np.swapaxes(self._Bm * (METRIC[:, None] * disc.weights[:, :, None, None]), 2, 3)
+        # (ne, 12, nq * 4): B^T W of all points of an element side by side
+        self._BtW = np.ascontiguousarray(BtW.transpose(0, 2, 1, 3).reshape(ne, -1, nq * 4))
 
     def _contact_slots(self):
         """Slots of the contact (facet) couplings of the zone's u_z dofs."""
@@ -248,24 +384,51 @@ class InelasticModel:
         """Residual (ndofs,) and the fields (with the point tangents ``D``)."""
         disc = self.disc
         strain = disc.strain(u)
-        stress, D, new = self.material.update(strain, state, dt, tangent=tangent)
-        f_int = self.Bsp.T @ (stress.ravel() * self.W4)
+        dtp = self.point_time_steps(strain, state, dt)
+        stress, D, new = self.material.update(strain, state, dtp, tangent=tangent)
+        if dtp is not dt and hasattr(new, "time"):
+            new.time = state.time + dt
+        f_int = self._BspT @ (stress.ravel() * self.W4)
         _, t, tn = self._contact(u, w)
         R = f_int
         R[self.zone.dofs] += self.zone.nodal(t)
         out = dict(strain=strain, stress=stress, state=new, traction=t, D=D, dtraction=tn)
         return R, out
 
+    def point_time_steps(self, strain, state, dt):
+        """The time step of each point: `dt` where the material may flow, 0
+        where its flow over the step is negligible, so that the material
+        update treats those points as elastic (a rate-dependent material
+        flows at every stressed point; the exponential flow law of
+        Bodner-Partom makes most of the body's flow vanishingly small).
+
+        Negligible: the inelastic strain the flow rule gives over dt at
+        ``FLOW_STRESS_MARGIN`` times the elastic trial stress (an upper
+        bound: the flow relaxes the stress and hardens) makes a Mises stress
+        below ``NEGLIGIBLE_FLOW`` times the largest trial stress.
+        """
+        mat = self.material
+        if not (np.ndim(dt) == 0 and dt > 0 and hasattr(mat, "rates")):
+            return dt
+        trial = np.tensordot(mat.tangent(), strain - state.inelastic_strain, axes=(1, 0))
+        probe = replace(state, stress=FLOW_STRESS_MARGIN * trial)
+        flow = equivalent_strain(mat.rates(probe)["inelastic_strain"]) * dt
+        q = von_mises(trial)
+        negligible = 3.0 * mat.G * flow <= NEGLIGIBLE_FLOW * float(np.max(q))
+        if not np.any(negligible):
+            return dt
+        return np.where(negligible, 0.0, dt)
+
     def jacobian(self, out) -> sp.csc_matrix:
         """Consistent tangent on the free dofs: material plus contact penalty."""
         D = np.asarray(out["D"])
-        if D.ndim == 2:
-            D = np.broadcast_to(D[:, :, None, None], (4, 4) + self.shape)
-        Dm = np.transpose(D, (2, 3, 0, 1))  # (ne, nq, 4, 4)
-        DB = np.matmul(Dm, self._Bm)  # (ne, nq, 4, 12)
         ne, nq = self.shape
-        Ke = np.matmul(self._BtW.transpose(0, 2, 1, 3).reshape(ne, -1, nq * 4),
-                       DB.reshape(ne, nq * 4, -1))  # (ne, 12, 12)
+        if D.ndim == 2:
+            DB = np.matmul(D[None, None], self._Bm)  # (ne, nq, 4, 12)
+        else:
+            Dm = np.transpose(D, (2, 3, 0, 1))  # (ne, nq, 4, 4)
+            DB = np.matmul(Dm, self._Bm)  # (ne, nq, 4, 12)
+        Ke = np.matmul(self._BtW, DB.reshape(ne, nq * 4, -1))  # (ne, 12, 12)
         data = np.bincount(self._slot, weights=Ke.ravel()[self._keep], minlength=self._nnz)
         zone = self.zone
         q = out["dtraction"] * zone.weights
@@ -281,12 +444,43 @@ class InelasticModel:
         K = K + sp.csr_matrix((Kc.data, (zd[Kc.row], zd[Kc.col])), shape=K.shape)
         return K[self.free][:, self.free].tocsc()
 
-    def solve_step(self, u0, w, state, dt):
-        """Newton from u0 for the step ending at interference w; returns (u, out, its)."""
+    def factorize(self, out):
+        """LU factors of the consistent tangent at `out`: SuperLU with a
+        symmetric ordering and diagonal pivots (the tangent is structurally
+        symmetric, nearly always symmetric positive definite), or, if that
+        fails, with the default partial pivoting.  Returns (lu, K, pivoted)."""
+        K = self.jacobian(out)
+        self.factorizations += 1
+        try:
+            with np.errstate(all="ignore"):
+                return spl.splu(K, permc_spec="MMD_AT_PLUS_A", diag_pivot_thresh=0.0,
+                                options=dict(SymmetricMode=True)), K, False
+        except RuntimeError:
+            return spl.splu(K), K, True
+
+    def newton_correction(self, out, Rf):
+        """The Newton correction d: K d = -R with the tangent at `out`."""
+        lu, K, pivoted = self.factorize(out)
+        with np.errstate(all="ignore"):
+            d = lu.solve(-Rf)
+        if not np.all(np.isfinite(d)) and not pivoted:
+            d = spl.splu(K).solve(-Rf)
+        return d
+
+    def solve_step(self, u0, w, state, dt, reference: float = 0.0):
+        """Newton from u0 for the step ending at interference w; returns (u, out, its).
+
+        Converged when ||R|| <= tolerance x the norm of the nodal contact
+        forces: those of the current iterate, or, if larger, up to twice
+        `reference` (the contact forces of the last accepted step), so that
+        an overshooting predictor (a node pushed deep into the stiff
+        penalty) does not inflate the scale; or at the round-off level of
+        the internal forces.
+        """
         free = self.free
         u = np.array(u0, float)
         R, out = self.evaluate(u, w, state, dt)
-        scale = None
+        top = 0.0
         for it in range(self.max_iterations + 1):
             Rf = R[free]
             rn = float(np.linalg.norm(Rf))
@@ -296,8 +490,8 @@ class InelasticModel:
             if conv is not None and not np.all(conv):
                 raise _StepFailed("local constitutive update did not converge", it)
             fc = float(np.linalg.norm(self.zone.nodal(out["traction"])))
-            if scale is None or fc > scale:
-                scale = fc
+            top = max(top, fc)
+            scale = max(fc, min(top, 2.0 * reference))
             # round-off of the internal forces (sum of |terms|)
             floor = 1e3 * np.finfo(float).eps * float(np.linalg.norm(
                 (self._absBT @ np.abs(out["stress"].ravel() * self.W4))[free]))
@@ -305,10 +499,9 @@ class InelasticModel:
                 return u, out, it
             if it == self.max_iterations:
                 break
-            Kff = self.jacobian(out)
             try:
-                d = spl.spsolve(Kff, -Rf)
-            except Exception as exc:  # singular
+                d = self.newton_correction(out, Rf)
+            except RuntimeError as exc:  # singular
                 raise _StepFailed(f"linear solve failed: {exc}", it) from None
             if not np.all(np.isfinite(d)):
                 raise _StepFailed("non-finite Newton correction", it)
@@ -327,6 +520,14 @@ class InelasticModel:
                           self.max_iterations)
 
     # --- outputs -------------------------------------------------------------
+    def point_position(self, index) -> tuple:
+        """(r or x, depth below the undeformed top surface) [m] of quadrature
+        point `index` (flat index over (ne, nq))."""
+        x = self.disc.x.reshape(2, -1)[:, index]
+        top = self.disc.top.coords
+        depth = float(np.interp(x[0], top[0], top[1]) - x[1])
+        return float(x[0]), max(depth, 0.0)
+
     def record(self, u, w, out) -> dict:
         zone = self.zone
         t = out["traction"]
@@ -340,6 +541,8 @@ class InelasticModel:
         c = 0.5 * (e11 + e22)
         rad = np.sqrt((0.5 * (e11 - e22)) ** 2 + e12**2)
         principal = np.max(np.stack((np.abs(c + rad), np.abs(c - rad), np.abs(e33))))
+        damage = getattr(state, "damage", None)
+        ruptured = getattr(state, "ruptured", None)
         return dict(
             interference=w,
             force=force,
@@ -349,8 +552,95 @@ class InelasticModel:
             max_inelastic_strain=float(equivalent_strain(state.inelastic_strain).max()),
             max_von_mises=float(von_mises(stress).max()),
             max_principal_strain=float(principal),
+            max_damage=0.0 if damage is None else float(np.max(damage)),
+            ruptured_points=0 if ruptured is None else int(np.count_nonzero(ruptured)),
             overflow=bool(np.any(t[-1] > 0)),
         )
+
+
+# --- time integration and its error ---------------------------------------------
+#: state fields integrated in time: combined into the start value of a BDF2 step
+INTEGRATED = ("inelastic_strain", "beta", "plastic_work", "hardness_iso", "kappa")
+
+
+def bdf2_coefficients(omega: float) -> tuple:
+    """Variable-step BDF2 with step ratio omega = h_n / h_n-1:
+
+        y_n+1 = a y_n - b y_n-1 + c h f(y_n+1),
+
+    i.e. a backward-Euler step of c h from y* = a y_n - b y_n-1, and its
+    local error constant k (error = k h^3 d3y/dt3).  omega = 1: (4/3, 1/3,
+    2/3, 2/9)."""
+    w = float(omega)
+    d = 1.0 + 2.0 * w
+    return (1.0 + w) ** 2 / d, w * w / d, (1.0 + w) / d, (1.0 + w) ** 2 / (6.0 * w * d)
+
+
+def bdf2_start(state, previous, a: float, b: float):
+    """The start value y* = a y_n - b y_n-1 of the integrated fields of a
+    material state (dataclass); the other fields, and all the fields of
+    ruptured points (their damage is frozen), are those of y_n."""
+    ruptured = getattr(state, "ruptured", None)
+    frozen = ruptured is not None and bool(np.any(ruptured))
+    kw = {}
+    for f in fields(state):
+        v = getattr(state, f.name)
+        if f.name in INTEGRATED:
+            combined = a * v - b * getattr(previous, f.name)
+            v = np.where(ruptured, v, combined) if frozen else combined
+        kw[f.name] = v
+    return type(state)(**kw)
+
+
+def _rates(material, start, new, dt: float) -> dict:
+    """End-of-step rates of the controlled variables: (new - start) / dt,
+    the rates of the flow rule at the new state for a backward-Euler step
+    of dt from `start`."""
+    out = {"inelastic_strain": (new.inelastic_strain - start.inelastic_strain) / dt}
+    if getattr(material, "damage", False) is True:
+        out["kappa"] = (new.kappa - start.kappa) / dt
+    return out
+
+
+def local_errors(order: int, h: float, h_prev: float, r_new: dict, r_n: dict,
+                 r_prev: dict | None) -> dict:
+    """Local truncation error estimates of the step, from the rates at its end
+    (r_new), at its start (r_n) and one step back (r_prev).
+
+    Backward Euler: (h^2 / 2) d2y/dt2 = h (r_new - r_n) / 2, the difference
+    between the backward-Euler and the trapezoidal increments.  BDF2:
+    k h^3 d3y/dt3 with d3y/dt3 the second divided difference of the rates."""
+    if order == 1:
+        return {k: 0.5 * h * (r_new[k] - r_n[k]) for k in r_new}
+    _, _, _, kc = bdf2_coefficients(h / h_prev)
+    return {k: kc * h**3 * 2.0 * ((r_new[k] - r_n[k]) / h - (r_n[k] - r_prev[k]) / h_prev)
+            / (h + h_prev) for k in r_new}
+
+
+def error_indicator(model, errors: dict, out) -> float:
+    """E of a step (module docstring): the nodal forces of the stress error
+    2 G e of the inelastic strain error e, relative to the contact forces
+    (the measure of the Newton residual), and the error of the damage
+    kappa relative to its rupture value; ruptured points left out."""
+    material = model.material
+    new = out["state"]
+    ruptured = getattr(new, "ruptured", None)
+    keep = None if ruptured is None or not np.any(ruptured) else ~np.asarray(ruptured)
+    e = errors["inelastic_strain"]
+    if keep is not None:
+        e = e * keep
+    fc = float(np.linalg.norm(model.zone.nodal(out["traction"])))
+    E = 0.0
+    if fc > 0:
+        fe = model._BspT @ ((2.0 * material.G) * e.ravel() * model.W4)
+        E = float(np.linalg.norm(fe[model.free])) / fc
+    if "kappa" in errors:
+        ek = np.abs(errors["kappa"])
+        if keep is not None:
+            ek = ek[keep]
+        if ek.size:
+            E = max(E, float(np.max(ek)) / material.kappa_rupture)
+    return E if np.isfinite(E) else math.inf
 
 
 def _zero_force_crossing(rows) -> float:
@@ -382,27 +672,37 @@ VARIABLES = {
     "max_equivalent_strain": ("1", "largest von Mises equivalent total strain at the quadrature points"),
     "max_inelastic_strain": ("1", "largest von Mises equivalent inelastic strain at the quadrature points"),
     "max_von_mises": ("Pa", "largest von Mises stress at the quadrature points"),
+    "max_damage": ("1", "largest damage w at the quadrature points (0 without damage)"),
+    "ruptured_points": ("1", "quadrature points ruptured so far (report 3.2.2: w -> 1)"),
     "elastic": ("1", f"no equivalent inelastic strain above {INELASTIC_THRESHOLD:g} anywhere"),
     "small_strain": ("1", f"largest principal strain magnitude below {SMALL_STRAIN_LIMIT:g} everywhere (report 7.3)"),
     "branch": ("1", "'loading' or 'unloading' segment of the history"),
     "newton_iterations": ("1", "Newton iterations of the step, including those of rejected tries"),
-    "step_cuts": ("1", "times the step was rejected and its time step halved"),
+    "step_cuts": ("1", "times the step was rejected and retried with a smaller time step"),
     "time_step": ("s", "time step of the accepted step"),
+    "integration_order": ("1", "time integration of the step: 1 backward Euler, 2 BDF2 (0: initial state)"),
+    "time_error": ("1", "estimated local time-integration error of the step: nodal forces of the "
+                        "stress error relative to the contact forces, or damage error relative "
+                        "to rupture (NaN: not estimated, rate-independent material)"),
     "dofs": ("1", "degrees of freedom (unknown displacement components)"),
     "wall_time": ("s", "wall time of the step, including its rejected tries"),
 }
+
 
 def solve_asperity_history(geometry, material, history: History, accuracy="standard",
                            initial_time_step: float | None = None,
                            max_time_step: float | None = None,
                            max_interference_step: float = 0.025,
-                           max_inelastic_step: float = 2e-3,
+                           max_inelastic_step: float = 0.05,
                            max_cuts: int = 20, max_steps: int = 100_000,
                            stop_at_zero_force: bool = True,
                            event_tolerance: float = 1e-3,
                            penalty_factor: float | None = None,
                            tolerance: float | None = None,
-                           mesh_levels=None) -> xr.Dataset:
+                           mesh_levels=None,
+                           time_tolerance: float | None = None,
+                           integration: str = "bdf2",
+                           on_rupture: str = "continue") -> xr.Dataset:
     """Incremental solution of an inelastic asperity along `history`.
 
     Parameters
@@ -412,15 +712,16 @@ def solve_asperity_history(geometry, material, history: History, accuracy="stand
     material
         an inelastic material with ``initial_state(shape)`` and
         ``update(strain, state, dt, tangent=True)`` (`J2Plasticity`,
-        `BodnerPartom`).
+        `BodnerPartom`); with ``rates(state)`` it is rate dependent (time
+        error control, BDF2).
     history
         `History`: the interference [m] as a piecewise linear function of
         time [s]; the body is stress free at its start (w <= 0: first
         touch at w = 0).
     accuracy
         preset name or dict (`presets.ACCURACY`); sets the mesh (adapted
-        once, to elastic solutions at ``mesh_levels``) and the Newton
-        tolerance and iteration limit.
+        once, to elastic solutions at ``mesh_levels``), the Newton
+        tolerance and iteration limit, and the default ``time_tolerance``.
     initial_time_step
         first time step [s] (default: the one giving an interference step
         of ``max_interference_step / 4`` of the largest interference).
@@ -431,7 +732,7 @@ def solve_asperity_history(geometry, material, history: History, accuracy="stand
         interference (larger steps are rejected and cut).
     max_inelastic_step
         accepted steps change the equivalent inelastic strain by at most
-        this anywhere (else rejected and cut).
+        this anywhere (else rejected and cut); a safety bound.
     max_cuts
         rejections allowed per step before `ConvergenceError`.
     max_steps
@@ -441,8 +742,9 @@ def solve_asperity_history(geometry, material, history: History, accuracy="stand
     penalty_factor
         c in kappa = c E' / h (default `contact.PENALTY_FACTOR`).
     tolerance
-        Newton: ||R|| <= tolerance ||f_contact|| (default: the preset's),
-        or the round-off level of the internal forces.
+        Newton: ||R|| <= tolerance ||f_contact|| (default: the preset's,
+        for a rate-dependent material at least ``NEWTON_FRACTION`` x
+        time_tolerance), or the round-off level of the internal forces.
     mesh_levels
         interferences [m] driving the one-off adaptive meshing (elastic
         solutions, `solve.adapted_model`); default ``MESH_LEVELS`` levels
@@ -453,15 +755,46 @@ def solve_asperity_history(geometry, material, history: History, accuracy="stand
         on unloading, stop once the force vanishes (falls below
         ``ZERO_FORCE`` x the largest force; the crossing is
         located to ``event_tolerance`` x largest interference either way).
+    time_tolerance
+        bound of the time-integration error indicator of a step of a
+        rate-dependent material (module docstring; default: the preset's
+        ``time_tolerance``, else ``TIME_TOLERANCE``); ``inf`` switches the
+        control off.
+    integration
+        ``"bdf2"`` (default) or ``"euler"`` (backward Euler throughout) for
+        a rate-dependent material.
+    on_rupture
+        ``"continue"`` (default), ``"stop"`` or ``"raise"`` (`RuptureError`)
+        when a material point ruptures (module docstring).
 
     Returns an `xarray.Dataset` on dim ``step`` (variables in `VARIABLES`,
     step 0 the initial untouched state) with attributes including
     ``residual_interference`` (NaN if the force never returned to zero),
-    ``steps``, ``total_step_cuts`` and ``total_wall_time``.
+    ``steps``, ``total_step_cuts``, ``total_factorizations``,
+    ``time_tolerance``, ``max_time_error``, ``time_error_rejections``,
+    ``ruptured`` (0/1) and, after a rupture, ``rupture_step``,
+    ``rupture_time``, ``rupture_interference``, ``rupture_position`` (r or
+    x of the first ruptured point) and ``rupture_depth`` (below the
+    surface); ``completed`` (0 if the run stopped before the end of the
+    history, other than at the zero force) with ``stop_reason``, and
+    ``total_wall_time``.
+
+    Raises `ConvergenceError` naming the step and the interference when a
+    step fails ``max_cuts`` times.
     """
     t_start = time.perf_counter()
     preset = resolve(accuracy)
     factor = PENALTY_FACTOR if penalty_factor is None else float(penalty_factor)
+    rate_dependent = hasattr(material, "rates")
+    if time_tolerance is None:
+        time_tolerance = preset.get("time_tolerance", TIME_TOLERANCE)
+    time_tolerance = float(time_tolerance)
+    if not time_tolerance > 0:
+        raise ValueError("time_tolerance must be positive (inf: no control)")
+    if on_rupture not in ON_RUPTURE:
+        raise ValueError(f"on_rupture must be one of {ON_RUPTURE}, got {on_rupture!r}")
+    if integration not in INTEGRATION:
+        raise ValueError(f"integration must be one of {INTEGRATION}, got {integration!r}")
     knots_w = np.asarray(history.interferences, float)
     w_max = float(knots_w.max())
     if not w_max > 0:
@@ -478,6 +811,8 @@ def solve_asperity_history(geometry, material, history: History, accuracy="stand
                               factor)
     rg = float(geometry.intersection_radius(np.array([w_max]))[0])
     r_cand = max(INELASTIC_CANDIDATE_FACTOR * rg, emodel.r_candidate)
+    if tolerance is None and rate_dependent and math.isfinite(time_tolerance):
+        tolerance = max(preset["tolerance"], NEWTON_FRACTION * time_tolerance)
     model = InelasticModel(emodel.disc, geometry, material, preset, r_cand, factor, tolerance)
     t_mesh = time.perf_counter() - t_start
 
@@ -490,6 +825,7 @@ def solve_asperity_history(geometry, material, history: History, accuracy="stand
     dt_cap = math.inf if max_time_step is None else float(max_time_step)
     if not dt > 0:
         raise ValueError("initial_time_step must be positive")
+    interior_knots = np.asarray(history.times, float)[1:-1]
 
     t = float(history.times[0])
     w = float(history(t))
@@ -497,7 +833,11 @@ def solve_asperity_history(geometry, material, history: History, accuracy="stand
     u = np.zeros(model.disc.ndofs)
     u_prev, t_prev = None, None
     rows = []
-    eps_n = np.zeros(model.shape)
+    # rates of the controlled variables at the end of the last two steps (the
+    # body starts at rest), the state one step back and that step's length
+    r_n = {k: np.zeros_like(v) for k, v in _rates(material, state, state, 1.0).items()}
+    r_prev, state_prev, h_prev = None, None, math.nan
+    f_ref = 0.0  # contact force norm of the last accepted step
 
     def append(rec, **extra):
         rec.update(extra)
@@ -506,16 +846,24 @@ def solve_asperity_history(geometry, material, history: History, accuracy="stand
     # initial state (assumed stress free, w <= 0 or first touch)
     _, out0 = model.evaluate(u, w, state, 0.0, tangent=False)
     append(model.record(u, w, out0), time=t, branch=history.branch(t), newton_iterations=0,
-           step_cuts=0, time_step=0.0, wall_time=0.0)
+           step_cuts=0, time_step=0.0, integration_order=0, time_error=0.0, wall_time=0.0)
     residual = math.nan
     f_max = 0.0
     n = 0
+    error_rejections = 0
+    rupture = None
+    stop_reason = ""
     while t < t_end * (1 - 1e-12) and n < max_steps:
         n += 1
         step_start = time.perf_counter()
         cuts = 0
         iterations = 0
         branch = history.branch(t)
+        # BDF2 from the second step on, restarted with backward Euler after a
+        # knot of the history (where the loading rate jumps)
+        at_knot = bool(np.any(np.abs(interior_knots - t) <= 1e-12 * t_end))
+        order = 2 if (integration == "bdf2" and rate_dependent and state_prev is not None
+                      and not at_knot) else 1
         while True:
             dt_try = min(dt, dt_cap)
             knot = history.next_knot(t)
@@ -525,6 +873,7 @@ def solve_asperity_history(geometry, material, history: History, accuracy="stand
             h = t_new - t
             w_new = float(history(t_new))
             reason = None
+            shrink = 0.5
             if abs(w_new - w) > dw_max * (1 + 1e-9):
                 reason = "interference step too large"
             else:
@@ -532,12 +881,32 @@ def solve_asperity_history(geometry, material, history: History, accuracy="stand
                 u0 = u.copy()
                 if u_prev is not None and rows[-1]["branch"] == branch and t - t_prev > 0:
                     u0 += (h / (t - t_prev)) * (u - u_prev)
+                if order == 2:
+                    a, b, c, _ = bdf2_coefficients(h / h_prev)
+                    start, h_m = bdf2_start(state, state_prev, a, b), c * h
+                else:
+                    start, h_m = state, h
                 try:
-                    u_new, out, its = model.solve_step(u0, w_new, state, h)
+                    u_new, out, its = model.solve_step(u0, w_new, start, h_m, f_ref)
                     iterations += its
-                    eps_new = equivalent_strain(out["state"].inelastic_strain - state.inelastic_strain)
-                    if float(np.max(eps_new)) > max_inelastic_step:
+                    new = out["state"]
+                    if order == 2 and hasattr(new, "time"):
+                        new.time = state.time + h
+                    eps_step = float(np.max(equivalent_strain(
+                        new.inelastic_strain - state.inelastic_strain)))
+                    r_new = _rates(material, start, new, h_m)
+                    if rate_dependent:
+                        err = error_indicator(
+                            model, local_errors(order, h, h_prev, r_new, r_n, r_prev), out)
+                    else:
+                        err = math.nan
+                    if eps_step > max_inelastic_step:
                         reason = "inelastic strain step too large"
+                    elif err > REJECT * time_tolerance:
+                        reason = f"time error {err:.3g} above the tolerance {time_tolerance:g}"
+                        shrink = max(MIN_FACTOR,
+                                     SAFETY * (time_tolerance / err) ** (1.0 / (order + 1)))
+                        error_rejections += 1
                 except _StepFailed as exc:
                     iterations += exc.iterations
                     reason = str(exc)
@@ -549,34 +918,64 @@ def solve_asperity_history(geometry, material, history: History, accuracy="stand
                     continue  # same step on the larger zone (not a cut)
                 f_zero = ZERO_FORCE * f_max
                 if (branch == "unloading" and rec["force"] <= f_zero
-                        and rows[-1]["force"] > f_zero and math.isnan(residual) and abs(w_new - w) > event_tolerance * w_max):
+                        and rows[-1]["force"] > f_zero and math.isnan(residual)
+                        and abs(w_new - w) > event_tolerance * w_max):
                     dt = 0.5 * h  # locate the zero force crossing: not a cut
                     continue
                 break
             cuts += 1
             if cuts > max_cuts:
-                raise ConvergenceError(n, w_new, w, cuts - 1, reason)
-            dt = 0.5 * h
+                detail = reason
+                if rupture is not None:
+                    detail += (f" ({rows[-1]['ruptured_points']} points ruptured since step "
+                               f"{rupture['step']})")
+                raise ConvergenceError(n, w_new, w, cuts - 1, detail)
+            dt = shrink * h
         # accept
         u_prev, t_prev = u, t
-        u, t, w, state = u_new, t_new, w_new, out["state"]
+        state_prev, h_prev = state, h
+        r_prev, r_n = r_n, r_new
+        u, t, w, state = u_new, t_new, w_new, new
+        f_ref = float(np.linalg.norm(model.zone.nodal(out["traction"])))
         append(rec, time=t, branch=branch, newton_iterations=iterations, step_cuts=cuts,
-               time_step=h, wall_time=time.perf_counter() - step_start)
-        # next time step
-        if iterations <= FAST and cuts == 0:
-            dt = GROWTH * h
-        elif iterations >= SLOW:
-            dt = SHRINK * h
+               time_step=h, integration_order=order, time_error=err,
+               wall_time=time.perf_counter() - step_start)
+        # next time step: the error controller, limited by Newton and the caps
+        if math.isnan(err) or err <= 0:
+            fac = MAX_GROWTH
         else:
-            dt = h
+            fac = min(MAX_GROWTH, max(MIN_FACTOR,
+                                      SAFETY * (time_tolerance / err) ** (1.0 / (order + 1))))
+        if cuts:
+            fac = min(fac, 1.0)
+        if iterations >= SLOW:
+            fac = min(fac, SHRINK)
+        elif iterations > FAST:
+            fac = min(fac, 1.0)
+        dt = fac * h
         v = history.velocity(t)
         if v > 0:
             dt = min(dt, dw_max / v)
-        eps_step = float(np.max(eps_new))
         if eps_step > 0:
             dt = min(dt, h * max(0.5, 0.8 * max_inelastic_step / eps_step))
         f_zero = ZERO_FORCE * f_max
         f_max = max(f_max, rec["force"])
+        if rec["ruptured_points"] and rupture is None:
+            rt = getattr(state, "rupture_time", None)
+            mask = np.asarray(state.ruptured).ravel()
+            first = (int(np.argmin(np.where(mask, np.asarray(rt).ravel(), np.inf)))
+                     if rt is not None else int(np.argmax(mask)))
+            pos = model.point_position(first)
+            t_r = float(np.asarray(rt).ravel()[first]) if rt is not None else t
+            rupture = dict(step=n, time=t_r if math.isfinite(t_r) else t, interference=w,
+                           position=pos[0], depth=pos[1])
+            if on_rupture == "raise":
+                raise RuptureError(n, w, rupture["time"], pos, rec["ruptured_points"])
+            if on_rupture == "stop":
+                stop_reason = (f"material ruptured at step {n} (interference {w:.6g} m): "
+                               f"{rec['ruptured_points']} point(s), the first at "
+                               f"r = {pos[0]:.6g} m, {pos[1]:.6g} m below the surface")
+                break
         if branch == "unloading" and rec["force"] <= f_zero and rows[-2]["force"] > f_zero \
                 and math.isnan(residual):
             residual = _zero_force_crossing(rows)  # the first crossing only
@@ -585,6 +984,9 @@ def solve_asperity_history(geometry, material, history: History, accuracy="stand
 
     total = time.perf_counter() - t_start
     k = len(rows)
+    done = bool(t >= t_end * (1 - 1e-12) or not math.isnan(residual))
+    if not done and not stop_reason:
+        stop_reason = f"max_steps ({max_steps}) reached at time {t:.6g} s"
     rec = {}
     for name in VARIABLES:
         if name == "dofs":
@@ -595,21 +997,38 @@ def solve_asperity_history(geometry, material, history: History, accuracy="stand
             rec[name] = np.array([r["max_principal_strain"] < SMALL_STRAIN_LIMIT for r in rows])
         else:
             rec[name] = np.array([r[name] for r in rows])
-    ds = _dataset(
-        rec, geometry, material, accuracy, preset, "penalty", factor,
-        "fixed, adapted once to the elastic solution at the largest interference",
-        variables=VARIABLES, step_name="time step index", methods=False,
-        extra_attrs=dict(
+    errors = rec["time_error"][1:]
+    extra = dict(
         history_times=np.asarray(history.times, float),
         history_interferences=knots_w,
         steps=k - 1,
         total_step_cuts=int(sum(r["step_cuts"] for r in rows)),
+        total_factorizations=int(model.factorizations),
         residual_interference=float(residual),
         residual_interference_method="linear extrapolation to zero of the force of the last two "
                                      "unloading steps with force > 0, within the crossing step "
                                      "(located to event_tolerance)",
-        completed=int(t >= t_end * (1 - 1e-12) or not math.isnan(residual)),
+        integration=(integration if rate_dependent
+                     else "backward Euler (rate-independent material)"),
+        time_tolerance=time_tolerance,
+        max_time_error=float(np.nanmax(errors)) if np.any(np.isfinite(errors)) else math.nan,
+        time_error_rejections=int(error_rejections),
+        time_error_method="local truncation error of backward Euler (against the trapezoidal "
+                          "rule) or BDF2 from the flow rates at the step ends (report 3.36): "
+                          "nodal forces of the stress error over the contact forces; damage "
+                          "kappa error over its rupture value",
+        ruptured=int(rupture is not None),
+        on_rupture=on_rupture,
+        completed=int(done),
+        stop_reason=stop_reason,
         mesh_wall_time=t_mesh,
         total_wall_time=total,
-    ))
-    return ds
+    )
+    if rupture is not None:
+        extra.update(rupture_step=rupture["step"], rupture_time=rupture["time"],
+                     rupture_interference=rupture["interference"],
+                     rupture_position=rupture["position"], rupture_depth=rupture["depth"])
+    return _dataset(
+        rec, geometry, material, accuracy, preset, "penalty", factor,
+        "fixed, adapted once to the elastic solution at the largest interference",
+        variables=VARIABLES, step_name="time step index", methods=False, extra_attrs=extra)

@@ -50,6 +50,16 @@ max_iterations, max_cuts
 exact_tolerance
     exact contact option: penetration / interference and relative force
     change between Uzawa updates to stop.
+time_tolerance
+    inelastic histories (`inelastic.solve_asperity_history`) of a
+    rate-dependent material: bound of the time-integration error indicator
+    of a step (nodal forces of the local error over the contact forces;
+    local: the stiff flow relaxes most of it, the error of the results is
+    far smaller).  Measured on a SAE 1020 cosine hill loaded to 8 %
+    inelastic strain and unloaded (benchmarks/run.py): the force at the top
+    is within 0.3 % (draft, 0.1, 212 steps) and 0.05 % (standard, 0.6, 131
+    steps) of runs at tolerances 0.001 and 0.01, the residual interference
+    within 0.05 %; fine is not measured.
 """
 
 from __future__ import annotations
@@ -74,6 +84,7 @@ ACCURACY: dict[str, dict] = {
         max_iterations=40,
         max_cuts=8,
         exact_tolerance=1e-7,
+        time_tolerance=0.1,
     ),
     "standard": dict(
         domain_factor=300.0,
@@ -88,6 +99,7 @@ ACCURACY: dict[str, dict] = {
         max_iterations=40,
         max_cuts=8,
         exact_tolerance=1e-9,
+        time_tolerance=0.6,
     ),
     "fine": dict(
         domain_factor=1000.0,
@@ -102,6 +114,7 @@ ACCURACY: dict[str, dict] = {
         max_iterations=40,
         max_cuts=8,
         exact_tolerance=1e-11,
+        time_tolerance=0.2,
     ),
 }
 
