@@ -29,10 +29,44 @@ from . import units
 
 Config = Mapping[str, Any]
 
-#: Bodner-Partom constants by kind: scaled by the pressure unit, by its inverse, or not at all
-BP_STRESSES = ("Z0", "Z1", "Z2", "Z3")
-BP_COMPLIANCES = ("m1", "m2")
-BP_PLAIN = ("D0", "n", "A1", "A2", "r1", "r2")
+#: constant -> (dataclass field, kind, unit in the file, long name)
+#: kind: "pressure" (scene pressure unit), "compliance" (1 / pressure unit),
+#: "plain" (SI as given: 1/s or dimensionless)
+CONSTANTS = {
+    "E": ("E", "pressure", "Pa", "Young's modulus E"),
+    "nu": ("nu", "plain", "1", "Poisson's ratio nu"),
+    "D0": ("D0", "plain", "s-1", "limiting shear strain rate D0"),
+    "n": ("n", "plain", "1", "rate sensitivity exponent n"),
+    "Z0": ("Z0", "pressure", "Pa", "initial hardness Z0 (3.13)"),
+    "Z1": ("Z1", "pressure", "Pa", "saturation hardness Z1 (3.13)"),
+    "Z2": ("Z2", "pressure", "Pa", "minimum (recovered) hardness Z2 (3.13)"),
+    "Z3": ("Z3", "pressure", "Pa", "directional saturation hardness Z3 (3.14)"),
+    "m1": ("m1", "compliance", "Pa-1", "isotropic hardening rate m1 (3.13)"),
+    "m2": ("m2", "compliance", "Pa-1", "directional hardening rate m2 (3.14)"),
+    "A1": ("A1", "plain", "s-1", "isotropic recovery coefficient A1 (3.13)"),
+    "A2": ("A2", "plain", "s-1", "directional recovery coefficient A2 (3.14)"),
+    "r1": ("r1", "plain", "1", "isotropic recovery exponent r1 (3.13)"),
+    "r2": ("r2", "plain", "1", "directional recovery exponent r2 (3.14)"),
+}
+DAMAGE_CONSTANTS = {
+    "H": ("damage_H", "pressure", "Pa", "damage stress H_hat (rescaled 3.15)"),
+    "nu": ("damage_nu", "plain", "1", "damage exponent nu (3.15)"),
+    "p": ("damage_p", "plain", "1", "damage exponent p (3.15)"),
+    "A": ("damage_A", "plain", "1", "weight A of the largest tensile principal stress (3.15)"),
+    "B": ("damage_B", "plain", "1", "weight B of the Mises stress (3.15)"),
+    "C": ("damage_C", "plain", "1", "weight C of the tensile first invariant (3.15)"),
+    "rate": ("damage_rate", "plain", "s-1", "damage rate p_hat / p (rescaled 3.15)"),
+    "omega_rupture": ("omega_rupture", "plain", "1", "damage w at which rupture is declared"),
+    "rupture_strain_rate": ("rupture_strain_rate", "plain", "s-1",
+                            "inelastic strain rate at which rupture (creep runaway) is declared"),
+}
+
+
+def unit_scale(kind: str, pressure: float) -> float:
+    """SI factor of a constant of `kind` given the scene's pressure unit [Pa]."""
+    return {"pressure": pressure, "compliance": 1.0 / pressure, "plain": 1.0}[kind]
+
+
 BP_MECHANISMS = ("isotropic_hardening", "recovery", "directional_hardening")
 #: the report's named sets (`BodnerPartom` class methods)
 BP_PRESETS = ("b1900_hf_871C", "aluminum_6061_t4", "aluminum_6061_t6", "sae_1020")
@@ -51,19 +85,12 @@ def material_si(material: Config, units_cfg: Config) -> dict[str, Any]:
     if "hardening_modulus" in material:
         out["hardening_modulus"] = material["hardening_modulus"] * p
     bp = material.get("bodner_partom")
-    if bp is not None:
-        conv: dict[str, Any] = {}
-        for key, value in bp.items():
-            if key in BP_STRESSES:
-                conv[key] = value * p
-            elif key in BP_COMPLIANCES:
-                conv[key] = value / p
-            else:
-                conv[key] = value
-        out["bodner_partom"] = conv
+    if bp is not None:  # preset and mechanisms pass as they are
+        out["bodner_partom"] = {k: v * unit_scale(CONSTANTS[k][1], p) if k in CONSTANTS else v
+                                for k, v in bp.items()}
     dmg = material.get("damage")
     if dmg is not None:
-        out["damage"] = {k: (v * p if k == "H" else v) for k, v in dmg.items()}
+        out["damage"] = {k: v * unit_scale(DAMAGE_CONSTANTS[k][1], p) for k, v in dmg.items()}
     return out
 
 

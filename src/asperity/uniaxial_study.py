@@ -59,6 +59,7 @@ from scipy.integrate import solve_ivp
 
 from . import units as _units
 from .fe.bodner_partom import BodnerPartom
+from .materials import CONSTANTS, DAMAGE_CONSTANTS, unit_scale
 from .uniaxial import run_uniaxial, uniaxial_flow_stress
 
 __all__ = [
@@ -84,37 +85,6 @@ PRESETS = {
 #: mechanisms a scene switches on by name (flags of `BodnerPartom`)
 EFFECTS = ("isotropic_hardening", "recovery", "directional_hardening", "damage")
 
-#: constant -> (dataclass field, kind, unit in the file, long name)
-#: kind: "pressure" (scene pressure unit), "compliance" (1 / pressure unit),
-#: "plain" (SI as given: 1/s or dimensionless)
-CONSTANTS = {
-    "E": ("E", "pressure", "Pa", "Young's modulus E"),
-    "nu": ("nu", "plain", "1", "Poisson's ratio nu"),
-    "D0": ("D0", "plain", "s-1", "limiting shear strain rate D0"),
-    "n": ("n", "plain", "1", "rate sensitivity exponent n"),
-    "Z0": ("Z0", "pressure", "Pa", "initial hardness Z0 (3.13)"),
-    "Z1": ("Z1", "pressure", "Pa", "saturation hardness Z1 (3.13)"),
-    "Z2": ("Z2", "pressure", "Pa", "minimum (recovered) hardness Z2 (3.13)"),
-    "Z3": ("Z3", "pressure", "Pa", "directional saturation hardness Z3 (3.14)"),
-    "m1": ("m1", "compliance", "Pa-1", "isotropic hardening rate m1 (3.13)"),
-    "m2": ("m2", "compliance", "Pa-1", "directional hardening rate m2 (3.14)"),
-    "A1": ("A1", "plain", "s-1", "isotropic recovery coefficient A1 (3.13)"),
-    "A2": ("A2", "plain", "s-1", "directional recovery coefficient A2 (3.14)"),
-    "r1": ("r1", "plain", "1", "isotropic recovery exponent r1 (3.13)"),
-    "r2": ("r2", "plain", "1", "directional recovery exponent r2 (3.14)"),
-}
-DAMAGE_CONSTANTS = {
-    "H": ("damage_H", "pressure", "Pa", "damage stress H_hat (rescaled 3.15)"),
-    "nu": ("damage_nu", "plain", "1", "damage exponent nu (3.15)"),
-    "p": ("damage_p", "plain", "1", "damage exponent p (3.15)"),
-    "A": ("damage_A", "plain", "1", "weight A of the largest tensile principal stress (3.15)"),
-    "B": ("damage_B", "plain", "1", "weight B of the Mises stress (3.15)"),
-    "C": ("damage_C", "plain", "1", "weight C of the tensile first invariant (3.15)"),
-    "rate": ("damage_rate", "plain", "s-1", "damage rate p_hat / p (rescaled 3.15)"),
-    "omega_rupture": ("omega_rupture", "plain", "1", "damage w at which rupture is declared"),
-    "rupture_strain_rate": ("rupture_strain_rate", "plain", "s-1",
-                            "inelastic strain rate at which rupture (creep runaway) is declared"),
-}
 
 #: per-step variables of `run_uniaxial` written to the scene's file
 STEP_VARS = ("time", "strain", "stress", "hardness", "hardness_isotropic",
@@ -129,10 +99,6 @@ PLOTS = {
     "time-damage": ("time", "damage"),
     "time-hardness": ("time", "hardness"),
 }
-
-
-def _scale(kind: str, pressure: float) -> float:
-    return {"pressure": pressure, "compliance": 1.0 / pressure, "plain": 1.0}[kind]
 
 
 def _pressure(units: dict | None) -> float:
@@ -163,7 +129,7 @@ def material_from_test(test: dict, units: dict | None = None) -> BodnerPartom:
             raise ValueError(f"test {name}: unknown constant {key!r}; "
                              f"known: {', '.join(CONSTANTS)}")
         field, kind, _, _ = CONSTANTS[key]
-        kw[field] = float(value) * _scale(kind, p)
+        kw[field] = float(value) * unit_scale(kind, p)
     for key, value in (test.get("damage") or {}).items():
         if key == "softening":
             kw["damage_softening"] = str(value)
@@ -172,7 +138,7 @@ def material_from_test(test: dict, units: dict | None = None) -> BodnerPartom:
             raise ValueError(f"test {name}: unknown damage constant {key!r}; "
                              f"known: {', '.join(DAMAGE_CONSTANTS)}, softening")
         field, kind, _, _ = DAMAGE_CONSTANTS[key]
-        kw[field] = float(value) * _scale(kind, p)
+        kw[field] = float(value) * unit_scale(kind, p)
     kw.update({m: (m in effects) for m in EFFECTS})
     base = PRESETS[preset]()
     try:
