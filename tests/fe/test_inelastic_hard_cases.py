@@ -21,22 +21,14 @@ from asperity.fe.bodner_partom import BodnerPartom
 from asperity.fe.inelastic import History, RuptureError, solve_asperity_history
 from asperity.fe.j2 import J2Plasticity
 
+from .test_inelastic import _loading, _unloading
+
 #: report 8.2: SAE 1020 cosine hill, w/h = 13.4, tip curvature 0.042 1/um
 SAE_HILL = CosineHill.from_tip(0.042e6, 2 * math.pi**2 / (13.4**2 * 0.042e6))
 V = 0.25e-6  # m/s (report 8.2.2)
 W = 0.02e-6  # m
 RESULTS = ("time", "interference", "force", "contact_radius", "max_equivalent_strain",
            "max_inelastic_strain", "max_von_mises", "time_step")
-
-
-def _loading(ds):
-    k = int(np.argmax(ds.interference.values))
-    return ds.isel(step=slice(0, k + 1))
-
-
-def _unloading(ds):
-    k = int(np.argmax(ds.interference.values))
-    return ds.isel(step=slice(k, None))
 
 
 def _finite(ds):
