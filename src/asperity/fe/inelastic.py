@@ -147,7 +147,7 @@ import scipy.sparse.linalg as spl
 import xarray as xr
 
 from .contact import PENALTY_FACTOR, C1Penalty, ContactZone, contact_edge
-from .errors import ContactZoneError, ConvergenceError
+from .errors import ContactZoneError, ConvergenceError, StepFailed, check_iterate
 from .material import METRIC, LinearElastic, equivalent_strain, von_mises
 from .presets import resolve
 from .solve import _check_levels, _dataset, adapted_model
@@ -275,12 +275,6 @@ class RuptureError(ConvergenceError):
             self, f"material ruptured at step {step} (time {time_:.6g} s, interference "
                   f"{interference:.6g} m): {count} point(s), the first at r = {position[0]:.6g} m, "
                   f"{position[1]:.6g} m below the surface")
-
-
-class _StepFailed(Exception):
-    def __init__(self, message: str, iterations: int = 0):
-        super().__init__(message)
-        self.iterations = iterations
 
 
 class InelasticModel:
@@ -483,12 +477,7 @@ class InelasticModel:
         top = 0.0
         for it in range(self.max_iterations + 1):
             Rf = R[free]
-            rn = float(np.linalg.norm(Rf))
-            if not np.isfinite(rn):
-                raise _StepFailed("non-finite residual", it)
-            conv = getattr(out["state"], "converged", None)
-            if conv is not None and not np.all(conv):
-                raise _StepFailed("local constitutive update did not converge", it)
+            rn = check_iterate(Rf, out["state"], it)
             fc = float(np.linalg.norm(self.zone.nodal(out["traction"])))
             top = max(top, fc)
             scale = max(fc, min(top, 2.0 * reference))
@@ -502,9 +491,9 @@ class InelasticModel:
             try:
                 d = self.newton_correction(out, Rf)
             except RuntimeError as exc:  # singular
-                raise _StepFailed(f"linear solve failed: {exc}", it) from None
+                raise StepFailed(f"linear solve failed: {exc}", it) from None
             if not np.all(np.isfinite(d)):
-                raise _StepFailed("non-finite Newton correction", it)
+                raise StepFailed("non-finite Newton correction", it)
             # backtracking on the residual norm (a few halvings at most)
             alpha = 1.0
             for _ in range(6):
@@ -516,7 +505,7 @@ class InelasticModel:
                     break
                 alpha *= 0.5
             u, R, out = trial, R1, out1
-        raise _StepFailed(f"no convergence in {self.max_iterations} iterations",
+        raise StepFailed(f"no convergence in {self.max_iterations} iterations",
                           self.max_iterations)
 
     # --- outputs -------------------------------------------------------------
@@ -907,7 +896,7 @@ def solve_asperity_history(geometry, material, history: History, accuracy="stand
                         shrink = max(MIN_FACTOR,
                                      SAFETY * (time_tolerance / err) ** (1.0 / (order + 1)))
                         error_rejections += 1
-                except _StepFailed as exc:
+                except StepFailed as exc:
                     iterations += exc.iterations
                     reason = str(exc)
             if reason is None:

@@ -105,7 +105,7 @@ import xarray as xr
 from skfem import Basis, ElementTetP2, ElementVector, FacetBasis, MeshTet, MeshTet2
 
 from .contact import SMOOTHING, C1Penalty
-from .errors import ContactZoneError, ConvergenceError
+from .errors import ContactZoneError, ConvergenceError, StepFailed, check_iterate
 from .material import METRIC6, equivalent_strain, von_mises
 from .sliding import FrictionLaw, ShearResistance, contact_tangent, drag_anchor
 
@@ -683,12 +683,6 @@ class Interface:
     pressure: np.ndarray
 
 
-class _StepFailed(Exception):
-    def __init__(self, message, iterations=0):
-        super().__init__(message)
-        self.iterations = iterations
-
-
 class SlidingModel:
     """Residual, tangent and Newton of the 3-D asperity against the moving flat.
 
@@ -809,12 +803,7 @@ class SlidingModel:
         scale = 0.0
         for it in range(self.max_iterations + 1):
             Rf = R[free]
-            rn = float(np.linalg.norm(Rf))
-            if not np.isfinite(rn):
-                raise _StepFailed("non-finite residual", it)
-            conv = getattr(out["state"], "converged", None)
-            if conv is not None and not np.all(conv):
-                raise _StepFailed("local constitutive update did not converge", it)
+            rn = check_iterate(Rf, out["state"], it)
             fc = out["contact"]["fc"]
             scale = max(scale, float(np.sqrt(np.sum(fc**2))))
             floor = 1e3 * np.finfo(float).eps * float(np.linalg.norm(
@@ -832,10 +821,10 @@ class SlidingModel:
                 d = self.linear.solve(K, -Rf)
             except Exception as exc:                          # singular factorization
                 self.linear.reset()
-                raise _StepFailed(f"linear solve failed: {exc}", it) from None
+                raise StepFailed(f"linear solve failed: {exc}", it) from None
             if not np.all(np.isfinite(d)):
                 self.linear.reset()
-                raise _StepFailed("non-finite Newton correction", it)
+                raise StepFailed("non-finite Newton correction", it)
             alpha = 1.0
             for _ in range(self.line_search):
                 trial = u.copy()
@@ -846,7 +835,7 @@ class SlidingModel:
                     break
                 alpha *= 0.5
             u, R, out = trial, R1, out1
-        raise _StepFailed(f"no convergence in {self.max_iterations} iterations", self.max_iterations)
+        raise StepFailed(f"no convergence in {self.max_iterations} iterations", self.max_iterations)
 
     def release_separated(self, u, out, w, delta, state, iface: "Interface", dt,
                           max_rounds: int = 10):
@@ -1068,7 +1057,7 @@ def solve_sliding(geometry, material, motion: FlatMotion, friction: FrictionLaw,
                     out["state"].inelastic_strain - state.inelastic_strain)))
                 if step_inel > max_inel:
                     reason = f"inelastic strain step {step_inel:.3g} > {max_inel:g}"
-            except _StepFailed as exc:
+            except StepFailed as exc:
                 iterations += exc.iterations
                 reason = str(exc)
             if reason is None:
