@@ -75,9 +75,8 @@ def test_fe_failure_names_sample_and_step(monkeypatch):
         raise fe.ConvergenceError(step=7, interference=3e-7, reached=1e-7, cuts=8)
 
     monkeypatch.setattr(fe, "solve_asperity", fail)
-    plan = make_plan([0.0], [1e5], interference_grid(1e-6, 20), model="fe", job_inputs={},
-                     shift_invariant=True, analytic=False)
-    key = str(plan["key"].values[0])
-    with pytest.raises(RuntimeError, match=rf"sample {key} \(curvature 100000 1/m\).*step 7"):
-        models.solve_sample(plan, key, {"model": "fe", "geometry": "sphere"},
-                            {"youngs_modulus": 2e11, "poisson": 0.3}, "draft")
+    spec = models.job_spec({"model": "fe", "geometry": "sphere"},
+                           {"youngs_modulus": 2e11, "poisson": 0.3}, [], "draft",
+                           curvature=1e5, grid=interference_grid(1e-6, 20))
+    with pytest.raises(models.SampleFailed, match=r"sample abc \(curvature 100000 1/m\).*step 7"):
+        models.solve_job(spec, "abc")

@@ -1,5 +1,6 @@
 """Stages as functions of data: scene configuration in, SI datasets out."""
 
+import json
 import numpy as np
 import pytest
 
@@ -28,14 +29,13 @@ def test_plan_and_per_sample_response_agree_with_gathered():
     assert plan.sizes["sample"] == 12
     asperities = stages.asperities_dataset(plan, {"model": "hertz"}, mat, UNITS)
     key = str(plan["key"].values[5])
-    one = stages.sample_dataset(plan, key, {"model": "hertz"}, mat, UNITS, "standard")
+    one = stages.sample_dataset(json.loads(str(plan["spec"].values[5])), key)
     k = one.attrs["curvature"]
     np.testing.assert_allclose(one["force"].values,
                                asperities["force"].sel(curvature=k).isel(height=0).values, rtol=1e-14)
     direct = hertz.hertz_response(plan["interference"].values, k, 209e9, 0.3)["force"]
     np.testing.assert_allclose(one["force"].values, direct, rtol=1e-14)
-    with pytest.raises(ValueError, match="not in the plan"):
-        stages.sample_dataset(plan, "nokey", {"model": "hertz"}, mat, UNITS, "standard")
+    assert one.attrs["key"] == key
 
 
 def test_synthetic_map_statistics():
@@ -57,3 +57,50 @@ def test_map_peak_density_matches_nayak():
     # isotropic: 3 m22 = m40 = m04 (2.3.1), within the sampling spread of one map
     assert float(ds["m40"]) == pytest.approx(float(ds["m04"]), rel=0.10)
     assert 3 * float(ds["m22"]) == pytest.approx(float(ds["m40"]), rel=0.10)
+
+
+FE_SPHERE = {"model": "fe", "geometry": "sphere", "scaling": "none"}
+STEEL_E = {"youngs_modulus": 209000.0, "poisson": 0.3}
+
+
+def _fe_plan(population=None, material=STEEL_E, accuracy="draft"):
+    surface = stages.surface_from_statistics(STEEL, UNITS)
+    population = population or {"samples": {"height": 3, "curvature": 4, "interference": 20}}
+    return stages.plan_dataset(surface, population, FE_SPHERE, material, [], UNITS, accuracy)
+
+
+def test_keys_hash_what_the_job_depends_on_only():
+    """Two scenes that need the same asperity share its job (issue 6): more height
+    samples or another homogenization leave the FE jobs' keys alone; a material
+    constant or the preset changes every key."""
+    plan = _fe_plan()
+    keys = set(plan["key"].values)
+    assert len(keys) == 4  # one job per curvature, heights derived by a shift
+    more_heights = _fe_plan({"samples": {"height": 7, "curvature": 4, "interference": 20}})
+    assert set(more_heights["key"].values) == keys
+    assert set(_fe_plan(material={**STEEL_E, "youngs_modulus": 200000.0})["key"].values).isdisjoint(keys)
+    assert set(_fe_plan(accuracy="standard")["key"].values).isdisjoint(keys)
+    spec = json.loads(str(plan["spec"].values[0]))
+    assert "height" not in spec and spec["material"]["youngs_modulus"] == 209e9
+    from asperity.plan import sample_key
+    assert sample_key(spec) == str(plan["key"].values[0])
+
+
+def test_a_failed_sample_is_recorded_and_the_gather_names_it(monkeypatch):
+    """A job that fails leaves a record naming sample and step; the gather refuses
+    to homogenize over the hole and names it."""
+    from asperity import fe, models
+
+    plan = _fe_plan()
+    keys = [str(k) for k in np.unique(plan["key"].values)]
+    specs = {str(k): json.loads(str(s)) for k, s in zip(plan["key"].values, plan["spec"].values)}
+
+    def fail(*args, **kwargs):
+        raise fe.ConvergenceError(step=3, interference=1e-7, reached=5e-8, cuts=8)
+
+    monkeypatch.setattr(fe, "solve_asperity", fail)
+    record = stages.sample_or_failure(specs[keys[0]], keys[0])
+    assert record.attrs["status"] == "failed" and "step 3" in record.attrs["error"]
+    assert keys[0] in record.attrs["error"]
+    with pytest.raises(ValueError, match=rf"4 of 4 samples missing.*{keys[0]}.*step 3"):
+        models.gather(plan, {keys[0]: record})

@@ -83,9 +83,12 @@ def main(argv: list[str] | None = None) -> int:
     if not files:
         parser.error(f"{path}: no .nc files")
     print("\n\n".join(describe(f) for f in files))
-    samples = sorted(path.glob("samples/*.nc")) if path.is_dir() else []
-    if samples:
-        print(f"\n{len(samples)} sample files in {path / 'samples'}")
+    plan = path / "plan.nc"
+    if path.is_dir() and plan.exists():  # the scene's FE jobs, in the folder shared by all scenes
+        ds = read_dataset(plan)
+        keys = set(ds["key"].values[ds["job"].values.astype(bool)])
+        done = [k for k in keys if (path.parent / "samples" / f"{k}.nc").exists()]
+        print(f"\n{len(done)} of {len(keys)} sample files of this scene in {path.parent / 'samples'}")
     return 0
 
 

@@ -31,6 +31,7 @@ tangent, and flags the latter as ``extrapolated``.
 
 from __future__ import annotations
 
+import json
 import math
 import time
 from typing import Any, Mapping
@@ -185,31 +186,76 @@ def _history(level: float, top: float, velocity: float | None):
     return fe.History.load_unload(w_max, v)
 
 
-def solve_sample(plan: xr.Dataset, key: str, asperity: Config, material_si: Config,
-                 accuracy: str, effects=(), velocity: float | None = None) -> xr.Dataset:
-    """The FE response of sample `key` of the plan (one job).
+class SampleFailed(RuntimeError):
+    """A sample's FE job failed (Newton even with step cutting, the contact zone,
+    rupture); the message names the sample (key, curvature) and the step."""
 
-    Elastic bodies: `solve_asperity` at ``levels`` geometric interferences.
-    Inelastic bodies (effect ``plasticity``): `solve_asperity_history`,
-    loading at `velocity` [m/s] (8.2.2) to the sample's unloading level and
-    unloading to zero force, or loading only to the largest interference
-    of the job.  Raises RuntimeError naming the sample (key, curvature) and
-    the step when Newton fails even with step cutting.
+
+def job_spec(asperity: Config, material_si: Config, effects, accuracy: str, *,
+             curvature: float, height: float | None = None, level: float = math.nan,
+             grid: np.ndarray, family: np.ndarray | None = None,
+             width_to_height: float | None = None, velocity: float | None = None) -> dict:
+    """Exactly what the FE job of one sample depends on, as plain JSON-able values.
+
+    The key of a sample is the hash of this dict (`asperity.plan.sample_key`),
+    so two scenes (or two presets' runs) that need the same asperity share
+    its job and its file ``results/samples/<key>.nc``.  Holds the
+    geometry (kind, mapping, resolved width-to-height ratio, the job's tip
+    curvature; the peak height only for the coupled hill, whose shape
+    depends on it), the interference range the job computes (from the
+    plan's `grid`, stretched over the self-similar `family`), the body
+    (material in SI, effects, preset), and per kind of job: the level count
+    and contact model of an elastic job, the loading rate and unloading level
+    of an inelastic one.  Nothing else of the scene enters: a change of the
+    population grid that leaves the range alone keeps the key.
+    """
+    geometry = fe_geometry(asperity, curvature, width_to_height, height)
+    first, top = job_range(geometry, asperity, grid, curvature, family)
+    spec = {
+        "model": "fe",
+        "geometry": asperity["geometry"],
+        "curvature": float(curvature),
+        "range": [first, top],
+        "material": dict(material_si),
+        "effects": sorted(effects),
+        "accuracy": accuracy,
+    }
+    if asperity["geometry"] == "cosine":
+        spec["mapping"] = asperity.get("mapping", "representative")
+        spec["width_to_height"] = asperity.get("width_to_height", width_to_height)
+    if is_coupled(asperity):
+        spec["height"] = float(height)
+    if "plasticity" in set(effects):
+        if not materials.rate_independent(material_si, effects):
+            spec["velocity"] = velocity  # a J2 body answers the same at any rate
+        if not math.isnan(level):
+            spec["unloading_level"] = float(level)
+    else:
+        if not math.isnan(level):
+            raise ValueError("unloading an elastic asperity retraces its loading curve; "
+                             "add the effect `plasticity`")
+        spec["levels"] = int(asperity.get("levels", 40))
+        spec["contact"] = asperity.get("contact", "penalty")
+    return spec
+
+
+def solve_job(spec: Config, key: str) -> xr.Dataset:
+    """The FE response of the sample job `spec` (`job_spec`), with its `key`.
+
+    Elastic bodies: `solve_asperity` at ``levels`` geometric interferences
+    over the job's range.  Inelastic bodies (effect ``plasticity``):
+    `solve_asperity_history`, loading at ``velocity`` [m/s] (8.2.2) to the
+    ``unloading_level`` and unloading to zero force, or loading only to the
+    top of the range.  Raises `SampleFailed` naming the sample (key,
+    curvature) and the step when Newton fails even with step cutting.
     """
     from asperity import fe
 
-    match = np.flatnonzero(plan["key"].values == key)
-    if match.size == 0:
-        raise ValueError(f"sample {key}: not in the plan")
-    row = plan.isel(sample=int(match[0]))
-    curvature = float(row["job_curvature"])
-    geometry = fe_geometry(asperity, curvature, plan.attrs.get("width_to_height"),
-                           float(row["sample_height"]))
-    grid = plan["interference"].values
-    family = plan["curvature"].values if "reference_curvature" in plan.attrs else None
-    first, top = job_range(geometry, asperity, grid, curvature, family)
-    material = materials.build(material_si, effects)
-    level = float(row["unloading_level"])
+    curvature = float(spec["curvature"])
+    geometry = fe_geometry(spec, curvature, spec.get("width_to_height"), spec.get("height"))
+    first, top = spec["range"]
+    material = materials.build(spec["material"], spec["effects"])
+    level = float(spec.get("unloading_level", math.nan))
     cpu = time.process_time()
     try:
         if hasattr(material, "update"):
@@ -217,25 +263,30 @@ def solve_sample(plan: xr.Dataset, key: str, asperity: Config, material_si: Conf
             # so that their loading branches coincide (the corners of the blend, 8.3)
             # the first step presses 1e-4 of the range (first touch, where most asperities
             # of an interface are, is resolved; steps grow geometrically from there)
-            history = _history(level, top, velocity)
-            ds = fe.solve_asperity_history(geometry, material, history, accuracy=accuracy,
+            history = _history(level, top, spec.get("velocity"))
+            ds = fe.solve_asperity_history(geometry, material, history, accuracy=spec["accuracy"],
                                            mesh_levels=np.geomspace(0.01 * top, top, 6),
                                            initial_time_step=FIRST_STEP * top / history.velocity(0.0))
         else:
-            if not math.isnan(level):
-                raise ValueError(f"sample {key}: unloading an elastic asperity retraces its "
-                                 "loading curve; add the effect `plasticity`")
-            levels = fe_levels(first, top, asperity.get("levels", 40))
-            ds = fe.solve_asperity(geometry, material, levels, accuracy=accuracy,
-                                   contact=asperity.get("contact", "penalty"))
+            levels = fe_levels(first, top, spec["levels"])
+            ds = fe.solve_asperity(geometry, material, levels, accuracy=spec["accuracy"],
+                                   contact=spec["contact"])
     except (fe.ConvergenceError, fe.ContactZoneError) as err:
-        raise RuntimeError(f"sample {key} (curvature {curvature:.6g} 1/m"
+        raise SampleFailed(f"sample {key} (curvature {curvature:.6g} 1/m"
                            + ("" if math.isnan(level) else f", unloading from {level:.6g} m")
                            + f"): {err}") from err
     ds.attrs.update(key=key, model="fe", curvature=curvature, geometry=repr(geometry),
-                    height=float(row["sample_height"]), unloading_level=level,
+                    height=float(spec.get("height", math.nan)), unloading_level=level,
                     cpu_time=time.process_time() - cpu)
     return ds
+
+
+def solve_sample(plan: xr.Dataset, key: str) -> xr.Dataset:
+    """The FE response of sample `key` of the plan: `solve_job` of its stored spec."""
+    match = np.flatnonzero(plan["key"].values == key)
+    if match.size == 0:
+        raise ValueError(f"sample {key}: not in the plan")
+    return solve_job(json.loads(str(plan["spec"].values[int(match[0])])), key)
 
 
 def _loglog(levels: np.ndarray, values: np.ndarray, targets: np.ndarray,
@@ -364,9 +415,15 @@ def gather(plan: xr.Dataset, samples: Mapping[str, xr.Dataset]) -> xr.Dataset:
     of report 8.3 (`asperity.unloading.family_table`).
     """
     by_key = {str(ds.attrs["key"]): ds for ds in samples.values()}
-    missing = sorted(set(plan["key"].values) - set(by_key))
-    if missing:
-        raise ValueError(f"{len(missing)} samples missing from the gather: {', '.join(missing)}")
+    needed = set(plan["key"].values)
+    missing = sorted(needed - set(by_key))
+    failed = sorted(k for k in needed & set(by_key) if by_key[k].attrs.get("status") == "failed")
+    if missing or failed:
+        raise ValueError(
+            f"{len(missing) + len(failed)} of {len(needed)} samples missing from the gather; "
+            "not homogenizing over a hole: "
+            + "; ".join([f"{k}: no result" for k in missing]
+                        + [f"{by_key[k].attrs.get('error', k)}" for k in failed]))
     heights, curvatures = plan["height"].values, plan["curvature"].values
     grid = plan["interference"].values
     ph, pk = plan["sample_height"].values, plan["sample_curvature"].values

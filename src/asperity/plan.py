@@ -19,22 +19,26 @@ from typing import Any, Callable, Mapping
 import numpy as np
 import xarray as xr
 
-def sample_key(payload: Mapping[str, Any]) -> str:
-    """A 12-hex-digit hash of a job's inputs (canonical JSON, floats exact)."""
+def spec_json(spec: Mapping[str, Any]) -> str:
+    """A job spec as canonical JSON (sorted keys; floats round-trip exactly)."""
 
     def plain(obj):
         if isinstance(obj, Mapping):
-            return {str(k): plain(v) for k, v in sorted(obj.items())}
+            return {str(k): plain(v) for k, v in obj.items()}
         if isinstance(obj, (list, tuple, np.ndarray)):
             return [plain(v) for v in obj]
-        if isinstance(obj, (float, np.floating)):
-            return float(obj).hex()
+        if isinstance(obj, np.floating):
+            return float(obj)
         if isinstance(obj, np.integer):
             return int(obj)
         return obj
 
-    text = json.dumps(plain(payload), sort_keys=True, separators=(",", ":"))
-    return hashlib.sha256(text.encode()).hexdigest()[:12]
+    return json.dumps(plain(spec), sort_keys=True, separators=(",", ":"))
+
+
+def sample_key(payload: Mapping[str, Any]) -> str:
+    """A 12-hex-digit hash of a job's inputs (their canonical JSON: floats exact)."""
+    return hashlib.sha256(spec_json(payload).encode()).hexdigest()[:12]
 
 
 def interference_grid(largest: float, count: int, smallest_fraction: float = 1e-5) -> np.ndarray:
@@ -75,6 +79,7 @@ def make_plan(
     analytic: bool,
     unloading_levels: Callable[[float, float], np.ndarray] | None = None,
     reference_curvature: float | None = None,
+    job_spec: Callable[[float, float, float], Mapping[str, Any]] | None = None,
 ) -> xr.Dataset:
     """The samples of a scene on the grid heights x curvatures (x unloading levels).
 
@@ -92,6 +97,11 @@ def make_plan(
     unloading level computes the asperity of the reference curvature and
     every sample is derived from it by scaling (``scale`` = lambda).  The
     ``unloading_level`` of a sample is then that of its job.
+    `job_spec(height, job curvature, unloading level)`: exactly what the
+    sample's job depends on (`asperity.models.job_spec`), stored as JSON in
+    ``spec``; the key is its hash.  Without it the spec is `job_inputs`
+    with the model, the interference grid, the job curvature, the height
+    (unless shift invariant) and the unloading level.
     """
     heights = np.asarray(heights, float)
     curvatures = np.asarray(curvatures, float)
@@ -108,14 +118,14 @@ def make_plan(
         counts = np.array([p.size for p in per])
         hh, kk, jk = (np.repeat(a, counts) for a in (hh, kk, jk))
         ll = np.concatenate(per)
-    base = {"model": model, "interference": np.asarray(interferences, float), **job_inputs}
-    keys = np.array(
-        [
-            sample_key({**base, "curvature": k, **({} if shift_invariant else {"height": h}),
-                        **({} if np.isnan(lv) else {"unloading_level": lv})})
-            for h, k, lv in zip(hh, jk, ll)
-        ]
-    )
+    if job_spec is None:
+        base = {"model": model, "interference": np.asarray(interferences, float), **job_inputs}
+
+        def job_spec(h, k, lv):
+            return {**base, "curvature": k, **({} if shift_invariant else {"height": h}),
+                    **({} if np.isnan(lv) else {"unloading_level": lv})}
+    specs = [spec_json(job_spec(h, k, lv)) for h, k, lv in zip(hh, jk, ll)]
+    keys = np.array([hashlib.sha256(text.encode()).hexdigest()[:12] for text in specs])
     _, first = np.unique(keys, return_index=True)
     representative = np.zeros(keys.size, bool)
     representative[first] = True
@@ -138,6 +148,8 @@ def make_plan(
             "job_curvature": ("sample", jk, {"units": "1/m", "long_name": "tip curvature of the asperity the sample's job computes"}),
             "scale": ("sample", jk / kk, {"units": "1", "long_name": "length scale of the sample over its job's asperity (1: computed as is)"}),
             "key": ("sample", keys, {"units": "1", "long_name": "hash of the inputs of the sample's job"}),
+            "spec": ("sample", np.array(specs, dtype=object), {
+                "units": "1", "long_name": "what the sample's job depends on (JSON; its hash is the key)"}),
             "derived_from": (
                 "sample",
                 derived_from,

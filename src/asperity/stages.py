@@ -270,20 +270,13 @@ def plan_dataset(
     grid = interference_grid(z1 - z0, counts.get("interference", 241))
     model = asperity["model"]
     analytic = models.is_analytic(asperity)
-    job_inputs = {
-        "material": material_si(material, units_cfg) if material else {},
-        "effects": sorted(effects),
-        "accuracy": "exact" if analytic else accuracy,
-        "asperity": dict(asperity),
-    }
-    if "velocity" in asperity:
-        job_inputs["velocity"] = velocity_si(asperity, units_cfg)
+    mat = material_si(material, units_cfg) if material else {}
+    velocity = velocity_si(asperity, units_cfg) if "velocity" in asperity else None
     width_to_height = None
     if asperity.get("geometry") == "cosine" and "width_to_height" not in asperity:
         width_to_height = models.representative_width_to_height(_population_stat(surface_ds, "sigma_slope"))
-        job_inputs["width_to_height"] = width_to_height
     shift_invariant = models.is_shift_invariant(asperity)
-    scaled = models.self_similar(asperity, job_inputs["material"], effects) and curvatures.size > 1
+    scaled = models.self_similar(asperity, mat, effects) and curvatures.size > 1
     reference = None
     if scaled:
         given = asperity.get("reference_curvature")
@@ -308,10 +301,20 @@ def plan_dataset(
 
         def check_of(h, k):
             return family(h, k)[1]
-    plan = make_plan(heights, curvatures, grid, model=model, job_inputs=job_inputs,
+    family_of = curvatures if scaled else None
+
+    def job_spec(h, k, level):
+        if analytic:  # no job: the key names the closed form's inputs
+            return {"model": model, "material": mat, "curvature": k, "interference": grid}
+        return models.job_spec(asperity, mat, effects, accuracy, curvature=k, height=h,
+                               level=level, grid=grid, family=family_of,
+                               width_to_height=width_to_height, velocity=velocity)
+
+    plan = make_plan(heights, curvatures, grid, model=model, job_inputs={},
                      shift_invariant=shift_invariant, analytic=analytic,
-                     unloading_levels=levels_of, reference_curvature=reference)
-    if scaled and not materials.rate_independent(job_inputs["material"], effects):
+                     unloading_levels=levels_of, reference_curvature=reference,
+                     job_spec=job_spec)
+    if scaled and not materials.rate_independent(mat, effects):
         plan.attrs["scaling_assumption"] = (
             "self-similar scaling of a rate-dependent body (asperity.scaling: self_similar): "
             "rate effects of the scaled strain rates ignored, as the report does in 8.2.2")
@@ -537,24 +540,17 @@ def verification_dataset(
     return ds
 
 
-def sample_dataset(
-    plan: xr.Dataset, key: str, asperity: Config, material: Config, units_cfg: Config, accuracy: str,
-    effects=(),
-) -> xr.Dataset:
-    """The response of one sample of the plan (DESIGN.md: samples/<key>.nc)."""
-    match = np.flatnonzero(plan["key"].values == key)
-    if match.size == 0:
-        raise ValueError(f"sample {key}: not in the plan")
-    row = plan.isel(sample=int(match[0]))
-    model = asperity["model"]
+def sample_dataset(spec: Config, key: str) -> xr.Dataset:
+    """The response of one sample job (DESIGN.md: samples/<key>.nc) from its spec
+    (`asperity.models.job_spec`, stored in the plan): everything it depends on."""
+    model = spec["model"]
     if model == "fe":
-        return models.solve_sample(plan, key, asperity, material_si(material, units_cfg), accuracy,
-                                   effects, velocity_si(asperity, units_cfg))
+        return models.solve_job(spec, key)
     if model != "hertz":
         raise ValueError(f"sample {key}: asperity.model {model!r} has no per-sample model")
-    mat = material_si(material, units_cfg)
-    w = plan["interference"].values
-    res = hertz.hertz_response(w, float(row["sample_curvature"]), mat["youngs_modulus"], mat["poisson"])
+    mat = spec["material"]
+    w = np.asarray(spec["interference"], float)
+    res = hertz.hertz_response(w, float(spec["curvature"]), mat["youngs_modulus"], mat["poisson"])
     step = np.arange(w.size)
     ds = xr.Dataset(
         {
@@ -565,8 +561,22 @@ def sample_dataset(
         },
         coords={"step": ("step", step, _attrs("1", "load step"))},
     )
-    ds.attrs.update(key=key, model=model, height=float(row["sample_height"]),
-                    curvature=float(row["sample_curvature"]))
+    ds.attrs.update(key=key, model=model, curvature=float(spec["curvature"]))
+    return ds
+
+
+def sample_or_failure(spec: Config, key: str) -> xr.Dataset:
+    """`sample_dataset`, or, when the job fails (`models.SampleFailed`), a record of
+    the failure (attrs ``status`` "failed" and ``error`` naming sample and step):
+    the other samples go on, and the gather refuses to homogenize over the hole
+    and names it (`models.gather`)."""
+    try:
+        ds = sample_dataset(spec, key)
+    except models.SampleFailed as err:
+        log.error("%s", err)
+        return xr.Dataset(attrs={"key": key, "status": "failed", "error": str(err),
+                                 "curvature": float(spec.get("curvature", np.nan))})
+    ds.attrs["status"] = "ok"
     return ds
 
 

@@ -16,10 +16,14 @@ J2 = {**ELASTIC, "model": "j2", "yield_stress": 320e6}
 
 def responses(material, effects, curvatures, reference, accuracy):
     grid = interference_grid(4e-6, 121)
-    plan = make_plan([0.0], curvatures, grid, model="fe", job_inputs={"material": material},
-                     shift_invariant=True, analytic=False, reference_curvature=reference)
+    family = np.asarray(curvatures) if reference is not None else None
+    plan = make_plan([0.0], curvatures, grid, model="fe", job_inputs={},
+                     shift_invariant=True, analytic=False, reference_curvature=reference,
+                     job_spec=lambda h, k, level: models.job_spec(
+                         ASPERITY, material, effects, accuracy, curvature=k, grid=grid,
+                         family=family))
     keys = [str(k) for k in np.unique(plan["key"].values)]
-    samples = {k: models.solve_sample(plan, k, ASPERITY, material, accuracy, effects) for k in keys}
+    samples = {k: models.solve_sample(plan, k) for k in keys}
     return models.gather(plan, samples), len(keys)
 
 

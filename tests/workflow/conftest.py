@@ -3,25 +3,13 @@
 from __future__ import annotations
 
 import re
-import shutil
 import subprocess
-import sys
 from pathlib import Path
 
 import pytest
 
-REPO = Path(__file__).resolve().parents[2]
-SNAKEMAKE = Path(sys.executable).with_name("snakemake")
-
-
-def copy_workflow(dest: Path) -> Path:
-    """Snakefile, config/ and workflow/ copied to `dest` (results go there too)."""
-    shutil.copy(REPO / "Snakefile", dest / "Snakefile")
-    shutil.copytree(REPO / "config", dest / "config")
-    shutil.copytree(REPO / "workflow", dest / "workflow")
-    if (REPO / "data").exists():
-        shutil.copytree(REPO / "data", dest / "data")
-    return dest
+# one copy helper for the tests and benchmarks/scenes.py
+from benchmarks.workflow_copy import REPO, SNAKEMAKE, copy_workflow  # noqa: F401
 
 
 def snakemake(workdir: Path, *args: str, check: bool = True) -> subprocess.CompletedProcess:

@@ -81,8 +81,18 @@ def _load_scenes():
     return {name: _canonical(scene) for name, scene in definitions.items()}
 
 
+PRESETS = ("draft", "standard", "fine")
+
+
 class _Scenes(dict):
+    """Scene name -> definition.  ``<scene>@<preset>`` is the scene run at another
+    accuracy preset, in its own results folder (the accuracy study of the scenes);
+    its samples share keys, hence files, with runs of the same preset."""
+
     def __missing__(self, name):
+        base, _, preset = name.partition("@")
+        if preset in PRESETS and base in self:
+            return self[base]
         raise WorkflowError(
             f"scene {name!r} is not among the scenes of config/config.yaml (nor compared with "
             f"by one); add it to `scenes:` or run with --config 'scenes=[{name}]'"
@@ -94,6 +104,12 @@ SCENES = _Scenes(_load_scenes())
 
 def scene(wildcards):
     return SCENES[wildcards.scene]
+
+
+def accuracy_of(wildcards):
+    """The preset of a scene run: ``<scene>@<preset>``'s own, else config `accuracy`."""
+    base, _, preset = wildcards.scene.partition("@")
+    return preset or config["accuracy"]
 
 
 def scene_part(part, default=None):

@@ -16,39 +16,60 @@ checkpoint plan:
         material=scene_part("material", {}),
         effects=scene_part("effects", []),
         units=scene_part("units"),
-        accuracy=config["accuracy"],
+        accuracy=accuracy_of,
     log:
         f"{RESULTS}/{{scene}}/logs/plan.log",
     script:
         "../scripts/plan.py"
 
 
+wildcard_constraints:
+    key="[0-9a-f]{12}",
+
+
+SAMPLE_SPECS = {}  # key -> the JSON spec of its job, from the plans read so far
+
+
+def _register_specs(plan):
+    for key, spec in zip(plan["key"].values, plan["spec"].values):
+        SAMPLE_SPECS.setdefault(str(key), str(spec))
+
+
 def sample_files(wildcards):
-    """The per-sample job outputs the plan asks for (none for analytic asperities)."""
+    """The per-sample job outputs the plan asks for (none for analytic asperities).
+    Samples live in one folder for all scenes: a key is the hash of what its job
+    depends on, so scenes (and presets) that need the same asperity share it."""
     from asperity.plan import job_keys
     from asperity.io.netcdf import read_dataset
 
-    plan_file = checkpoints.plan.get(scene=wildcards.scene).output[0]
-    keys = job_keys(read_dataset(plan_file))
-    return [f"{RESULTS}/{wildcards.scene}/samples/{key}.nc" for key in keys]
+    plan = read_dataset(checkpoints.plan.get(scene=wildcards.scene).output[0])
+    _register_specs(plan)
+    return [f"{RESULTS}/samples/{key}.nc" for key in job_keys(plan)]
+
+
+def sample_spec(wildcards):
+    """The spec of sample `key`: from the plans already read, else from every plan on disk
+    (a job run on its own, e.g. by a cluster executor)."""
+    from asperity.io.netcdf import read_dataset
+
+    if wildcards.key not in SAMPLE_SPECS:
+        for plan_file in sorted(Path(RESULTS).glob("*/plan.nc")):
+            _register_specs(read_dataset(plan_file))
+    if wildcards.key not in SAMPLE_SPECS:
+        raise WorkflowError(f"sample {wildcards.key}: in no plan under {RESULTS}/*/plan.nc; "
+                            "samples are made for a scene (build its plan first)")
+    return SAMPLE_SPECS[wildcards.key]
 
 
 rule sample:
-    """One asperity sample: its response to the plan's interference levels."""
-    input:
-        plan=f"{RESULTS}/{{scene}}/plan.nc",
+    """One asperity sample: its response over the interference range of its spec."""
     output:
-        f"{RESULTS}/{{scene}}/samples/{{key}}.nc",
+        f"{RESULTS}/samples/{{key}}.nc",
     params:
-        scene=lambda w: w.scene,
         key=lambda w: w.key,
-        asperity=scene_part("asperity", {}),
-        material=scene_part("material", {}),
-        effects=scene_part("effects", []),
-        units=scene_part("units"),
-        accuracy=config["accuracy"],
+        spec=sample_spec,
     log:
-        f"{RESULTS}/{{scene}}/logs/samples/{{key}}.log",
+        f"{RESULTS}/samples/logs/{{key}}.log",
     script:
         "../scripts/sample.py"
 

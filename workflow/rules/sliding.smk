@@ -12,7 +12,7 @@ rule sliding:
         report=scene_part("report"),
         units=scene_part("units"),
         sliding=scene_part("sliding"),
-        accuracy=config["accuracy"],
+        accuracy=accuracy_of,
     log:
         f"{RESULTS}/{{scene}}/logs/sliding.log",
     script:

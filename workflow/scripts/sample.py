@@ -1,13 +1,14 @@
-"""samples/<key>.nc: the response of one asperity sample."""
+"""samples/<key>.nc: the response of one asperity sample (or the record of its failure)."""
+
+import json
 
 from asperity import stages
-from asperity.io.netcdf import read_dataset, write_dataset
+from asperity.io.netcdf import write_dataset
 from asperity.joblog import job_log
 
 with job_log(snakemake.log[0], f"sample {snakemake.params.key}"):
     p = snakemake.params
-    ds = stages.sample_dataset(read_dataset(snakemake.input.plan), p.key, p.asperity,
-                               p.material, p.units, p.accuracy, p.effects)
-    write_dataset(ds, snakemake.output[0], scene=p.scene, title=f"asperity sample {p.key}",
-                  config={"asperity": p.asperity, "material": p.material, "effects": p.effects,
-                          "units": p.units, "accuracy": p.accuracy})
+    spec = json.loads(p.spec)
+    ds = stages.sample_or_failure(spec, p.key)
+    write_dataset(ds, snakemake.output[0], scene="shared by every scene whose plan holds the key",
+                  title=f"asperity sample {p.key}", config={"spec": spec})
