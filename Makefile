@@ -8,7 +8,7 @@ CORES ?= 2
 export OPENBLAS_NUM_THREADS = 1
 export OMP_NUM_THREADS = 1
 
-.PHONY: all reproduce test test-fast bench figures clean-results
+.PHONY: all reproduce test test-fast bench time-scenes figures clean-results
 
 all: reproduce
 
@@ -34,6 +34,15 @@ test-fast: $(STAMP)
 # Speed measurements; writes benchmarks/out/results.json and prints a table.
 bench: $(STAMP)
 	$(BIN)/python benchmarks/run.py
+
+# Wall time of each scene from an empty copy, then of the whole default run
+# (the README's scene times); writes benchmarks/results/scenes-$(ACCURACY).json.
+# A subset: make time-scenes ACCURACY=draft SCENES="profile_cosine hertz" FULL=
+ACCURACY ?= standard
+SCENES ?=
+FULL ?= --full
+time-scenes: $(STAMP)
+	$(BIN)/python benchmarks/scenes.py --accuracy $(ACCURACY) --cores $(CORES) $(if $(SCENES),--scenes $(SCENES)) $(FULL)
 
 # The figures shown in the README, copied from a full run.
 README_FIGURES := profile_quasirandom/figures/surface.png expectation_unit/figures/expectation.png \
