@@ -16,6 +16,7 @@ def folder(tmp_path):
         coords={"separation": ("separation", np.array([0.0, 1e-6, 2e-6]),
                                {"units": "m", "long_name": "separation"})},
     )
+    ds.attrs.update(fe_jobs=5, fe_cpu_time=12.5, accuracy="draft")
     write_dataset(ds, tmp_path / "interface.nc", scene="s", title="homogenized interface")
     return tmp_path
 
@@ -25,6 +26,7 @@ def test_show_folder_lists_variables_with_headline_numbers(folder, capsys):
     out = capsys.readouterr().out
     assert "interface.nc  [separation=3]  homogenized interface" in out
     assert "nominal_pressure" in out and "1 .. 3 Pa" in out
+    assert "fe_jobs = 5, fe_cpu_time = 12.5" in out  # the numeric attributes: FE cost, errors
 
 
 def test_show_var_prints_a_table(folder, capsys):

@@ -39,6 +39,10 @@ def describe(path: Path) -> str:
     ds = read_dataset(path)
     dims = ", ".join(f"{k}={v}" for k, v in ds.sizes.items()) or "scalars"
     lines = [f"{path}  [{dims}]  {ds.attrs.get('title', '')}"]
+    numbers = {k: v for k, v in ds.attrs.items()
+               if isinstance(v, (int, float, np.number)) and not isinstance(v, bool)}
+    if numbers:  # the file's headline numbers (FE cost, errors against closed forms, ...)
+        lines.append("  " + ", ".join(f"{k} = {float(v):.6g}" for k, v in numbers.items()))
     for name, var in ds.data_vars.items():
         shape = f"({', '.join(var.dims)})" if var.dims else ""
         lines.append(f"  {name:<32s}{shape:<34s}{_headline(var)}")
