@@ -1,0 +1,1 @@
+"""Speed and wall-time measurements (not collected by pytest)."""
