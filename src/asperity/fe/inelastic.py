@@ -903,7 +903,8 @@ def solve_asperity_history(geometry, material, history: History, accuracy="stand
                 rec = model.record(u_new, w_new, out)
                 if rec["overflow"]:
                     if not model.grow_zone():
-                        raise ContactZoneError("the contact reached the outer edge of the top surface")
+                        raise ContactZoneError("the contact reached the outer edge of the top surface "
+                                               f"at step {n} (interference {w_new:.6g} m)")
                     continue  # same step on the larger zone (not a cut)
                 f_zero = ZERO_FORCE * f_max
                 if (branch == "unloading" and rec["force"] <= f_zero

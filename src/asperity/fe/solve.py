@@ -119,7 +119,10 @@ class Model:
             if self.zone.nfacets >= self.disc.top.nfacets - 1:
                 break
             self._set_zone(1.5 * self.r_candidate)
-        raise ContactZoneError("the contact reached the outer edge of the top surface")
+        bad = int(np.flatnonzero(ev["overflow"])[0])
+        step = bad if steps is None else int(np.asarray(steps)[bad])
+        raise ContactZoneError(f"the contact reached the outer edge of the top surface at step {step} "
+                               f"(interference {levels[bad]:.6g} m)")
 
     # --- fields at the quadrature points --------------------------------------
     def evaluate(self, states, estimate: bool = False) -> dict:

@@ -11,6 +11,7 @@ never leaves a file that looks finished.
 from __future__ import annotations
 
 import datetime as _dt
+import glob
 import os
 import tempfile
 from pathlib import Path
@@ -97,10 +98,18 @@ def write_dataset(
     os.close(fd)
     try:
         ds.to_netcdf(tmp, engine="netcdf4")
+        # mkstemp makes the file private (0600); give the result the permissions
+        # of any file the user creates (0666 less the umask), e.g. group-readable
+        umask = os.umask(0)
+        os.umask(umask)
+        os.chmod(tmp, 0o666 & ~umask)
         os.replace(tmp, path)
     except BaseException:
         Path(tmp).unlink(missing_ok=True)
         raise
+    # what a killed earlier write of this file left behind (never read: hidden name)
+    for stale in path.parent.glob(f".{glob.escape(path.name)}.*.tmp.nc"):
+        stale.unlink(missing_ok=True)
     return path
 
 
