@@ -80,3 +80,14 @@ def test_fe_failure_names_sample_and_step(monkeypatch):
                            curvature=1e5, grid=interference_grid(1e-6, 20))
     with pytest.raises(models.SampleFailed, match=r"sample abc \(curvature 100000 1/m\).*step 7"):
         models.solve_job(spec, "abc")
+
+
+def test_fe_range_stops_short_of_the_foot_of_sphere_and_paraboloid():
+    """A sphere's 45-degree cap is 0.293 R high, the paraboloid's R / 8: the largest
+    interference is `max_radius_fraction` R, capped at 0.9 of that height."""
+    from asperity import fe
+
+    assert models.max_interference(fe.Sphere(2.0), {}) == pytest.approx(0.5, rel=1e-15)
+    assert models.max_interference(fe.Sphere(2.0), {"max_radius_fraction": 0.5}) == \
+        pytest.approx(0.9 * 2.0 * (1 - 2**-0.5), rel=1e-12)
+    assert models.max_interference(fe.Paraboloid(2.0), {}) == pytest.approx(0.9 * 0.25, rel=1e-12)

@@ -68,9 +68,11 @@ def _attrs(units_: str, long_name: str) -> dict[str, str]:
 
 
 def loading_branch(interface: xr.Dataset) -> xr.Dataset:
-    """The loading branch of an interface (``branch`` dim, where the scene unloads)."""
+    """The loading branch of an interface (``branch`` dim, where the scene unloads):
+    ``loading``, or ``approach`` where the scene has adhesion (the flat coming closer)."""
     if "branch" in interface.dims:
-        return interface.sel(branch="loading")
+        branches = list(interface["branch"].values)
+        return interface.sel(branch="loading" if "loading" in branches else "approach")
     return interface
 
 

@@ -330,12 +330,26 @@ def _table(asperities: xr.Dataset) -> _Table:
     for label, c in (("height", zc), ("curvature", kc)):
         if c.size > 1 and np.any(np.diff(c) <= 0.0):
             raise ValueError(f"{label} coordinate has repeated values")
-    if wc.size == 0 or np.any(np.diff(wc) <= 0.0) or wc[0] < 0.0:
-        raise ValueError("interference coordinate must be strictly increasing and start at >= 0")
+    if wc.size == 0 or np.any(np.diff(wc) <= 0.0):
+        raise ValueError("interference coordinate must be strictly increasing")
     if wc[0] > 0.0:  # X = 0 at w = 0, linear up to the first interference
         wc = np.concatenate([[0.0], wc])
         data = np.concatenate([np.zeros(data[:, :, :1].shape), data], axis=2)
     return _Table(names, units, zc, kc, wc, data, bool(np.isfinite(data).all()))
+
+
+def _check_reach(reach: float, table: _Table) -> float:
+    """The attraction range (>= 0) against the table: it must start at w <= -reach."""
+    reach = float(reach)
+    if not (np.isfinite(reach) and reach >= 0.0):
+        raise ValueError(f"reach must be a finite non-negative interference, got {reach!r}")
+    if table.interference[0] < 0.0 and reach == 0.0:
+        raise ValueError("negative interferences in the asperity table need reach > 0 "
+                         "(the gap up to which asperities out of contact still act)")
+    if table.interference[0] > -reach * (1.0 - 1e-9):
+        raise ValueError(f"reach {reach:.6g} needs the interference grid to start at "
+                         f"-{reach:.6g} or below; it starts at {table.interference[0]:.6g}")
+    return reach
 
 
 def _check_interference(w_needed: float, table: _Table):
@@ -396,6 +410,8 @@ def interface_response(
     cells=(20, 20),
     rule: str = "gauss",
     peak_density: float | None = None,
+    reach: float = 0.0,
+    contact: str | None = None,
 ) -> xr.Dataset:
     """Homogenized interface laws versus separation (report 2.5, eqs. (2.5)-(2.7)).
 
@@ -413,6 +429,17 @@ def interface_response(
     asperity grid: linearly in height and curvature (clamped at the grid
     edges; a dimension of length one means independence of it) and linearly
     in interference, X = 0 at w = 0 when the grid starts above 0.
+
+    Asperities that act out of contact (adhesion, report 3.3.3 and 7.3: the
+    attraction starts before contact): with ``reach`` > 0 every asperity
+    with z > h - reach contributes X(z, kappa, z - h), w < 0 being a gap.
+    The z-range of each separation is then two segments, [h - reach, h]
+    (out of contact) and [h, z_max], each with the given number of cells,
+    so the onset of contact stays on a cell boundary; the table must start
+    at w <= -reach.  ``contact``: the variable that is 1 where an asperity
+    is in contact (an adhesive contact can hold at w < 0 on retraction, and
+    an asperity at w > 0 is not in contact before it has jumped in); the
+    contact count is then n E^(contact) instead of n E^(1 where w > 0).
 
     Parameters
     ----------
@@ -436,6 +463,11 @@ def interface_response(
         sampled surface.
     peak_density : float
         Areal peak density n [1/m^2] (required).
+    reach : float
+        Gap [m] up to which asperities out of contact still act (0: none).
+    contact : str, optional
+        Variable of `asperities` (1 in contact, else 0) that counts contacts;
+        it is not returned as ``<contact>_per_unit_area``.
 
     Returns
     -------
@@ -459,13 +491,25 @@ def interface_response(
     if h.ndim != 1 or not np.isfinite(h).all():
         raise ValueError("separations must be a 1-D array of finite numbers")
     table = _table(asperities)
+    reach = _check_reach(reach, table)
+    if contact is not None and contact not in table.names:
+        raise ValueError(f"contact variable {contact!r} is not in the asperities dataset")
 
     if rule == "peaks":
-        raw, raw_count, norm = _peaks_response(table, density, h)
+        raw, raw_count, norm = _peaks_response(table, density, h, reach)
     else:
-        raw, raw_count, norm = _cell_response(table, density, h, bounds, cells, rule)
+        raw, raw_count, norm = _cell_response(table, density, h, bounds, cells, rule, reach)
         if bounds is None:
             bounds = _default_bounds(density)
+    counted = "1 where w > 0"
+    if contact is not None:  # the count is the expectation of the contact indicator
+        j = table.names.index(contact)
+        raw_count = raw[:, j]
+        keep = [i for i in range(len(table.names)) if i != j]
+        raw = raw[:, keep]
+        table = table._replace(names=[table.names[i] for i in keep],
+                               units=[table.units[i] for i in keep])
+        counted = contact
 
     exp = raw / norm  # (S, V)
     count = n * raw_count / norm
@@ -479,16 +523,18 @@ def interface_response(
             out_units = f"({units})/m^2" if units not in ("", "1") else "1/m^2"
             long_name = f"{name} per unit nominal area, n E^({name}) (eq. 2.7)"
         data_vars[out] = (sep_dims, n * exp[:, j], {"units": out_units, "long_name": long_name})
-    data_vars["contact_count"] = (sep_dims, count, {"units": "1/m^2", "long_name": "asperities in contact per unit nominal area, n E^(1 where w > 0)"})
+    data_vars["contact_count"] = (sep_dims, count, {"units": "1/m^2", "long_name": f"asperities in contact per unit nominal area, n E^({counted})"})
     data_vars["density_integral"] = ((), norm, {"units": "1", "long_name": "numerical integral I of the peak density over the truncated domain (eq. 2.7)"})
     for j, (name, units) in enumerate(zip(table.names, table.units)):
         data_vars[f"raw_{name}"] = (sep_dims, raw[:, j], {"units": units or "1", "long_name": f"uncorrected expectation integral E({name}) per asperity (eq. 2.6)"})
-    data_vars["raw_contact"] = (sep_dims, raw_count, {"units": "1", "long_name": "uncorrected integral E(1 where w > 0) per asperity (eq. 2.6)"})
+    data_vars["raw_contact"] = (sep_dims, raw_count, {"units": "1", "long_name": f"uncorrected integral E({counted}) per asperity (eq. 2.6)"})
     attrs = {
         "title": "interface response homogenized over the asperity population (report 2.5)",
         "rule": rule,
         "peak_density": n,
     }
+    if reach > 0.0:
+        attrs["reach"] = reach
     if rule != "peaks":
         attrs["cells"] = list(np.atleast_1d(cells).astype(int).tolist())
         attrs["bounds"] = [float(b) for b in bounds]
@@ -499,29 +545,29 @@ def interface_response(
     )
 
 
-def _peaks_response(table: _Table, density, h):
+def _peaks_response(table: _Table, density, h, reach: float = 0.0):
     if not isinstance(density, SampledDensity):
         raise ValueError('rule "peaks" needs a SampledDensity (a list of peaks)')
     z = density.heights[None, :]
     k = density.curvatures[None, :]
     w = z - h[:, None]  # (S, N)
-    contact = w > 0.0
-    if contact.any():
-        _check_interference(float(w[contact].max()), table)
+    acting = w > -reach if reach > 0.0 else w > 0.0
+    if acting.any():
+        _check_interference(float(w[acting].max()), table)
     nv = table.data.shape[-1]
     n_peaks = z.shape[1]
     step = max(1, _CHUNK // max(1, n_peaks * nv))
     raw = np.empty((h.size, nv))
     for s in range(0, h.size, step):  # memory guard only: chunks of separations
         sl = slice(s, s + step)
-        x = _interp_points(table, z, k, np.maximum(w[sl], 0.0))
+        x = _interp_points(table, z, k, np.maximum(w[sl], -reach))
         with np.errstate(invalid="ignore"):
-            x = np.where(contact[sl, :, None], x, 0.0)
+            x = np.where(acting[sl, :, None], x, 0.0)
         raw[sl] = x.mean(axis=1)
-    return raw, contact.mean(axis=1), 1.0
+    return raw, (w > 0.0).mean(axis=1), 1.0
 
 
-def _cell_response(table: _Table, density, h, bounds, cells, rule):
+def _cell_response(table: _Table, density, h, bounds, cells, rule, reach: float = 0.0):
     if bounds is None:
         bounds = _default_bounds(density)
     if _is_fixed(density):
@@ -551,11 +597,16 @@ def _cell_response(table: _Table, density, h, bounds, cells, rule):
     # contact region [max(h, z_min), z_max] for each separation, same number of cells
     lo = np.clip(h, z0, z1)
     z, wz = quadrature_1d(lo, z1, nz, rule)  # (S, Pz)
+    touching = np.ones(z.shape[1], bool)  # nodes at w >= 0
+    if reach > 0.0:  # and the asperities acting out of contact, [h - reach, h], own cells
+        zg, wg = quadrature_1d(np.clip(h - reach, z0, z1), lo, nz, rule)
+        z, wz = np.concatenate([zg, z], axis=1), np.concatenate([wg, wz], axis=1)
+        touching = np.concatenate([np.zeros(zg.shape[1], bool), touching])
     w = z - h[:, None]
     active = wz > 0.0
     if active.any():
         _check_interference(float(w[active].max()), table)
-    w = np.maximum(w, 0.0)
+    w = np.maximum(w, -reach)
 
     nv = table.data.shape[-1]
     pz, pk = z.shape[1], k_nodes.size
@@ -565,7 +616,7 @@ def _cell_response(table: _Table, density, h, bounds, cells, rule):
     for s in range(0, h.size, step):  # memory guard only: chunks of separations
         sl = slice(s, s + step)
         g = pdf(z[sl], k_nodes) * wz[sl, :, None] * wk  # (s, Pz, Pk): f w dz dkappa
-        raw_count[sl] = g.sum(axis=(1, 2))
+        raw_count[sl] = g[:, touching].sum(axis=(1, 2))
         x = _interp_tensor(table, z[sl], w[sl], k_nodes)
         with np.errstate(invalid="ignore", over="ignore"):
             x = np.where(g[..., None] != 0.0, x, 0.0)

@@ -97,15 +97,16 @@ def max_interference(geometry, asperity: Config) -> float:
     A cosine hill up to ``max_height_fraction`` of its height (default 0.3,
     report 7.3's small-strain range is reached well before); a sphere up to
     ``max_radius_fraction`` of its radius (default 0.25: contact radius
-    about 0.7 R, inside the modelled 45-degree cap); a paraboloid (a half
-    space) without limit.
+    about 0.7 R, inside the modelled 45-degree cap), a paraboloid likewise;
+    either capped at 0.9 of the modelled cap's height (0.293 R for the
+    sphere, R / 8 for the paraboloid), where the flat would reach its foot.
     """
     from asperity import fe
 
     if isinstance(geometry, fe.CosineHill):
         return asperity.get("max_height_fraction", 0.3) * 2.0 * geometry.amplitude
-    if isinstance(geometry, fe.Sphere):
-        return asperity.get("max_radius_fraction", 0.25) * geometry.radius
+    if isinstance(geometry, (fe.Sphere, fe.Paraboloid)):
+        return min(asperity.get("max_radius_fraction", 0.25) * geometry.radius, 0.9 * geometry.height)
     return math.inf
 
 
@@ -194,7 +195,8 @@ class SampleFailed(RuntimeError):
 def job_spec(asperity: Config, material_si: Config, effects, accuracy: str, *,
              curvature: float, height: float | None = None, level: float = math.nan,
              grid: np.ndarray, family: np.ndarray | None = None,
-             width_to_height: float | None = None, velocity: float | None = None) -> dict:
+             width_to_height: float | None = None, velocity: float | None = None,
+             adhesion: Config | None = None) -> dict:
     """Exactly what the FE job of one sample depends on, as plain JSON-able values.
 
     The key of a sample is the hash of this dict (`asperity.plan.sample_key`),
@@ -206,7 +208,8 @@ def job_spec(asperity: Config, material_si: Config, effects, accuracy: str, *,
     plan's `grid`, stretched over the self-similar `family`), the body
     (material in SI, effects, preset), and per kind of job: the level count
     and contact model of an elastic job, the loading rate and unloading level
-    of an inelastic one.  Nothing else of the scene enters: a change of the
+    of an inelastic one, the law (SI) of an adhesive one (`adhesion`, with the
+    effect ``adhesion``).  Nothing else of the scene enters: a change of the
     population grid that leaves the range alone keeps the key.
     """
     geometry = fe_geometry(asperity, curvature, width_to_height, height)
@@ -225,6 +228,10 @@ def job_spec(asperity: Config, material_si: Config, effects, accuracy: str, *,
         spec["width_to_height"] = asperity.get("width_to_height", width_to_height)
     if is_coupled(asperity):
         spec["height"] = float(height)
+    if "adhesion" in set(effects):  # approach and retraction (asperity.adhesive_interface)
+        from asperity import adhesive_interface
+
+        return adhesive_interface.job_spec(spec, adhesion, effects, level)
     if "plasticity" in set(effects):
         if not materials.rate_independent(material_si, effects):
             spec["velocity"] = velocity  # a J2 body answers the same at any rate
@@ -251,6 +258,10 @@ def solve_job(spec: Config, key: str) -> xr.Dataset:
     """
     from asperity import fe
 
+    if "adhesion" in spec:  # approach and retraction (asperity.adhesive_interface)
+        from asperity import adhesive_interface
+
+        return adhesive_interface.solve_job(spec, key)
     curvature = float(spec["curvature"])
     geometry = fe_geometry(spec, curvature, spec.get("width_to_height"), spec.get("height"))
     first, top = spec["range"]
@@ -403,6 +414,21 @@ GATHERED_ATTRS = {
 }
 
 
+def samples_by_key(plan: xr.Dataset, samples: Mapping[str, xr.Dataset]) -> dict[str, xr.Dataset]:
+    """The samples by key; raises naming every sample of the plan missing or failed."""
+    by_key = {str(ds.attrs["key"]): ds for ds in samples.values()}
+    needed = set(plan["key"].values)
+    missing = sorted(needed - set(by_key))
+    failed = sorted(k for k in needed & set(by_key) if by_key[k].attrs.get("status") == "failed")
+    if missing or failed:
+        raise ValueError(
+            f"{len(missing) + len(failed)} of {len(needed)} samples missing from the gather; "
+            "not homogenizing over a hole: "
+            + "; ".join([f"{k}: no result" for k in missing]
+                        + [f"{by_key[k].attrs.get('error', k)}" for k in failed]))
+    return by_key
+
+
 def gather(plan: xr.Dataset, samples: Mapping[str, xr.Dataset]) -> xr.Dataset:
     """FE samples onto the plan's (height, curvature, interference) grid.
 
@@ -414,16 +440,7 @@ def gather(plan: xr.Dataset, samples: Mapping[str, xr.Dataset]) -> xr.Dataset:
     unloading paths on (curvature, unloading_level, point) for the blend
     of report 8.3 (`asperity.unloading.family_table`).
     """
-    by_key = {str(ds.attrs["key"]): ds for ds in samples.values()}
-    needed = set(plan["key"].values)
-    missing = sorted(needed - set(by_key))
-    failed = sorted(k for k in needed & set(by_key) if by_key[k].attrs.get("status") == "failed")
-    if missing or failed:
-        raise ValueError(
-            f"{len(missing) + len(failed)} of {len(needed)} samples missing from the gather; "
-            "not homogenizing over a hole: "
-            + "; ".join([f"{k}: no result" for k in missing]
-                        + [f"{by_key[k].attrs.get('error', k)}" for k in failed]))
+    by_key = samples_by_key(plan, samples)
     heights, curvatures = plan["height"].values, plan["curvature"].values
     grid = plan["interference"].values
     ph, pk = plan["sample_height"].values, plan["sample_curvature"].values

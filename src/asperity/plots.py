@@ -112,9 +112,15 @@ def expectation_figure(density_values: np.ndarray, z: np.ndarray, kappa: np.ndar
     return fig
 
 
+#: with adhesion the branches are the flat's approach and retraction (asperity.adhesive_interface)
+ADHESIVE_BRANCH = {"loading": "approach", "unloading": "retract"}
+
+
 def _branch(ds: xr.Dataset, name: str) -> xr.Dataset | None:
     if "branch" not in ds.dims:
         return ds if name == "loading" else None
+    if name not in ds["branch"].values:
+        name = ADHESIVE_BRANCH.get(name, name)
     return ds.sel(branch=name) if name in ds["branch"].values else None
 
 
@@ -143,11 +149,13 @@ def interface_figure(interface: xr.Dataset, verification: xr.Dataset | None = No
         axes[1].semilogy(h, a, label=label, **style)
         axes[2].loglog(a, p, label=label, **style)
 
-    draw(_branch(interface, "loading"), "homogenized" if "branch" not in interface.dims else "loading",
-         marker="o", ms=3, color="C0")
+    adhesive = "retract_from" in interface.attrs  # branches approach, retract
+    draw(_branch(interface, "loading"), "homogenized" if "branch" not in interface.dims else
+         ("approach (p > 0 drawn)" if adhesive else "loading"), marker="o", ms=3, color="C0")
     unloading = _branch(interface, "unloading")
     if unloading is not None:
-        draw(unloading, f"unloading from {interface.attrs.get('unloading_from', np.nan) / ls_:.3g} "
+        turn = interface.attrs.get("retract_from" if adhesive else "unloading_from", np.nan)
+        draw(unloading, f"{'retract' if adhesive else 'unloading'} from {turn / ls_:.3g} "
              f"{length_unit}", ls="--", marker=".", ms=3, color="C3")
     for i, (name, other) in enumerate((others or {}).items()):
         draw(_branch(other, "loading"), name, ls=":", marker="s", ms=3, color=f"C{i + 1}")
@@ -298,6 +306,7 @@ def asperities_figure(asperities: xr.Dataset, others: dict[str, xr.Dataset] | No
     picks = sorted(set([0, curv.size // 2, curv.size - 1]))
     sets = {"this scene": asperities, **(others or {})}
     for s_i, (name, ds) in enumerate(sets.items()):
+        ds = _branch(ds, "loading")
         for c_i, j in enumerate(picks):
             k = curv[j]
             one = ds.sel(curvature=k, method="nearest").isel(height=0)

@@ -15,7 +15,8 @@ from typing import Any, Mapping
 import numpy as np
 import xarray as xr
 
-from asperity import greenwood_williamson, hertz, homogenize, materials, models, peaks, surface, units
+from asperity import (adhesive_interface, greenwood_williamson, hertz, homogenize, materials, models,
+                      peaks, surface, units)
 from asperity.plan import interference_grid, make_plan, sample_grid
 from asperity.unloading import family_table as unloading_family_table
 from asperity.unloading import unloading_asperities
@@ -252,8 +253,10 @@ def plan_dataset(
     effects: list[str],
     units_cfg: Config,
     accuracy: str,
+    adhesion: Config | None = None,
 ) -> xr.Dataset:
-    """The samples a scene needs (DESIGN.md: the plan)."""
+    """The samples a scene needs (DESIGN.md: the plan); `adhesion`: the scene's section,
+    used with the effect ``adhesion`` (`asperity.adhesive_interface`)."""
     density = population_density(surface_ds, population)
     threshold = population.get("support_threshold", 1e-4)
     z0, z1, k0, k1 = bounds(density, population, units_cfg, threshold)
@@ -268,6 +271,12 @@ def plan_dataset(
         else sample_grid(k0, k1, counts.get("curvature", 21), positive=True)
     )
     grid = interference_grid(z1 - z0, counts.get("interference", 241))
+    adhesion_si = adhesive_interface.law_si(adhesion) if "adhesion" in effects else None
+    if adhesion_si is not None:  # the attraction acts before contact: gap levels too
+        if asperity["model"] != "fe":
+            raise ValueError("effect `adhesion` needs a finite element asperity (asperity.model: fe)")
+        grid = adhesive_interface.interference_grid(z1 - z0, counts.get("interference", 241),
+                                                    adhesion_si)
     model = asperity["model"]
     analytic = models.is_analytic(asperity)
     mat = material_si(material, units_cfg) if material else {}
@@ -308,7 +317,8 @@ def plan_dataset(
             return {"model": model, "material": mat, "curvature": k, "interference": grid}
         return models.job_spec(asperity, mat, effects, accuracy, curvature=k, height=h,
                                level=level, grid=grid, family=family_of,
-                               width_to_height=width_to_height, velocity=velocity)
+                               width_to_height=width_to_height, velocity=velocity,
+                               adhesion=adhesion_si)
 
     plan = make_plan(heights, curvatures, grid, model=model, job_inputs={},
                      shift_invariant=shift_invariant, analytic=analytic,
@@ -328,6 +338,10 @@ def plan_dataset(
         plan.attrs["width_to_height"] = width_to_height
     plan.attrs["support"] = f"height [{z0:.6g}, {z1:.6g}] m, curvature [{k0:.6g}, {k1:.6g}] 1/m"
     plan.attrs["support_threshold"] = threshold
+    if adhesion_si is not None:
+        plan.attrs["adhesion"] = (f"Lennard-Jones dgamma = {adhesion_si['dgamma']:g} J/m^2, "
+                                  f"d = {adhesion_si['d']:g} m, cut-off {adhesion_si['cutoff']:g} d")
+        plan.attrs["reach"] = adhesive_interface.reach(adhesion_si)
     log.info("plan: %d samples, %s", plan.sizes["sample"], plan.attrs["derived"])
     return plan
 
@@ -347,6 +361,8 @@ def asperities_dataset(
             plan["height"].values, plan["curvature"].values, plan["interference"].values,
             mat["youngs_modulus"], mat["poisson"],
         )
+    if model == "fe" and "adhesion" in plan.attrs:  # both branches (asperity.adhesive_interface)
+        return adhesive_interface.gather(plan, samples or {})
     if model == "fe":
         return models.gather(plan, samples or {})
     raise ValueError(f"asperity.model {model!r} has no response on a sample grid")
@@ -372,13 +388,15 @@ def _fraction(out: xr.Dataset, name: str, long_name: str) -> xr.Dataset:
 
 
 def _homogenized(asperities: xr.Dataset, density, h: np.ndarray, rect, homogenization: Config,
-                 surface_ds: xr.Dataset) -> xr.Dataset:
+                 surface_ds: xr.Dataset, **options) -> xr.Dataset:
+    """`homogenize.interface_response` of a table, with the shares of contacting asperities;
+    `options`: its ``reach`` and ``contact`` (adhesion)."""
     rule = homogenization.get("rule", "gauss")
     grid_dims = {"height", "curvature", "interference"}
     asperities = asperities[[v for v in asperities.data_vars if set(asperities[v].dims) == grid_dims]]
     out = homogenize.interface_response(
         asperities, density, h, bounds=rect, cells=tuple(homogenization.get("cells", (40, 40))),
-        rule=rule, peak_density=peak_density(surface_ds))
+        rule=rule, peak_density=peak_density(surface_ds), **options)
     out = _fraction(out, "extrapolated", "fraction of contacting asperities beyond their FE job's "
                     "largest interference")
     out = _fraction(out, "elastic", "fraction of contacting asperities still elastic (report 7.3, "
@@ -431,7 +449,11 @@ def interface_dataset(
         if rebound.size:
             extra = h0 + np.linspace(0.0, float(np.nanmax(rebound)), REBOUND_POINTS)[1:]
             h = np.unique(np.concatenate([h, extra]))
-    out = _homogenized(asperities, density, h, rect, homogenization, surface_ds)
+    if "branch" in asperities.dims:  # adhesion: approach and retraction (asperity.adhesive_interface)
+        out = adhesive_interface.by_branch(asperities, h, lambda table, **options: _homogenized(
+            table, density, h, rect, homogenization, surface_ds, **options))
+    else:
+        out = _homogenized(asperities, density, h, rect, homogenization, surface_ds)
     if unloading is not None:
         up = h[h >= h0 - 1e-12 * abs(h0)]
         log.info("unloading branch from separation %.6g m over %d separations", h0, up.size)

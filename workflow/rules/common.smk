@@ -153,6 +153,8 @@ def scene_targets(name):
             targets.append(f"{out}/verification.nc")
         if "unloading" in SCENES[name].get("effects", []):
             targets += [f"{out}/unloading.nc", f"{out}/figures/unloading.png"]
+        if "adhesion" in SCENES[name].get("effects", []):
+            targets.append(f"{out}/figures/adhesion.png")
         if "friction" in SCENES[name]:
             targets += [f"{out}/friction.nc", f"{out}/figures/friction.png"]
         if "laws" in SCENES[name]:

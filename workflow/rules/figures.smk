@@ -78,6 +78,27 @@ rule interface_figure:
         "../scripts/interface_figure.py"
 
 
+rule adhesion_figure:
+    """With and without adhesion (report 7.3, Figs. 7.6 to 7.9): scenes with the effect."""
+    input:
+        interface=f"{RESULTS}/{{scene}}/interface.nc",
+        asperities=f"{RESULTS}/{{scene}}/asperities.nc",
+        others=lambda w: compared(w, "interface.nc"),
+    output:
+        report(
+            f"{RESULTS}/{{scene}}/figures/adhesion.png",
+            category="{scene}",
+            caption="../report/adhesion.rst",
+        ),
+    params:
+        units=scene_part("units"),
+        compare_with=scene_part("compare_with", []),
+    log:
+        f"{RESULTS}/{{scene}}/logs/adhesion_figure.log",
+    script:
+        "../scripts/adhesion_figure.py"
+
+
 rule asperities_figure:
     input:
         asperities=f"{RESULTS}/{{scene}}/asperities.nc",

@@ -15,6 +15,7 @@ checkpoint plan:
         asperity=scene_part("asperity", {}),
         material=scene_part("material", {}),
         effects=scene_part("effects", []),
+        adhesion=scene_part("adhesion", {}),
         units=scene_part("units"),
         accuracy=accuracy_of,
     log:

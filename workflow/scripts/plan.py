@@ -7,7 +7,8 @@ from asperity.joblog import job_log
 with job_log(snakemake.log[0], "plan"):
     p = snakemake.params
     plan = stages.plan_dataset(read_dataset(snakemake.input.surface), p.population, p.asperity,
-                               p.material, p.effects, p.units, p.accuracy)
+                               p.material, p.effects, p.units, p.accuracy, p.adhesion)
     write_dataset(plan, snakemake.output[0], scene=p.scene, title="asperity samples",
                   config={"population": p.population, "asperity": p.asperity, "material": p.material,
-                          "effects": p.effects, "units": p.units, "accuracy": p.accuracy})
+                          "effects": p.effects, "units": p.units, "accuracy": p.accuracy,
+                          **({"adhesion": p.adhesion} if p.adhesion else {})})

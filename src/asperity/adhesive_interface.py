@@ -1,0 +1,309 @@
+"""Adhesive asperities in the pipeline: grid, job, gather, interface (report 3.3.3, 7.3, 9.1).
+
+A scene turns adhesion on with the effect ``adhesion`` and a section
+
+    adhesion: {work_of_adhesion: 1.0, spacing: 0.5, cutoff: 16}
+
+``work_of_adhesion`` is dgamma of eq. 3.17 in J/m^2 (7.3: 1 J/m^2, DESIGN.md
+errata), ``spacing`` the intermolecular distance d of eq. 3.16 in **nm**
+whatever the scene's length unit (a molecular length: 0.3-0.5 nm reads
+better than 0.0005 um), ``cutoff`` the separation s_c / d beyond which the
+law is dropped (`asperity.fe.adhesion`: 16 loses 0.5 % of the work, the
+report's 4 loses 8.3 %).  The body must be elastic
+(`asperity.fe.adhesive.solve_asperity_adhesive`).
+
+What changes against an asperity without adhesion:
+
+- **Grid** (`interference_grid`): the attraction of the law starts when the
+  tip is at the cut-off separation s_c, i.e. at the interference
+  w = d - s_c = -(cutoff - 1) d (`reach`), before contact.  The plan's
+  grid gets gap levels from there to 0, spaced d / 8 out to 12 d (where
+  the asperities jump in and out) and growing by 10 % per level farther
+  out, joined to the usual geometric grid of w > 0.
+- **Job** (`job_spec`, `solve_job`): one job per curvature (the response is
+  shift invariant in height but not self-similar: d does not scale;
+  `asperity.models.self_similar` refuses adhesion).  It approaches the
+  flat from the cut-off to the top of the sample's range and retracts it
+  until the asperity lets go, recording jumps and the pull-off force.  The
+  law (dgamma, d, cutoff, SI) is in the spec, hence in the key.
+- **Gather** (`gather`): both branches (dim ``branch``: approach, retract)
+  on (height, curvature, interference) by `interpolate_adhesive` (jumps kept
+  as jumps); force is negative where the asperity attracts, contact area 0
+  where it does not touch; ``in_contact`` is 1 where the contact area is
+  positive; ``extrapolated`` flags grid points beyond the job's deepest
+  level (the last tangent), as `asperity.models.gather`.  Per curvature:
+  pull-off force, Tabor parameter, jump interferences, the DMT and JKR
+  pull-off forces 2 pi R W_c and 3/2 pi R W_c, and the computed paths
+  (Fig. 7.6) on (curvature, step).
+- **Interface** (`by_branch`): the same integrator as every scene
+  (`asperity.homogenize.interface_response`, eqs. 2.5-2.7) with
+  ``reach``: an asperity of peak height z at separation h contributes
+  X(z, kappa, w = z - h) for every w > -reach, not only w > 0; contacts
+  are counted by ``in_contact``.  On retraction (from the smallest
+  separation h_0) an asperity is on the retract branch if it jumped in,
+  z - h_0 >= its jump-in interference, else still on the approach branch
+  (each asperity caught at its own stage, as in 8.3).  The normal
+  stiffness is -dp/dh of the homogenized pressure (the jumps of single
+  asperities contribute to it, which an average of dF/dw would miss).
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from typing import Any, Callable, Mapping
+
+import numpy as np
+import xarray as xr
+
+from asperity import materials
+from asperity.plan import interference_grid as contact_grid
+
+Config = Mapping[str, Any]
+
+#: the scene's `adhesion` section: work of adhesion [J/m^2], spacing d [nm], cut-off s_c / d
+DEFAULTS = {"work_of_adhesion": 1.0, "spacing": 0.5, "cutoff": 16.0}
+NM = 1e-9
+BRANCHES = ("approach", "retract")
+#: gap levels of the grid: d * NEAR_STEP apart out to NEAR_RANGE d, growing by GROWTH beyond
+NEAR_STEP = 0.125
+NEAR_RANGE = 12.0
+GROWTH = 0.1
+
+
+def _attrs(units_: str, long_name: str) -> dict[str, str]:
+    return {"units": units_, "long_name": long_name}
+
+
+# --- the law ------------------------------------------------------------------------------
+def law_si(adhesion_cfg: Config | None) -> dict[str, float]:
+    """The scene's `adhesion` section as the law's SI parameters {dgamma, d, cutoff}."""
+    cfg = {**DEFAULTS, **dict(adhesion_cfg or {})}
+    return {"dgamma": float(cfg["work_of_adhesion"]), "d": float(cfg["spacing"]) * NM,
+            "cutoff": float(cfg["cutoff"])}
+
+
+def law(adhesion_si: Config):
+    """`asperity.fe.LennardJones` of SI parameters (`law_si`)."""
+    from asperity.fe import LennardJones
+
+    return LennardJones(float(adhesion_si["dgamma"]), float(adhesion_si["d"]),
+                        float(adhesion_si["cutoff"]))
+
+
+def reach(adhesion_si: Config) -> float:
+    """Largest gap -w [m] at which the law acts: the tip at the cut-off separation,
+    w = d - s_c (the first level of `asperity.fe.adhesive.adhesive_path`)."""
+    lj = law(adhesion_si)
+    return float(lj.range - lj.d)
+
+
+def interference_grid(largest: float, count: int, adhesion_si: Config) -> np.ndarray:
+    """Gap levels from -`reach` up to 0, then the plan's geometric grid of w > 0.
+
+    The gap levels are d / 8 apart out to 12 d, where the asperities jump
+    into and out of contact (a jump-off lies within (2 mu + 4) d of contact,
+    mu the Tabor parameter, the end of the solver's retraction), and grow
+    by 10 % per level beyond (the attraction decays as (d / s)^2): 120
+    levels for the default cut-off of 16.  The homogenization interpolates
+    linearly in w, so a jump between two levels is integrated with an error
+    of at most its height times half the spacing, d / 16.
+    """
+    d = float(adhesion_si["d"])
+    lo = reach(adhesion_si)
+    h0 = NEAR_STEP * d
+    w_near = min(NEAR_RANGE * d, lo)  # uniform steps up to here, geometric beyond
+    near = np.linspace(0.0, w_near, int(math.ceil(w_near / h0 * (1 - 1e-12))) + 1)[1:]
+    far = np.empty(0)
+    if lo > w_near:
+        m = int(math.ceil(math.log(lo / w_near) / math.log1p(GROWTH) * (1 - 1e-12)))
+        far = np.geomspace(w_near, lo, m + 1)[1:]
+        far[-1] = lo
+    gaps = np.concatenate([near, far])
+    return np.concatenate([-gaps[::-1], contact_grid(largest, count)])
+
+
+# --- the job ------------------------------------------------------------------------------
+def job_spec(spec: dict, adhesion_si: Config, effects, level: float) -> dict:
+    """The spec of an adhesive job: geometry, range and body (`asperity.models.job_spec`)
+    and the law in SI (`law_si`); the path is the solver's own, no level count."""
+    if "plasticity" in set(effects):
+        raise ValueError("effect `adhesion` needs an elastic body (no `plasticity`): "
+                         "the adhesive solver is elastic (asperity.fe.adhesive)")
+    if not math.isnan(level):
+        raise ValueError("an adhesive asperity approaches and retracts: no unloading levels")
+    adhesion_si = adhesion_si or law_si(None)  # the section's defaults
+    out = dict(spec)
+    out["adhesion"] = {k: float(adhesion_si[k]) for k in ("dgamma", "d", "cutoff")}
+    return out
+
+
+def solve_job(spec: Config, key: str) -> xr.Dataset:
+    """The adhesive FE job of `spec`: approach from the cut-off to the top of the range
+    and retraction until the asperity lets go (`solve_asperity_adhesive`)."""
+    from asperity import fe, models
+
+    curvature = float(spec["curvature"])
+    geometry = models.fe_geometry(spec, curvature, spec.get("width_to_height"), spec.get("height"))
+    material = materials.build(spec["material"], spec["effects"])
+    top = float(spec["range"][1])
+    cpu = time.process_time()
+    try:
+        ds = fe.solve_asperity_adhesive(geometry, material, law(spec["adhesion"]), w_max=top,
+                                        accuracy=spec["accuracy"], label=key)
+    except (fe.ConvergenceError, fe.ContactZoneError) as err:
+        raise models.SampleFailed(f"sample {key} (curvature {curvature:.6g} 1/m, adhesive): "
+                                  f"{err}") from err
+    ds.attrs.update(key=key, model="fe", curvature=curvature, geometry=repr(geometry),
+                    height=float(spec.get("height", math.nan)), unloading_level=math.nan,
+                    cpu_time=time.process_time() - cpu)
+    return ds
+
+
+# --- the gather ---------------------------------------------------------------------------
+GATHERED = {
+    "force": ("N", "normal force on the asperity, compressive positive (adhesion negative)"),
+    "contact_area": ("m^2", "real contact area (0 where the asperity does not touch)"),
+    "contact_radius": ("m", "contact radius (0 where the asperity does not touch)"),
+    "in_contact": ("1", "1 where the asperity touches the flat (contact area > 0)"),
+}
+PER_CURVATURE = {
+    "pull_off_force": ("N", "largest tensile force on retraction (FE)"),
+    "pull_off_interference": ("m", "interference of the largest tensile force"),
+    "tabor_parameter": ("1", "Tabor parameter (R dgamma^2 / (E*^2 d^3))^(1/3)"),
+    "jump_in_interference": ("m", "interference where the asperity jumps into contact (NaN: none)"),
+    "jump_off_interference": ("m", "interference where it jumps out of contact (NaN: none)"),
+}
+PATH = {"interference": "path_interference", "force": "path_force",
+        "contact_area": "path_contact_area", "branch": "path_branch", "jump": "path_jump",
+        "valid": "path_valid"}
+
+
+def gather(plan: xr.Dataset, samples: Mapping[str, xr.Dataset]) -> xr.Dataset:
+    """Adhesive samples onto (branch, height, curvature, interference) (module docstring)."""
+    from asperity import models
+    from asperity.fe.adhesive import interpolate_adhesive, stack_runs
+
+    by_key = models.samples_by_key(plan, samples)
+    heights, curvatures = plan["height"].values, plan["curvature"].values
+    grid = plan["interference"].values
+    pk, keys = plan["sample_curvature"].values, plan["key"].values
+    runs = [by_key[str(keys[np.flatnonzero(pk == k)[0]])] for k in curvatures]
+    names = ("force", "contact_area", "contact_radius")
+    shape = (len(BRANCHES), curvatures.size, grid.size)
+    tables = {name: np.empty(shape) for name in names}
+    beyond = np.empty(shape, bool)
+    for j, ds in enumerate(runs):  # one FE job per curvature, each vectorized over the grid
+        for b, branch in enumerate(BRANCHES):
+            c = interpolate_adhesive(ds, grid, branch, names)
+            for name in names:
+                tables[name][b, j] = c[name]
+            beyond[b, j] = c["extrapolated"]
+    tables["in_contact"] = (tables["contact_area"] > 0).astype(float)
+    bad = [n for n, v in tables.items() if not np.isfinite(v).all()]
+    if bad:
+        raise ValueError(f"adhesive gather: NaN in {', '.join(bad)} (a sample does not cover "
+                         f"the grid from {grid[0]:.6g} m)")
+    dims = ("branch", "height", "curvature", "interference")
+    full = (len(BRANCHES), heights.size, curvatures.size, grid.size)
+
+    def over_heights(a):  # shift invariant: every height has its curvature's curve
+        return np.broadcast_to(a[:, None], full)
+
+    out = xr.Dataset(
+        {name: (dims, over_heights(tables[name]), _attrs(*GATHERED[name])) for name in GATHERED},
+        coords={
+            "branch": ("branch", list(BRANCHES), _attrs(
+                "1", "approach of the flat, or its retraction (report 7.3, Fig. 7.6)")),
+            "height": ("height", heights, _attrs("m", "asperity peak height")),
+            "curvature": ("curvature", curvatures, _attrs("1/m", "tip curvature")),
+            "interference": ("interference", grid, _attrs(
+                "m", "interference (negative: gap before first touch)")),
+        })
+    out["extrapolated"] = (dims, over_heights(beyond), _attrs(
+        "1", "beyond the largest interference the FE job computed (continued with its last "
+        "tangent)"))
+    for name, (units_, long_name) in PER_CURVATURE.items():
+        out[name] = ("curvature", np.array([float(r.attrs[name]) for r in runs]),
+                     _attrs(units_, long_name))
+    W = float(runs[0].attrs["work_of_adhesion"])
+    radius = np.array([float(r.attrs["tip_radius"]) for r in runs])
+    out["pull_off_force_dmt"] = ("curvature", 2 * np.pi * radius * W,
+                                 _attrs("N", "DMT pull-off 2 pi R W_c (rigid sphere, Derjaguin)"))
+    out["pull_off_force_jkr"] = ("curvature", 1.5 * np.pi * radius * W,
+                                 _attrs("N", "JKR pull-off 3/2 pi R W_c"))
+    paths = stack_runs(runs, "curvature", curvatures, _attrs("1/m", "tip curvature"))
+    for src, dst in PATH.items():
+        var = paths[src]
+        out[dst] = (("curvature", "step"), var.values,
+                    _attrs(var.attrs["units"], f"computed path: {var.attrs['long_name']}"))
+    out = out.assign_coords(step=("step", paths["step"].values, _attrs("1", "path step index")))
+    adh = runs[0].attrs
+    out.attrs.update(
+        reach=-float(grid[0]), adhesion=str(adh.get("adhesion", "")),
+        work_of_adhesion=W, accuracy=str(adh.get("accuracy", "")), fe_jobs=len(runs),
+        fe_cpu_time=float(sum(r.attrs.get("cpu_time", np.nan) for r in runs)),
+        max_dofs=int(max(int(r["dofs"].max()) for r in runs)),
+        max_newton_iterations=int(max(int(r["newton_iterations"].max()) for r in runs)),
+        max_step_cuts=int(max(int(r["step_cuts"].max()) for r in runs)),
+        sign_convention="force compressive positive; adhesion (attraction) negative")
+    return out
+
+
+# --- the interface ------------------------------------------------------------------------
+def retract_table(asperities: xr.Dataset, h_turn: float) -> xr.Dataset:
+    """The retract branch of every asperity after the flat came to separation `h_turn`.
+
+    An asperity of peak height z was pressed to w = z - h_turn; if it got there
+    past its jump-in interference it is on the retract branch (the contact
+    hangs on, JKR-like), otherwise it never touched and retracts along its
+    approach branch.  A curvature without jumps has one branch: retract.
+    """
+    app = asperities.sel(branch="approach", drop=True)
+    ret = asperities.sel(branch="retract", drop=True)
+    w_in = asperities["jump_in_interference"].fillna(-np.inf)
+    jumped = (asperities["height"] - h_turn) >= w_in  # (height, curvature)
+    out = ret.copy()
+    for name, var in ret.data_vars.items():
+        if "interference" in var.dims:
+            out[name] = xr.where(jumped, var, app[name]).transpose(*var.dims).assign_attrs(var.attrs)
+    return out
+
+
+def by_branch(asperities: xr.Dataset, separations: np.ndarray,
+              homogenized: Callable[..., xr.Dataset]) -> xr.Dataset:
+    """The interface on dim ``branch`` (approach, retract from the smallest separation).
+
+    `homogenized(table, reach=..., contact=...)` is the pipeline's homogenization of
+    one (height, curvature, interference) table over `separations` (`asperity.stages`).
+    """
+    grid_dims = {"height", "curvature", "interference"}
+    r = float(asperities.attrs["reach"])
+    h_turn = float(np.min(separations))
+    tables = {"approach": asperities.sel(branch="approach", drop=True),
+              "retract": retract_table(asperities, h_turn)}
+    parts = []
+    for name in BRANCHES:
+        t = tables[name]
+        t = t[[v for v in t.data_vars if set(t[v].dims) == grid_dims]]
+        parts.append(homogenized(t, reach=r, contact="in_contact"))
+    out = xr.concat(parts, dim="branch", data_vars="all", coords="minimal", compat="override")
+    out["density_integral"] = out["density_integral"].isel(branch=0, drop=True)
+    out = out.assign_coords(branch=("branch", list(BRANCHES), _attrs(
+        "1", "approach of the flat, or its retraction from the smallest separation (7.3)")))
+    h = out["separation"].values
+    p = out["nominal_pressure"].transpose("branch", "separation").values
+    out["normal_stiffness"] = (("branch", "separation"), -np.gradient(p, h, axis=1), _attrs(
+        "Pa/m", "normal stiffness -dp/dh of the homogenized pressure"))
+    retract_p = p[1]
+    out.attrs.update(
+        reach=r, retract_from=h_turn,
+        pull_off_pressure=float(max(-retract_p.min(), 0.0)),
+        pull_off_separation=float(h[np.argmin(retract_p)]),
+        largest_attraction_approach=float(max(-p[0].min(), 0.0)),
+        sign_convention="pressure compressive positive; net attraction negative")
+    for name in ("accuracy", "fe_jobs", "fe_cpu_time", "max_newton_iterations", "max_step_cuts",
+                 "max_dofs"):
+        if name in asperities.attrs:
+            out.attrs[name] = asperities.attrs[name]
+    return out

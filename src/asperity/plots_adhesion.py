@@ -1,0 +1,105 @@
+"""The adhesion figure (report 7.3, Figs. 7.6 to 7.9): with and without adhesion.
+
+Drawn from ``interface.nc`` and ``asperities.nc`` of an adhesive scene
+(`asperity.adhesive_interface`) and the interfaces of compared scenes.
+Pressures change sign (net attraction), so they are drawn on a symmetric
+log scale, linear within the smallest attraction shown.
+"""
+
+from __future__ import annotations
+
+import matplotlib
+
+matplotlib.use("Agg")
+
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+import xarray as xr  # noqa: E402
+
+from asperity import units  # noqa: E402
+
+STYLE = {"approach": dict(ls="-", marker="o", ms=3), "retract": dict(ls="--", marker=".", ms=3)}
+
+
+def _loading(ds: xr.Dataset) -> xr.Dataset:
+    if "branch" not in ds.dims:
+        return ds
+    names = list(ds["branch"].values)
+    return ds.sel(branch="loading" if "loading" in names else names[0])
+
+
+def adhesion_figure(interface: xr.Dataset, asperities: xr.Dataset,
+                    others: dict[str, xr.Dataset] | None = None, length_unit: str = "m",
+                    pressure_unit: str = "Pa") -> plt.Figure:
+    """Pressure (Fig. 7.7) and contact area (Fig. 7.8) versus separation, contact area
+    versus pressure (Fig. 7.9), with and without adhesion; load-deflection curves of the
+    computed asperities with their pull-off forces against DMT and JKR (Fig. 7.6)."""
+    ls_ = units.length_scale(length_unit)
+    ps = units.pressure_scale(pressure_unit)
+    fig, axes = plt.subplots(1, 4, figsize=(21, 4.6))
+    p_all = [interface["nominal_pressure"].values / ps]
+    for i, branch in enumerate(interface["branch"].values):
+        one = interface.sel(branch=branch)
+        h = one["separation"].values / ls_
+        p = one["nominal_pressure"].values / ps
+        a = one["contact_area_ratio"].values
+        style = dict(color="C0", label=f"adhesion, {branch}", **STYLE.get(str(branch), {}))
+        axes[0].plot(h, p, **style)
+        axes[1].semilogy(h, np.where(a > 0, a, np.nan), **style)
+        axes[2].plot(p, np.where(a > 0, a, np.nan), **style)
+    for j, (name, other) in enumerate((others or {}).items()):
+        o = _loading(other)
+        h = o["separation"].values / ls_
+        p = o["nominal_pressure"].values / ps
+        a = o["contact_area_ratio"].values
+        style = dict(color=f"C{j + 1}", ls=":", marker="s", ms=3, label=f"{name} (no adhesion)")
+        axes[0].plot(h, p, **style)
+        axes[1].semilogy(h, np.where(a > 0, a, np.nan), **style)
+        axes[2].plot(p, np.where(a > 0, a, np.nan), **style)
+        p_all.append(p)
+    p_all = np.concatenate([np.ravel(v) for v in p_all])
+    attraction = np.abs(p_all[p_all < 0])
+    linthresh = float(attraction.max()) if attraction.size else float(np.abs(p_all).max() or 1.0)
+    for ax in (axes[0],):
+        ax.set_yscale("symlog", linthresh=linthresh)
+    axes[2].set_xscale("symlog", linthresh=linthresh)
+    axes[2].set_yscale("log")
+    top = float(np.nanmax(interface["contact_area_ratio"].values))
+    for ax in axes[1:3]:  # eight decades: below, the few asperities caught mid-jump
+        ax.set_ylim(1e-8 * top, 2 * top)
+    pull = interface.attrs.get("pull_off_pressure", np.nan) / ps
+    axes[0].axhline(0.0, color="k", lw=0.6)
+    axes[0].set(xlabel=f"separation [{length_unit}]", ylabel=f"nominal pressure [{pressure_unit}]",
+                title=f"Fig. 7.7: pull-off pressure {pull:.3g} {pressure_unit} (retraction)")
+    axes[1].set(xlabel=f"separation [{length_unit}]", ylabel="real contact area ratio A/A0",
+                title="Fig. 7.8")
+    axes[2].set(xlabel=f"nominal pressure [{pressure_unit}]", ylabel="real contact area ratio A/A0",
+                title="Fig. 7.9")
+    # Fig. 7.6: the computed asperities
+    ax = axes[3]
+    curv = asperities["curvature"].values
+    for j, k in enumerate(curv):
+        valid = asperities["path_valid"].values[j].astype(bool)
+        w = asperities["path_interference"].values[j][valid] / ls_
+        F = asperities["path_force"].values[j][valid]
+        br = asperities["path_branch"].values[j][valid].astype(str)
+        ratio = float(asperities["pull_off_force"][j] / asperities["pull_off_force_dmt"][j])
+        for branch in ("approach", "retract"):
+            m = br == branch
+            ax.plot(w[m], F[m], color=f"C{j}", ls=STYLE[branch]["ls"],
+                    label=(f"R = {1e6 / k:.3g} um: pull-off {ratio:.3f} x 2πRW"
+                           if branch == "approach" else None))
+        ax.plot(float(asperities["pull_off_interference"][j]) / ls_,
+                -float(asperities["pull_off_force"][j]), "v", color=f"C{j}")
+    ax.axhline(0.0, color="k", lw=0.6)
+    reach = float(asperities.attrs.get("reach", np.nan)) / ls_
+    if np.isfinite(reach):  # where the adhesion acts: from the cut-off to a few times it
+        ax.set_xlim(-1.3 * reach, 3.0 * reach)
+    ax.set_yscale("symlog", linthresh=float(asperities["pull_off_force"].min()))
+    ax.set(xlabel=f"interference [{length_unit}] (negative: gap)", ylabel="force [N]",
+           title="Fig. 7.6: computed asperities (dashed: retraction, ▼ pull-off)")
+    for ax in axes:
+        ax.legend(fontsize=7)
+        ax.grid(True, which="both", alpha=0.3)
+    fig.tight_layout()
+    return fig
