@@ -6,12 +6,13 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+import yaml
 
 from asperity import homogenize, stages
 from asperity.fe.adhesion import LennardJones, derjaguin_force
 from asperity.io.netcdf import missing_attributes
 
-from .conftest import result, run_scenes
+from .conftest import copy_workflow, result, snakemake
 
 pytestmark = [pytest.mark.workflow, pytest.mark.slow]
 
@@ -21,17 +22,31 @@ LAW = LennardJones(1.0, 0.5e-9, 16.0)  # the scene's adhesion section, in SI
 E_STAR = 65e9 / (1 - 0.33**2)
 
 
+#: the scene's three steepest curvature samples (R = 30 to 13.6 um): the flatter
+#: asperities cost most of the scene's CPU time (Tabor parameter), and these keep
+#: every property tested here; the full scene is measured by the README's run
+CURVATURE_RANGE = [0.033, 0.073683]
+CURVATURES = 3
+
+
 @pytest.fixture(scope="module")
 def run(tmp_path_factory):
-    return run_scenes(tmp_path_factory, "adhesion", *ONLY)
+    workdir = copy_workflow(tmp_path_factory.mktemp("adhesion"))
+    path = workdir / "config" / "scenes" / f"{SCENE}.yaml"
+    scene = yaml.safe_load(path.read_text())
+    scene["population"]["curvature_range"] = CURVATURE_RANGE
+    scene["population"]["samples"]["curvature"] = CURVATURES
+    path.write_text(yaml.safe_dump(scene))
+    snakemake(workdir, *ONLY)
+    return workdir
 
 
 def test_outputs_one_adhesive_job_per_curvature(run):
     plan = result(run, SCENE, "plan.nc")
-    assert np.unique(plan["key"].values).size == plan.sizes["curvature"] == 5
+    assert np.unique(plan["key"].values).size == plan.sizes["curvature"] == CURVATURES
     interface = result(run, SCENE, "interface.nc")
     assert list(interface["branch"].values) == ["approach", "retract"]
-    assert interface.attrs["fe_jobs"] == 5 and interface.attrs["accuracy"] == "draft"
+    assert interface.attrs["fe_jobs"] == CURVATURES and interface.attrs["accuracy"] == "draft"
     for name in ("plan.nc", "asperities.nc", "interface.nc", "friction.nc"):
         assert not missing_attributes(result(run, SCENE, name)), name
     for figure in ("adhesion", "interface", "asperities", "friction"):
