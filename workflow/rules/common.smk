@@ -107,9 +107,10 @@ def scene(wildcards):
 
 
 def accuracy_of(wildcards):
-    """The preset of a scene run: ``<scene>@<preset>``'s own, else config `accuracy`."""
+    """The preset of a scene run: ``<scene>@<preset>``'s own, else the scene's `accuracy`
+    (a scene that has measured that a cheaper preset suffices), else config `accuracy`."""
     base, _, preset = wildcards.scene.partition("@")
-    return preset or config["accuracy"]
+    return preset or SCENES[base].get("accuracy") or config["accuracy"]
 
 
 def scene_part(part, default=None):
