@@ -13,3 +13,27 @@ rule accuracy_hertz:
         f"{RESULTS}/accuracy/logs/hertz.log",
     script:
         "../scripts/accuracy_hertz.py"
+
+
+def _accuracy_scene_runs():
+    """(scene, preset) of every run the scene accuracy study compares."""
+    study = config.get("accuracy_scenes", {})
+    return [(name, preset) for name in study.get("scenes", []) for preset in study.get("presets", [])]
+
+
+rule accuracy_scenes:
+    """Deviation of pressure and contact area from the finest preset against CPU time, per scene
+    (issue #6). Not in `rule all` (it runs the scenes at `fine`): snakemake --cores 2 accuracy_scenes"""
+    input:
+        [f"{RESULTS}/{name}@{preset}/interface.nc" for name, preset in _accuracy_scene_runs()],
+    output:
+        data=f"{RESULTS}/accuracy/scenes.nc",
+        figure=report(f"{RESULTS}/accuracy/scenes.png", category="accuracy",
+                      caption="../report/accuracy_scenes.rst"),
+    params:
+        study=config.get("accuracy_scenes", {}),
+        runs=_accuracy_scene_runs(),
+    log:
+        f"{RESULTS}/accuracy/logs/scenes.log",
+    script:
+        "../scripts/accuracy_scenes.py"

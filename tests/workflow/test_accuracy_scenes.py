@@ -1,0 +1,34 @@
+"""The scene accuracy study (issue #6) is a named target, not part of `rule all`."""
+
+from __future__ import annotations
+
+import pytest
+import yaml
+
+from .conftest import planned_jobs, snakemake
+
+pytestmark = [pytest.mark.workflow, pytest.mark.slow]
+
+
+def test_accuracy_scenes_target_runs_every_scene_at_every_preset(workflow_copy):
+    config = yaml.safe_load((workflow_copy / "config" / "config.yaml").read_text())
+    study = config["accuracy_scenes"]
+    proc = snakemake(workflow_copy, "-n", "accuracy_scenes")
+    jobs = planned_jobs(proc)
+    assert jobs["accuracy_scenes"] == 1
+    assert jobs["interface"] == len(study["scenes"]) * len(study["presets"]) == 6
+    for name in study["scenes"]:
+        for preset in study["presets"]:
+            assert f"results/{name}@{preset}/interface.nc" in proc.stdout, (name, preset)
+    # the default run leaves it out (it costs the fine runs)
+    assert "accuracy_scenes" not in planned_jobs(snakemake(workflow_copy, "-n"))
+
+
+def test_bad_preset_is_refused(workflow_copy):
+    path = workflow_copy / "config" / "config.yaml"
+    config = yaml.safe_load(path.read_text())
+    config["accuracy_scenes"]["presets"] = ["draft", "coarse"]
+    path.write_text(yaml.safe_dump(config))
+    proc = snakemake(workflow_copy, "-n", "accuracy_scenes", check=False)
+    assert proc.returncode != 0
+    assert "config/config.yaml: key accuracy_scenes.presets.1: 'coarse' is not one of" in proc.stdout + proc.stderr
