@@ -91,3 +91,19 @@ def test_fe_range_stops_short_of_the_foot_of_sphere_and_paraboloid():
     assert models.max_interference(fe.Sphere(2.0), {"max_radius_fraction": 0.5}) == \
         pytest.approx(0.9 * 2.0 * (1 - 2**-0.5), rel=1e-12)
     assert models.max_interference(fe.Paraboloid(2.0), {}) == pytest.approx(0.9 * 0.25, rel=1e-12)
+
+
+def test_tail_slope_ignores_one_jumping_step():
+    """Beyond its last level a curve continues with the median step slope over the last
+    10 % of its range: a force jump in one step (an inelastic contact node snapping onto
+    the flat, seen on steel_glass_bead at standard) does not set it; a straight line's
+    slope is kept exactly."""
+    w = np.linspace(1.0, 2.0, 41)
+    line = 3.0 + 0.5 * w
+    assert models.tail_slope(w, line) == pytest.approx(0.5, rel=1e-12)
+    jumped = line.copy()
+    jumped[-2:] += 0.4  # a jump between the third- and second-to-last level
+    assert models.tail_slope(w, jumped) == pytest.approx(0.5, rel=1e-12)
+    # a geometric elastic sequence: only the last step lies in the window (its last tangent)
+    g = np.geomspace(1e-3, 1.0, 40)
+    assert models.tail_slope(g, g**1.5) == pytest.approx((1 - g[-2] ** 1.5) / (1 - g[-2]), rel=1e-12)
