@@ -35,13 +35,13 @@ import yaml
 from asperity.io.netcdf import missing_attributes, read_dataset
 from asperity.plan import job_keys
 
-from .conftest import REPO, SNAKEMAKE, copy_workflow, planned_jobs, snakemake
+from .conftest import (REPO, SNAKEMAKE, assert_same_results, copy_workflow, nc_files,
+                       planned_jobs, snakemake)
 
 pytestmark = [pytest.mark.workflow, pytest.mark.slow]
 
 HILL_CURVATURES = 5
 RTOL = 1e-12  # two runs of the same jobs: the same numbers up to round-off (here bitwise)
-TIMING = re.compile(r"(^|_)(wall|cpu)_time$")  # what differs between two runs by nature
 
 
 def repo_scene(name: str) -> dict:
@@ -194,36 +194,6 @@ def test_material_change_reruns_exactly_the_affected_fe_jobs(base):
 
 
 # ------------------------------------------------------------------ SIGKILL
-
-
-def _same(a, b) -> bool:
-    a, b = np.asarray(a), np.asarray(b)
-    if a.shape != b.shape:
-        return False
-    if a.dtype.kind in "fc":
-        return bool(np.allclose(a, b, rtol=RTOL, atol=0.0, equal_nan=True))
-    return bool(np.array_equal(a, b))
-
-
-def assert_same_results(got: Path, reference: Path, names: list[str]) -> int:
-    """Every file of `names` holds the same variables, attributes and numbers (RTOL) in both
-    trees, timings and the write date aside; returns the number of values compared."""
-    compared = 0
-    for name in names:
-        with xr.open_dataset(got / name) as a, xr.open_dataset(reference / name) as b:
-            assert set(a.variables) == set(b.variables), name
-            for var in a.variables:
-                assert a[var].dims == b[var].dims, (name, var)
-                if TIMING.search(var):
-                    continue
-                assert _same(a[var].values, b[var].values), (name, var)
-                compared += a[var].size
-            assert set(a.attrs) == set(b.attrs), name
-            for key in set(a.attrs) - {"history"}:
-                if TIMING.search(key):
-                    continue
-                assert _same(a.attrs[key], b.attrs[key]), (name, key)
-    return compared
 
 
 def registered(workdir: Path) -> list[str]:

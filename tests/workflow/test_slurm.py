@@ -17,14 +17,13 @@ import pytest
 import xarray as xr
 import yaml
 
-from tests.workflow.conftest import REPO, SNAKEMAKE, copy_workflow
+from tests.workflow.conftest import REPO, SNAKEMAKE, assert_same_results, copy_workflow, nc_files
 
 PROFILE = REPO / "workflow" / "profiles" / "slurm"
 CLUSTER = PROFILE / "localhost-cluster.sh"
 SCENE = "greenwood_williamson_fe"  # statistics -> plan -> one FE sample -> interface, verification
 TARGETS = [f"results/{SCENE}/{name}" for name in ("surface.nc", "interface.nc", "verification.nc")]
 # what differs between two runs by nature: when a file was written, how long a job took
-TIMING = re.compile(r"(^|_)(wall|cpu)_time$")
 RTOL = 1e-12
 
 
@@ -105,47 +104,6 @@ def cluster():
         assert not running, f"daemons left running: {running}"
 
 
-def _nc_files(root: Path) -> list[str]:
-    return sorted(str(Path(f).relative_to(root)) for f in glob.glob(f"{root}/**/*.nc", recursive=True))
-
-
-def _equal(a, b) -> bool:
-    a, b = np.asarray(a), np.asarray(b)
-    if a.shape != b.shape:
-        return False
-    if a.dtype.kind in "fc":
-        return bool(np.allclose(a, b, rtol=RTOL, atol=0.0, equal_nan=True))
-    return bool(np.array_equal(a, b))
-
-
-def _compare(local: Path, cluster: Path) -> int:
-    """Assert two result trees hold the same netCDF files with the same
-    variables, dimensions, attributes and values (floats to RTOL relative),
-    timings and the write date aside; return the number of values compared."""
-    files = _nc_files(local)
-    assert files and files == _nc_files(cluster)
-    compared = 0
-    for name in files:
-        with xr.open_dataset(local / name, decode_times=False) as a, \
-                xr.open_dataset(cluster / name, decode_times=False) as b:
-            assert set(a.variables) == set(b.variables), name
-            for var in a.variables:
-                assert a[var].dims == b[var].dims, (name, var)
-                assert set(a[var].attrs) == set(b[var].attrs), (name, var)
-                for key in a[var].attrs:
-                    assert _equal(a[var].attrs[key], b[var].attrs[key]), (name, var, key)
-                if TIMING.search(var):
-                    continue
-                assert _equal(a[var].values, b[var].values), (name, var)
-                compared += a[var].size
-            assert set(a.attrs) == set(b.attrs), name
-            for key in a.attrs:
-                if key == "history" or TIMING.search(key):
-                    continue
-                assert _equal(a.attrs[key], b.attrs[key]), (name, key)
-    return compared
-
-
 @pytest.mark.slow
 @pytest.mark.slurm
 @pytest.mark.workflow
@@ -189,5 +147,7 @@ def test_slurm_profile_runs_a_scene_like_a_local_run(cluster, tmp_path):
     state_of = dict(line.split() for line in states.splitlines())
     assert all(state_of.get(jobid) == "COMPLETED" for jobid, _ in submitted), states
 
-    compared = _compare(local / "results" / SCENE, on_cluster / "results" / SCENE)
+    files = nc_files(local / "results" / SCENE)
+    assert files and files == nc_files(on_cluster / "results" / SCENE)
+    compared = assert_same_results(local / "results" / SCENE, on_cluster / "results" / SCENE, files, RTOL)
     assert compared > 1000  # the interface curves, the FE sample, the plan
