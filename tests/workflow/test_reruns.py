@@ -139,6 +139,22 @@ def test_shared_keys_one_job_per_distinct_asperity(base):
     np.testing.assert_array_equal(a["force"].isel(height=0).values, b["force"].isel(height=-1).values)
 
 
+def test_editing_a_rules_file_reruns_no_fe_job(base):
+    """A comment added to any rules file changes no rule's recorded code: nothing
+    reruns.  (A global `wildcard_constraints:` block in population.smk made Snakemake
+    record a shifted source for rule `sample`, and every such edit reran every FE
+    sample of every scene, which share one folder.)"""
+    w = base.workdir
+    for rules in ("population.smk", "figures.smk"):
+        path = w / "workflow" / "rules" / rules
+        text = path.read_text()
+        try:
+            path.write_text(text + "\n# an edit that changes no rule\n")
+            assert planned_jobs(snakemake(w, "-n", *TARGETS.values(), *CONFIG)) == {}, rules
+        finally:
+            path.write_text(text)
+
+
 def test_homogenization_change_reruns_no_fe_job_and_changes_the_interface(base):
     """cells 200 -> 40 (Gauss cells over the heights): interface and friction rerun,
     no plan, no sample, no gather; the sample files are not touched; the pressure changes."""

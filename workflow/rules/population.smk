@@ -24,10 +24,6 @@ checkpoint plan:
         "../scripts/plan.py"
 
 
-wildcard_constraints:
-    key="[0-9a-f]{12}",
-
-
 SAMPLE_SPECS = {}  # key -> the JSON spec of its job, from the plans read so far
 
 
@@ -66,6 +62,11 @@ rule sample:
     """One asperity sample: its response over the interference range of its spec."""
     output:
         f"{RESULTS}/samples/{{key}}.nc",
+    # here, not as a global block: a global wildcard_constraints in an included file shifts
+    # the source Snakemake records for this rule, and every edit of any rules file then
+    # reran every FE sample ("code has changed")
+    wildcard_constraints:
+        key="[0-9a-f]{12}",
     params:
         key=lambda w: w.key,
         spec=sample_spec,
