@@ -10,6 +10,11 @@ from asperity import hertz, models
 from asperity.plan import interference_grid, make_plan
 
 
+def BY_CURVATURE(height, curvature, level):
+    """The job spec of a sphere whose response depends on its curvature only."""
+    return {"model": "fe", "curvature": curvature}
+
+
 def test_representative_hill_has_the_surface_rms_slope_and_the_sample_curvature():
     """8.2: width/height = pi/(sqrt2 sigma_slope); 2.5.1: kappa = C k^2."""
     ratio = models.representative_width_to_height(0.13)
@@ -34,7 +39,7 @@ def _fake_sample(key, curvature, levels):
 
 def test_gather_reproduces_a_power_law_between_and_below_levels():
     grid = interference_grid(1e-6, 121)
-    plan = make_plan([0.0, 1e-6], [1e5, 2e5], grid, model="fe", job_inputs={},
+    plan = make_plan([0.0, 1e-6], [1e5, 2e5], grid, model="fe", job_spec=BY_CURVATURE,
                      shift_invariant=True, analytic=False)
     keys = dict(zip(plan["sample_curvature"].values, plan["key"].values))
     levels = np.geomspace(grid[5], 0.5e-6, 40)  # FE range ends at half the grid
@@ -60,7 +65,7 @@ def test_gather_reproduces_a_power_law_between_and_below_levels():
 
 def test_gather_names_missing_samples():
     grid = interference_grid(1e-6, 20)
-    plan = make_plan([0.0], [1e5, 2e5], grid, model="fe", job_inputs={},
+    plan = make_plan([0.0], [1e5, 2e5], grid, model="fe", job_spec=BY_CURVATURE,
                      shift_invariant=True, analytic=False)
     with pytest.raises(ValueError, match="2 samples missing"):
         models.gather(plan, {})

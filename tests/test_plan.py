@@ -8,6 +8,11 @@ from asperity.plan import interference_grid, job_keys, make_plan, sample_grid, s
 JOB = {"material": {"youngs_modulus": 2e11, "poisson": 0.3}, "effects": [], "accuracy": "standard"}
 
 
+def spec_of(job, shift_invariant=True):
+    """A job spec: `job` with the curvature (and the height where the response depends on it)."""
+    return lambda h, k, level: {**job, "curvature": k, **({} if shift_invariant else {"height": h})}
+
+
 def test_key_is_stable_and_sensitive():
     assert sample_key({"a": 1.0, "b": [1, 2]}) == sample_key({"b": [1, 2], "a": 1.0})
     assert sample_key({"a": 1.0}) != sample_key({"a": 1.0 + 1e-15})  # floats hashed exactly
@@ -32,7 +37,7 @@ def test_sample_grid_avoids_zero_curvature():
 
 def test_shift_invariant_model_derives_heights():
     plan = make_plan(np.linspace(-1, 1, 5), [1.0, 2.0, 3.0], interference_grid(1.0, 8),
-                     model="hertz", job_inputs=JOB, shift_invariant=True, analytic=True)
+                     model="hertz", job_spec=spec_of(JOB), shift_invariant=True, analytic=True)
     keys = plan["key"].values.reshape(5, 3)
     assert all(len(set(keys[:, j])) == 1 for j in range(3))  # one key per curvature
     assert len(set(keys.ravel())) == 3
@@ -42,10 +47,11 @@ def test_shift_invariant_model_derives_heights():
 
 def test_height_dependent_model_gets_a_job_per_sample():
     plan = make_plan(np.linspace(-1, 1, 4), [1.0, 2.0], interference_grid(1.0, 8),
-                     model="fe", job_inputs=JOB, shift_invariant=False, analytic=False)
+                     model="fe", job_spec=spec_of(JOB, False), shift_invariant=False,
+                     analytic=False)
     assert len(set(plan["key"].values)) == 8
     assert len(job_keys(plan)) == 8
     other = make_plan(np.linspace(-1, 1, 4), [1.0, 2.0], interference_grid(1.0, 8),
-                      model="fe", job_inputs={**JOB, "accuracy": "fine"},
+                      model="fe", job_spec=spec_of({**JOB, "accuracy": "fine"}, False),
                       shift_invariant=False, analytic=False)
     assert set(other["key"].values).isdisjoint(plan["key"].values)

@@ -36,9 +36,13 @@ def spec_json(spec: Mapping[str, Any]) -> str:
     return json.dumps(plain(spec), sort_keys=True, separators=(",", ":"))
 
 
+def _digest(text: str) -> str:
+    return hashlib.sha256(text.encode()).hexdigest()[:12]
+
+
 def sample_key(payload: Mapping[str, Any]) -> str:
     """A 12-hex-digit hash of a job's inputs (their canonical JSON: floats exact)."""
-    return hashlib.sha256(spec_json(payload).encode()).hexdigest()[:12]
+    return _digest(spec_json(payload))
 
 
 def interference_grid(largest: float, count: int, smallest_fraction: float = 1e-5) -> np.ndarray:
@@ -74,20 +78,20 @@ def make_plan(
     interferences: np.ndarray,
     *,
     model: str,
-    job_inputs: Mapping[str, Any],
+    job_spec: Callable[[float, float, float], Mapping[str, Any]],
     shift_invariant: bool,
     analytic: bool,
     unloading_levels: Callable[[float, float], np.ndarray] | None = None,
     reference_curvature: float | None = None,
-    job_spec: Callable[[float, float, float], Mapping[str, Any]] | None = None,
 ) -> xr.Dataset:
     """The samples of a scene on the grid heights x curvatures (x unloading levels).
 
-    `job_inputs` is everything a sample's job depends on besides its own
-    height and curvature (material, effects, accuracy, model options); it
-    goes into the key.  `shift_invariant`: the response depends on the
-    interference only, not on the peak height (samples of one curvature
-    share a key).  `analytic`: a closed form, no job of its own.
+    `job_spec(height, job curvature, unloading level)`: exactly what the
+    sample's job depends on (`asperity.models.job_spec`), stored as JSON in
+    ``spec``; the key is its hash, so samples with equal specs share a job.
+    `shift_invariant`: the response depends on the interference only, not
+    on the peak height (the spec leaves the height out, and samples of one
+    curvature share a key).  `analytic`: a closed form, no job of its own.
     `unloading_levels(height, curvature)`: the interferences [m] from which
     the sample is unloaded (report 8.3: three or four per asperity), one
     sample (and key) per level; None: loading only (level NaN).
@@ -97,11 +101,6 @@ def make_plan(
     unloading level computes the asperity of the reference curvature and
     every sample is derived from it by scaling (``scale`` = lambda).  The
     ``unloading_level`` of a sample is then that of its job.
-    `job_spec(height, job curvature, unloading level)`: exactly what the
-    sample's job depends on (`asperity.models.job_spec`), stored as JSON in
-    ``spec``; the key is its hash.  Without it the spec is `job_inputs`
-    with the model, the interference grid, the job curvature, the height
-    (unless shift invariant) and the unloading level.
     """
     heights = np.asarray(heights, float)
     curvatures = np.asarray(curvatures, float)
@@ -118,14 +117,8 @@ def make_plan(
         counts = np.array([p.size for p in per])
         hh, kk, jk = (np.repeat(a, counts) for a in (hh, kk, jk))
         ll = np.concatenate(per)
-    if job_spec is None:
-        base = {"model": model, "interference": np.asarray(interferences, float), **job_inputs}
-
-        def job_spec(h, k, lv):
-            return {**base, "curvature": k, **({} if shift_invariant else {"height": h}),
-                    **({} if np.isnan(lv) else {"unloading_level": lv})}
     specs = [spec_json(job_spec(h, k, lv)) for h, k, lv in zip(hh, jk, ll)]
-    keys = np.array([hashlib.sha256(text.encode()).hexdigest()[:12] for text in specs])
+    keys = np.array([_digest(text) for text in specs])
     _, first = np.unique(keys, return_index=True)
     representative = np.zeros(keys.size, bool)
     representative[first] = True

@@ -320,10 +320,9 @@ def plan_dataset(
                                width_to_height=width_to_height, velocity=velocity,
                                adhesion=adhesion_si)
 
-    plan = make_plan(heights, curvatures, grid, model=model, job_inputs={},
+    plan = make_plan(heights, curvatures, grid, model=model, job_spec=job_spec,
                      shift_invariant=shift_invariant, analytic=analytic,
-                     unloading_levels=levels_of, reference_curvature=reference,
-                     job_spec=job_spec)
+                     unloading_levels=levels_of, reference_curvature=reference)
     if scaled and not materials.rate_independent(mat, effects):
         plan.attrs["scaling_assumption"] = (
             "self-similar scaling of a rate-dependent body (asperity.scaling: self_similar): "

@@ -17,7 +17,7 @@ J2 = {**ELASTIC, "model": "j2", "yield_stress": 320e6}
 def responses(material, effects, curvatures, reference, accuracy):
     grid = interference_grid(4e-6, 121)
     family = np.asarray(curvatures) if reference is not None else None
-    plan = make_plan([0.0], curvatures, grid, model="fe", job_inputs={},
+    plan = make_plan([0.0], curvatures, grid, model="fe",
                      shift_invariant=True, analytic=False, reference_curvature=reference,
                      job_spec=lambda h, k, level: models.job_spec(
                          ASPERITY, material, effects, accuracy, curvature=k, grid=grid,
