@@ -296,3 +296,26 @@ def test_smooth_aluminum_curves_stack_radii():
     P = ds.pull_off_force.values
     assert np.all(P > ds.pull_off_force_jkr.values) and np.all(P < ds.pull_off_force_dmt.values)
     assert np.all(np.isfinite(ds.jump_off_interference.values))
+
+
+def test_large_steps_in_contact_are_not_halved_and_land_on_the_branch():
+    """The geometric steps beyond 4 d span tens of d.  The continuity test
+    allows the trapezoidal rule's own error there (`AdhesiveModel.continuous`);
+    without it each such step failed the energy balance and was halved twice
+    over.  The states must be those of a path with twice as many steps."""
+    mat = material_for(3.0)
+    coarse = adhesive_path(LAW, 40 * D, steps_per_d=3, far_steps=6)
+    fine = adhesive_path(LAW, 40 * D, steps_per_d=3, far_steps=12)
+    a = solve_asperity_adhesive(Paraboloid(R), mat, LAW, interferences=coarse, accuracy="draft")
+    b = solve_asperity_adhesive(Paraboloid(R), mat, LAW, interferences=fine, accuracy="draft")
+    w = a.interference.values
+    far = a.requested.values.astype(bool) & (w > 4 * D * (1 + 1e-9))
+    far &= np.roll(w, 1) >= 4 * D * (1 - 1e-9)  # the step starts beyond 4 d too
+    assert far.sum() >= 8  # six levels up, five back down (the top's neighbours)
+    assert np.all(a.step_cuts.values[far] == 0)
+    for which in ("approach", "retract"):
+        levels = w[far & (a.branch.values.astype(str) == which)]
+        Fa = interpolate_adhesive(a, levels, which)["force"]
+        Fb = interpolate_adhesive(b, levels, which)["force"]
+        # to the Newton tolerance (1e-6 of the forces at draft)
+        np.testing.assert_allclose(Fa, Fb, rtol=1e-6, atol=1e-6 * np.max(np.abs(Fb)))
