@@ -1175,8 +1175,9 @@ def smooth_aluminum_curves(radii=(15.4e-6, 30e-6, 60e-6), d: float = 0.3e-9,
     mu = 4.8, 6.0, 7.6 at 15.4, 30, 60 um (draft: 17, 52, 170 s of CPU;
     R = 15.4 um at 'standard' gives the same pull-off force to 1.4e-4);
     150 and 300 um (mu = 10, 13) need a band of 3000 facets (300 um: 4
-    minutes and 5.6 GB to set up, hours to trace) and are not in the
-    default.  With d = 0.5 nm, mu is 0.6 times smaller and 300 um costs
+    minutes and 5.6 GB to set up, hours to trace before the truncation
+    allowance of `AdhesiveModel.continuous` cut tracing by about 3) and are
+    not in the default.  With d = 0.5 nm, mu is 0.6 times smaller and 300 um costs
     about what 60 um does at 0.3 nm.
     """
     from .geometry import Paraboloid
