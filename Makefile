@@ -8,7 +8,7 @@ CORES ?= 2
 export OPENBLAS_NUM_THREADS = 1
 export OMP_NUM_THREADS = 1
 
-.PHONY: all reproduce test test-fast bench time-scenes figures clean-results
+.PHONY: all reproduce test test-fast bench time-scenes time-jobs figures clean-results
 
 all: reproduce
 
@@ -43,6 +43,11 @@ SCENES ?=
 FULL ?= --full
 time-scenes: $(STAMP)
 	$(BIN)/python benchmarks/scenes.py --accuracy $(ACCURACY) --cores $(CORES) $(if $(SCENES),--scenes $(SCENES)) $(FULL)
+
+# What a job pays before it computes: Snakemake per script job, and each
+# script's imports; writes benchmarks/results/job-overhead.json.
+time-jobs: $(STAMP)
+	$(BIN)/python benchmarks/job_overhead.py --cores $(CORES)
 
 # The figures shown in the README, copied from a full run.
 README_FIGURES := profile_quasirandom/figures/surface.png expectation_unit/figures/expectation.png \
