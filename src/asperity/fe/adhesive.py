@@ -570,9 +570,10 @@ class AdhesiveModel:
         both touching or both not, the rule's own truncation error, estimated
         as dw^2 |k1 - k0| / 6 (twice the trapezoidal error dw^3 F'' / 12, with
         F'' ~ (k1 - k0) / dw from the stiffnesses k at both ends), and the
-        surface moved
-        within d / 2 + 2 |dw| of the tangent predictor (the allowance covers
-        the kinks where nodes enter or leave contact).  At the smallest
+        surface moved within d / 2 + 2 |dw| of the tangent predictor (the
+        allowance covers the kinks where nodes enter or leave contact; the
+        predictor's own move is capped at d + 2 |dw|, since du/dw blows up
+        near a fold).  At the smallest
         steps (min_step * d), where a continuous branch cannot move far
         from its tangent, only the predictor counts: a jump is a move of
         more than jump_tolerance * d (0.25 d) away from it.  Measured at
@@ -742,8 +743,8 @@ def _advance(model: AdhesiveModel, state: AdhesiveState, target: float, pre: dic
                 continue
         dw = goal - state.w
         small = abs(dw) <= smallest
-        # tangent predictor, clamped near a fold (where du/dw blows up) to the
-        # move a continuous step may make (`AdhesiveModel.continuous`)
+        # tangent predictor, its move capped at d + 2 |dw| (du/dw blows up near
+        # a fold; `AdhesiveModel.continuous` allows d / 2 + 2 |dw| off it)
         step_u = dw * state.dudw
         big = np.max(np.abs(step_u), initial=0.0)
         cap = d + 2.0 * abs(dw)
