@@ -24,7 +24,6 @@ import math
 
 import numpy as np
 import xarray as xr
-from scipy import special
 
 from .hertz import plane_strain_modulus
 
@@ -40,6 +39,8 @@ def _f_negative_tail(m: float, t: np.ndarray) -> np.ndarray:
     The mass below s = t (< 1e-197 for t < -30) is neglected; the series is
     asymptotic and truncated after j = 8 (remainder < 1e-30 relative at |t| = 30).
     """
+    from scipy import special  # here, not at the top: 0.1 s that most stages never need
+
     a = np.abs(t)
     total = np.ones_like(a)
     dfact = 1.0
@@ -61,6 +62,8 @@ def gw_integral(m: float, t) -> np.ndarray:
     (scipy.special.pbdv; relative accuracy ~1e-11).  For t < -30 the
     expansion in 1/|t| is used (D overflows there).
     """
+    from scipy import special  # here, not at the top: 0.1 s that most stages never need
+
     m = float(m)
     if m < 0.0:
         raise ValueError("m must be >= 0")

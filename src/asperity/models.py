@@ -38,7 +38,6 @@ from typing import Any, Mapping
 
 import numpy as np
 import xarray as xr
-from scipy.interpolate import PchipInterpolator
 
 from asperity import materials
 
@@ -331,6 +330,8 @@ def _loglog(levels: np.ndarray, values: np.ndarray, targets: np.ndarray,
     slope_out = np.zeros_like(targets, dtype=float)
     lw, lx = np.log(levels), np.log(np.maximum(values, np.finfo(float).tiny))
     inside = (targets >= levels[0]) & (targets <= levels[-1])
+    from scipy.interpolate import PchipInterpolator  # here: scipy.interpolate costs 0.2 s to import
+
     spline = PchipInterpolator(lw, lx)
     out[inside] = np.exp(spline(np.log(targets[inside])))
     slope_out[inside] = out[inside] / targets[inside] * spline(np.log(targets[inside]), 1)

@@ -27,7 +27,6 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.optimize import brentq
 
 __all__ = [
     "francis_density",
@@ -136,6 +135,8 @@ def _radius_bound(threshold: float, beta: float) -> float:
     hi = 2.0 * r0
     while bound(hi) > 0.0:
         hi *= 2.0
+    from scipy.optimize import brentq  # here: scipy.optimize costs 0.15 s to import
+
     return brentq(bound, r0, hi, xtol=1e-12)
 
 

@@ -99,7 +99,14 @@ from __future__ import annotations
 from typing import Callable, Sequence
 
 import numpy as np
-from scipy.interpolate import PchipInterpolator
+
+
+def _pchip(x, y, **options):
+    """scipy's PchipInterpolator, imported on first use (0.2 s: most jobs never need it)."""
+    from scipy.interpolate import PchipInterpolator
+
+    return PchipInterpolator(x, y, **options)
+
 
 __all__ = [
     "coons_patch",
@@ -192,7 +199,7 @@ class _Path:
         if param == "interference":
             tau = (wu - w_r) / (w_max - w_r)
             tau[-1] = 1.0
-            self._f_of_t = PchipInterpolator(tau, fu, extrapolate=False)
+            self._f_of_t = _pchip(tau, fu, extrapolate=False)
         else:  # "force"
             if np.any(np.diff(fu) <= 0.0):
                 raise ValueError(f"{what}: force must increase strictly with w between "
@@ -200,7 +207,7 @@ class _Path:
                                  f"param='force' (use param='interference')")
             tau = fu / f_top
             tau[-1] = 1.0
-            self._w_of_t = PchipInterpolator(tau, wu, extrapolate=False)
+            self._w_of_t = _pchip(tau, wu, extrapolate=False)
 
     def x(self, t):
         t = np.clip(np.asarray(t, dtype=float), 0.0, 1.0)
@@ -259,7 +266,7 @@ class UnloadingFamily:
             if lw[0] > wm[0] + 1e-12 * span or lw[-1] < wm[-1] - 1e-12 * span:
                 raise ValueError(f"loading curve covers w in [{lw[0]!r}, {lw[-1]!r}] "
                                  f"but the computed levels span [{wm[0]!r}, {wm[-1]!r}]")
-            interp = PchipInterpolator(lw, lf, extrapolate=True)
+            interp = _pchip(lw, lf, extrapolate=True)
             self._load = lambda w: interp(np.asarray(w, dtype=float))
         f_load = self._load(wm)
         f_top = np.array([p.f_top for p in ps])
@@ -271,7 +278,7 @@ class UnloadingFamily:
                              f"(corner mismatch above corner_rtol={corner_rtol})")
 
         if residual == "pchip":
-            self._res = PchipInterpolator(wm, self.residuals, extrapolate=False)
+            self._res = _pchip(wm, self.residuals, extrapolate=False)
         else:
             self._res = lambda w: np.interp(w, wm, self.residuals)
 
@@ -452,7 +459,7 @@ def family_table(asperities, n_t: int = 201):
         lowest[i], highest[i] = lo, hi
         ok = np.flatnonzero(use)
         tops = np.array([np.nanmax(asperities["unloading_force"].values[i, j]) for j in ok])
-        load_at = PchipInterpolator(w_max, loads["force"])(level[ok])  # as the family does
+        load_at = _pchip(w_max, loads["force"])(level[ok])  # as the family does
         mismatch[i] = float(np.max(np.abs(tops / load_at - 1)))
         inside = (w_max >= lo) & (w_max <= hi)
         wb, fb = fams["force"].blend(w_max[inside], t=t)
