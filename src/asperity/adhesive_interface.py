@@ -167,13 +167,9 @@ GATHERED = {
     "contact_radius": ("m", "contact radius (0 where the asperity does not touch)"),
     "in_contact": ("1", "1 where the asperity touches the flat (contact area > 0)"),
 }
-PER_CURVATURE = {
-    "pull_off_force": ("N", "largest tensile force on retraction (FE)"),
-    "pull_off_interference": ("m", "interference of the largest tensile force"),
-    "tabor_parameter": ("1", "Tabor parameter (R dgamma^2 / (E*^2 d^3))^(1/3)"),
-    "jump_in_interference": ("m", "interference where the asperity jumps into contact (NaN: none)"),
-    "jump_off_interference": ("m", "interference where it jumps out of contact (NaN: none)"),
-}
+#: per curvature, as `asperity.fe.adhesive.stack_runs` gives them
+PER_CURVATURE = ("pull_off_force", "pull_off_interference", "tabor_parameter",
+                 "jump_in_interference", "jump_off_interference")
 PATH = {"interference": "path_interference", "force": "path_force",
         "contact_area": "path_contact_area", "branch": "path_branch", "jump": "path_jump",
         "valid": "path_valid"}
@@ -223,16 +219,15 @@ def gather(plan: xr.Dataset, samples: Mapping[str, xr.Dataset]) -> xr.Dataset:
     out["extrapolated"] = (dims, over_heights(beyond), _attrs(
         "1", "beyond the largest interference the FE job computed (continued with its last "
         "tangent)"))
-    for name, (units_, long_name) in PER_CURVATURE.items():
-        out[name] = ("curvature", np.array([float(r.attrs[name]) for r in runs]),
-                     _attrs(units_, long_name))
+    paths = stack_runs(runs, "curvature", curvatures, _attrs("1/m", "tip curvature"))
+    for name in PER_CURVATURE:
+        out[name] = ("curvature", paths[name].values, dict(paths[name].attrs))
     W = float(runs[0].attrs["work_of_adhesion"])
     radius = np.array([float(r.attrs["tip_radius"]) for r in runs])
     out["pull_off_force_dmt"] = ("curvature", 2 * np.pi * radius * W,
                                  _attrs("N", "DMT pull-off 2 pi R W_c (rigid sphere, Derjaguin)"))
     out["pull_off_force_jkr"] = ("curvature", 1.5 * np.pi * radius * W,
                                  _attrs("N", "JKR pull-off 3/2 pi R W_c"))
-    paths = stack_runs(runs, "curvature", curvatures, _attrs("1/m", "tip curvature"))
     for src, dst in PATH.items():
         var = paths[src]
         out[dst] = (("curvature", "step"), var.values,
@@ -241,11 +236,7 @@ def gather(plan: xr.Dataset, samples: Mapping[str, xr.Dataset]) -> xr.Dataset:
     adh = runs[0].attrs
     out.attrs.update(
         reach=-float(grid[0]), adhesion=str(adh.get("adhesion", "")),
-        work_of_adhesion=W, accuracy=str(adh.get("accuracy", "")), fe_jobs=len(runs),
-        fe_cpu_time=float(sum(r.attrs.get("cpu_time", np.nan) for r in runs)),
-        max_dofs=int(max(int(r["dofs"].max()) for r in runs)),
-        max_newton_iterations=int(max(int(r["newton_iterations"].max()) for r in runs)),
-        max_step_cuts=int(max(int(r["step_cuts"].max()) for r in runs)),
+        work_of_adhesion=W, **models.fe_cost(runs),
         sign_convention="force compressive positive; adhesion (attraction) negative")
     return out
 
@@ -302,8 +293,4 @@ def by_branch(asperities: xr.Dataset, separations: np.ndarray,
         pull_off_separation=float(h[np.argmin(retract_p)]),
         largest_attraction_approach=float(max(-p[0].min(), 0.0)),
         sign_convention="pressure compressive positive; net attraction negative")
-    for name in ("accuracy", "fe_jobs", "fe_cpu_time", "max_newton_iterations", "max_step_cuts",
-                 "max_dofs"):
-        if name in asperities.attrs:
-            out.attrs[name] = asperities.attrs[name]
     return out

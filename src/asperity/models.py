@@ -326,12 +326,12 @@ def _loglog(levels: np.ndarray, values: np.ndarray, targets: np.ndarray,
     Returns the values and a flag of the targets beyond the last level
     (and, with `derivative`, dX/dw at the targets as a third item).
     """
+    from scipy.interpolate import PchipInterpolator  # here: 0.2 s most stages never need
+
     out = np.zeros_like(targets, dtype=float)
     slope_out = np.zeros_like(targets, dtype=float)
     lw, lx = np.log(levels), np.log(np.maximum(values, np.finfo(float).tiny))
     inside = (targets >= levels[0]) & (targets <= levels[-1])
-    from scipy.interpolate import PchipInterpolator  # here: scipy.interpolate costs 0.2 s to import
-
     spline = PchipInterpolator(lw, lx)
     out[inside] = np.exp(spline(np.log(targets[inside])))
     slope_out[inside] = out[inside] / targets[inside] * spline(np.log(targets[inside]), 1)
@@ -448,6 +448,21 @@ def samples_by_key(plan: xr.Dataset, samples: Mapping[str, xr.Dataset]) -> dict[
     return by_key
 
 
+def fe_cost(jobs) -> dict:
+    """What a set of FE jobs cost, for the gathered file's attributes (issue #6): their
+    preset, count and total CPU time, and the largest Newton, step-cut, dof and time-step
+    counts of any of them (each only where every job records it)."""
+    out = dict(accuracy=str(jobs[0].attrs.get("accuracy", "")), fe_jobs=len(jobs),
+               fe_cpu_time=float(sum(j.attrs.get("cpu_time", np.nan) for j in jobs)))
+    for attr, var in (("max_newton_iterations", "newton_iterations"), ("max_step_cuts", "step_cuts"),
+                      ("max_dofs", "dofs")):
+        if all(var in j for j in jobs):
+            out[attr] = int(max(j[var].max() for j in jobs))
+    if all("steps" in j.attrs for j in jobs):
+        out["max_time_steps"] = int(max(j.attrs["steps"] for j in jobs))
+    return out
+
+
 def gather(plan: xr.Dataset, samples: Mapping[str, xr.Dataset]) -> xr.Dataset:
     """FE samples onto the plan's (height, curvature, interference) grid.
 
@@ -493,15 +508,7 @@ def gather(plan: xr.Dataset, samples: Mapping[str, xr.Dataset]) -> xr.Dataset:
             "interference": ("interference", grid, {"units": "m", "long_name": "interference"}),
         },
     )
-    jobs = [by_key[str(k)] for k in np.unique(plan["key"].values)]
-    ds.attrs.update(accuracy=str(jobs[0].attrs.get("accuracy", "")), fe_jobs=len(jobs),
-                    fe_cpu_time=float(sum(j.attrs.get("cpu_time", np.nan) for j in jobs)))
-    for attr, var in (("max_newton_iterations", "newton_iterations"), ("max_step_cuts", "step_cuts"),
-                      ("max_dofs", "dofs")):
-        if all(var in j for j in jobs):
-            ds.attrs[attr] = int(max(j[var].max() for j in jobs))
-    if all("steps" in j.attrs for j in jobs):
-        ds.attrs["max_time_steps"] = int(max(j.attrs["steps"] for j in jobs))
+    ds.attrs.update(fe_cost([by_key[str(k)] for k in np.unique(plan["key"].values)]))
     ds["extrapolated"] = (dims, beyond[index].reshape(shape), {
         "units": "1", "long_name": "beyond the largest interference the FE job computed "
         "(continued with the median slope of its last steps)"})
