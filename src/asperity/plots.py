@@ -25,6 +25,15 @@ METHOD_STYLE = {
 }
 
 
+def finish(fig: plt.Figure, axes, fontsize: int = 8) -> plt.Figure:
+    """Legend and major and minor grid on every panel, then a tight layout."""
+    for ax in axes:
+        ax.legend(fontsize=fontsize)
+        ax.grid(True, which="both", alpha=0.3)
+    fig.tight_layout()
+    return fig
+
+
 def surface_figure(
     surface: xr.Dataset,
     profile: tuple[np.ndarray, np.ndarray] | None = None,
@@ -187,11 +196,7 @@ def interface_figure(interface: xr.Dataset, verification: xr.Dataset | None = No
                                  color=f"C{i + 4}", label=f"{oname}: {FRACTIONS[name]}")
         axes[3].set(xlabel=f"separation [{length_unit}]", ylim=(-2, 102),
                     ylabel="share of contacting asperities [%]")
-    for ax in axes:
-        ax.legend(fontsize=8)
-        ax.grid(True, which="both", alpha=0.3)
-    fig.tight_layout()
-    return fig
+    return finish(fig, axes, fontsize=8)
 
 
 def unloading_figure(unloading: xr.Dataset, length_unit: str = "m", count: int = 8) -> plt.Figure:
@@ -324,11 +329,7 @@ def asperities_figure(asperities: xr.Dataset, others: dict[str, xr.Dataset] | No
     axes[0].set(xlabel=f"interference [{length_unit}]", ylabel="force [N]",
                 title="single asperities (x: beyond the FE range)")
     axes[1].set(xlabel=f"interference [{length_unit}]", ylabel=f"contact area [{length_unit}^2]")
-    for ax in axes:
-        ax.legend(fontsize=7)
-        ax.grid(True, which="both", alpha=0.3)
-    fig.tight_layout()
-    return fig
+    return finish(fig, axes, fontsize=7)
 
 
 def hertz_verification_figure(ds: xr.Dataset) -> plt.Figure:

@@ -17,6 +17,7 @@ import numpy as np  # noqa: E402
 import xarray as xr  # noqa: E402
 
 from asperity import units  # noqa: E402
+from asperity.plots import finish  # noqa: E402
 
 STYLE = {"approach": dict(ls="-", marker="o", ms=3), "retract": dict(ls="--", marker=".", ms=3)}
 
@@ -98,8 +99,4 @@ def adhesion_figure(interface: xr.Dataset, asperities: xr.Dataset,
     ax.set_yscale("symlog", linthresh=float(asperities["pull_off_force"].min()))
     ax.set(xlabel=f"interference [{length_unit}] (negative: gap)", ylabel="force [N]",
            title="Fig. 7.6: computed asperities (dashed: retraction, ▼ pull-off)")
-    for ax in axes:
-        ax.legend(fontsize=7)
-        ax.grid(True, which="both", alpha=0.3)
-    fig.tight_layout()
-    return fig
+    return finish(fig, axes, fontsize=7)
