@@ -125,6 +125,8 @@ def _radius_bound(threshold: float, beta: float) -> float:
     eta^2 - 1 + exp(-eta^2) <= eta^2 <= r^2 and the quadratic form is
     bounded below by its smallest eigenvalue (1 - beta) times r^2.
     """
+    from scipy.optimize import brentq  # here: 0.15 s most stages never need
+
     c = math.sqrt(3.0) / (math.pi * math.sqrt(1.0 - beta * beta))
     s = 2.0 * (1.0 + beta)
     r0 = math.sqrt(s)  # maximum of r^2 exp(-r^2/s)
@@ -135,8 +137,6 @@ def _radius_bound(threshold: float, beta: float) -> float:
     hi = 2.0 * r0
     while bound(hi) > 0.0:
         hi *= 2.0
-    from scipy.optimize import brentq  # here: scipy.optimize costs 0.15 s to import
-
     return brentq(bound, r0, hi, xtol=1e-12)
 
 
