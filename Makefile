@@ -8,7 +8,7 @@ CORES ?= 2
 export OPENBLAS_NUM_THREADS = 1
 export OMP_NUM_THREADS = 1
 
-.PHONY: all reproduce test test-fast bench time-scenes time-jobs figures clean-results
+.PHONY: all reproduce test test-fast bench time-scenes time-jobs time-adhesion figures clean-results
 
 all: reproduce
 
@@ -48,6 +48,11 @@ time-scenes: $(STAMP)
 # script's imports; writes benchmarks/results/job-overhead.json.
 time-jobs: $(STAMP)
 	$(BIN)/python benchmarks/job_overhead.py --cores $(CORES)
+
+# CPU time of the adhesive jobs (the adhesion scene at draft and standard, R = 100 um,
+# Fig. 7.6's curves); writes benchmarks/results/adhesion-cost.json.
+time-adhesion: $(STAMP)
+	$(BIN)/python benchmarks/adhesion_cost.py
 
 # The figures shown in the README, copied from a full run.
 README_FIGURES := profile_quasirandom/figures/surface.png expectation_unit/figures/expectation.png \

@@ -1,0 +1,105 @@
+"""CPU time of the adhesive asperity jobs (`make time-adhesion`).
+
+The README's adhesion section quotes what the adhesive solver costs; this
+script measures it (CPU time of this process, `time.process_time`):
+
+1. the five FE jobs of scene `smooth_aluminum_adhesion`, at `draft` (the
+   scene's preset) and at `standard`.  Their specs come from the scene's
+   plan, built by Snakemake in a fresh copy of the workflow;
+2. the scene's flattest asperity (R = 60 um) moved to R = 100 um, the cost
+   behind the scene's curvature range (README: departures);
+3. `asperity.fe.adhesive.smooth_aluminum_curves` (Fig. 7.6: R = 15.4, 30,
+   60 um at d = 0.3 nm), at draft, one radius at a time.
+
+Writes benchmarks/results/adhesion-cost.json and prints a table.  Nothing
+is asserted: speed is measured here, not in the tests.
+
+    python benchmarks/adhesion_cost.py             # everything, about 12 min
+    python benchmarks/adhesion_cost.py --no-curves # without part 3
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+import xarray as xr
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))  # run as a script: `benchmarks` importable
+from benchmarks.scenes import _commit, _env  # noqa: E402
+from benchmarks.workflow_copy import SNAKEMAKE, copy_workflow  # noqa: E402
+
+from asperity import models  # noqa: E402
+from asperity.fe.adhesive import smooth_aluminum_curves  # noqa: E402
+
+SCENE = "smooth_aluminum_adhesion"
+RESULTS = Path(__file__).with_name("results")
+
+
+def scene_specs() -> list[dict]:
+    """The job specs of the scene's plan, flattest asperity first."""
+    with tempfile.TemporaryDirectory(prefix="adhesion-cost-") as tmp:
+        work = copy_workflow(Path(tmp))
+        target = f"results/{SCENE}/plan.nc"
+        subprocess.run([str(SNAKEMAKE), "--cores", "1", "--quiet", target], cwd=work, env=_env(),
+                       check=True, capture_output=True, text=True)
+        with xr.open_dataset(work / target) as plan:
+            texts = sorted(set(str(s) for s in plan["spec"].values))
+    return sorted((json.loads(t) for t in texts), key=lambda s: s["curvature"])
+
+
+def timed(fn):
+    t0 = time.process_time()
+    out = fn()
+    return out, time.process_time() - t0
+
+
+def job_row(spec: dict, accuracy: str) -> dict:
+    s = dict(spec, accuracy=accuracy)
+    ds, cpu = timed(lambda: models.solve_job(s, "benchmark"))
+    return dict(tip_radius_um=1e6 / s["curvature"], accuracy=accuracy, cpu_time_s=cpu,
+                pull_off_force_N=float(ds.attrs["pull_off_force"]),
+                tabor_parameter=float(ds.attrs["tabor_parameter"]))
+
+
+def main(argv: list[str] | None = None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--no-curves", action="store_true", help="leave out smooth_aluminum_curves")
+    ap.add_argument("--out", type=Path, default=RESULTS / "adhesion-cost.json")
+    args = ap.parse_args(argv)
+
+    specs = scene_specs()
+    rows = []
+    for accuracy in ("draft", "standard"):
+        for spec in specs:
+            rows.append(job_row(spec, accuracy))
+            print(f"scene job R = {rows[-1]['tip_radius_um']:.4g} um, {accuracy}: "
+                  f"{rows[-1]['cpu_time_s']:.1f} s", flush=True)
+    totals = {a: sum(r["cpu_time_s"] for r in rows if r["accuracy"] == a) for a in ("draft", "standard")}
+    wider = job_row(dict(specs[0], curvature=1.0 / 100e-6), "draft")
+    print(f"R = 100 um, draft: {wider['cpu_time_s']:.1f} s", flush=True)
+    curves = []
+    if not args.no_curves:
+        for radius in (15.4e-6, 30e-6, 60e-6):
+            ds, cpu = timed(lambda: smooth_aluminum_curves(radii=(radius,), accuracy="draft"))
+            curves.append(dict(tip_radius_um=radius * 1e6, d_nm=0.3, accuracy="draft", cpu_time_s=cpu,
+                               tabor_parameter=float(ds["tabor_parameter"][0])))
+            print(f"smooth_aluminum_curves R = {radius * 1e6:.4g} um: {cpu:.1f} s", flush=True)
+    commit, dirty = _commit()
+    record = dict(date=time.strftime("%Y-%m-%dT%H:%M:%S%z"), commit=commit, uncommitted_changes=dirty,
+                  scene=SCENE, scene_jobs=rows, scene_cpu_time_s=totals, radius_100um=wider,
+                  smooth_aluminum_curves=curves)
+    args.out.parent.mkdir(parents=True, exist_ok=True)
+    args.out.write_text(json.dumps(record, indent=1) + "\n")
+    print(f"scene FE CPU: draft {totals['draft']:.0f} s, standard {totals['standard']:.0f} s")
+    print(f"written: {args.out}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
