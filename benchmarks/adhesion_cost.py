@@ -46,7 +46,7 @@ def scene_specs() -> list[dict]:
     with tempfile.TemporaryDirectory(prefix="adhesion-cost-") as tmp:
         work = copy_workflow(Path(tmp))
         target = f"results/{SCENE}/plan.nc"
-        subprocess.run([str(SNAKEMAKE), "--cores", "1", "--quiet", target], cwd=work, env=_env(),
+        subprocess.run([str(SNAKEMAKE), "--cores", "1", target], cwd=work, env=_env(),
                        check=True, capture_output=True, text=True)
         with xr.open_dataset(work / target) as plan:
             texts = sorted(set(str(s) for s in plan["spec"].values))
