@@ -78,7 +78,7 @@ cohesive length): at the draft preset 60 at mu = 0.1, 150 at mu = 3,
 Cost (2 shared cores, draft, R = 15 um, d = 0.3 nm, w_max = 2 d, about
 70 path steps): mu = 0.1 and 1 under 1 s, mu = 3 2 s, mu = 5 15-20 s.
 The aluminum asperity of report 7.3 (R = 15.4 um, mu = 4.8, w_max =
-10 nm) takes 17 s of CPU at draft (50 s before the truncation allowance of
+10 nm) takes 15 s of CPU at draft (`make time-adhesion`; 50 s before the truncation allowance of
 `AdhesiveModel.continuous`); draft and standard gave the same pull-off
 force (to 1.4e-4) and jump interferences (to 4e-4).
 """
@@ -586,7 +586,7 @@ class AdhesiveModel:
         continuous stretch.  Without the truncation term the geometric steps
         beyond 4 d (tens of d each) failed the balance and were halved
         twice over: the R = 60 um aluminum asperity at draft took 80 s of
-        CPU instead of 25 s, for the same states (force 4e-8, area 1e-6
+        CPU instead of about 30 s, for the same states (force 4e-8, area 1e-6
         apart) and the same jumps and pull-off.
         """
         d = self.adhesion.d
@@ -1173,7 +1173,7 @@ def smooth_aluminum_curves(radii=(15.4e-6, 30e-6, 60e-6), d: float = 0.3e-9,
     pull-off forces 2 pi R W_c and 3/2 pi R W_c for comparison.
 
     Cost grows with the Tabor parameter (R^(1/3) / d): with d = 0.3 nm,
-    mu = 4.8, 6.0, 7.6 at 15.4, 30, 60 um (draft: 17, 52, 170 s of CPU;
+    mu = 4.8, 6.0, 7.6 at 15.4, 30, 60 um (draft: 15, 54, 190 s of CPU;
     R = 15.4 um at 'standard' gives the same pull-off force to 1.4e-4);
     150 and 300 um (mu = 10, 13) need a band of 3000 facets (300 um: 4
     minutes and 5.6 GB to set up, hours to trace before the truncation
