@@ -20,10 +20,11 @@ import numpy as np
 import pytest
 import xarray as xr
 
-from asperity import adhesive_interface, homogenize, stages
+from asperity import homogenize, stages
+from asperity.population import adhesive as adhesive_interface
 from asperity.fe.adhesion import LennardJones, derjaguin_force
 from asperity.peaks import JointDensity
-from asperity.plan import interference_grid as contact_grid
+from asperity.population.plan import interference_grid as contact_grid
 
 UNITS = {"length": "um", "pressure": "MPa"}
 SMOOTH = {"statistics": {"sigma": 0.013, "sigma_slope": 0.013, "sigma_curvature": 0.018,
@@ -340,7 +341,7 @@ def test_integrator_refuses_a_table_that_does_not_reach(dmt):
 
 
 def test_adhesion_figure_draws_both_branches_and_the_samples(surface, plan, jkr, dmt_interface):
-    from asperity import plots_adhesion
+    from asperity.plots import adhesion as plots_adhesion
 
     out = stages.interface_dataset(jkr, surface, plan, {}, HOMOGENIZATION, UNITS)
     fig = plots_adhesion.adhesion_figure(out, jkr.isel(curvature=[0, 20, 40]),

@@ -7,8 +7,9 @@ import pytest
 import xarray as xr
 from scipy import integrate
 
-from asperity import friction, greenwood_williamson, stages
-from asperity.hertz import plane_strain_modulus
+from asperity import friction, stages
+from asperity.references import greenwood_williamson
+from asperity.references.hertz import plane_strain_modulus
 from asperity.io.netcdf import missing_attributes, read_dataset, write_dataset
 
 UNITS = {"length": "um", "pressure": "MPa"}
@@ -39,7 +40,7 @@ def test_mu_shear_against_greenwood_williamson_closed_form():
     """tau_s A/F for GW-Hertz: (3 pi / 4) sqrt(R / sigma_p) F_1(t) / (E* F_3/2(t)), to 1e-6.
 
     The closed form's F_m by adaptive quadrature, independently of the
-    parabolic-cylinder evaluation of asperity.greenwood_williamson.
+    parabolic-cylinder evaluation of asperity.references.greenwood_williamson.
     """
     h = np.linspace(-1.0, 4.0, 11) * SIGMA_P
     tau = 150.0  # MPa

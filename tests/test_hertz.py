@@ -7,7 +7,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from asperity.hertz import hertz_asperities, hertz_response
+from asperity.references.hertz import hertz_asperities, hertz_response
 
 positive = st.floats(min_value=1e-3, max_value=1e3)
 poisson = st.floats(min_value=-0.5, max_value=0.5)

@@ -9,8 +9,8 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from scipy import integrate, special
 
-from asperity.greenwood_williamson import gw_integral, gw_interface
-from asperity.hertz import hertz_asperities, hertz_response
+from asperity.references.greenwood_williamson import gw_integral, gw_interface
+from asperity.references.hertz import hertz_asperities, hertz_response
 from asperity.homogenize import expectation, interface_response, quadrature_1d, quadrature_nodes
 from asperity.peaks import FixedCurvatureDensity, JointDensity, SampledDensity, francis_density
 

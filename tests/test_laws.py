@@ -6,7 +6,8 @@ import math
 import numpy as np
 import pytest
 
-from asperity import greenwood_williamson, laws
+from asperity import laws
+from asperity.references import greenwood_williamson
 from asperity.io.netcdf import missing_attributes, read_dataset, write_dataset
 
 UM = 1e-6

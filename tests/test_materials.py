@@ -6,7 +6,7 @@ import math
 
 import pytest
 
-from asperity import materials
+from asperity.scene import materials
 from asperity.fe.bodner_partom import BodnerPartom
 from asperity.fe.j2 import J2Plasticity
 from asperity.fe.material import LinearElastic

@@ -6,8 +6,9 @@ import numpy as np
 import pytest
 import xarray as xr
 
-from asperity import hertz, models
-from asperity.plan import interference_grid, make_plan
+from asperity.references import hertz
+from asperity.population import models
+from asperity.population.plan import interference_grid, make_plan
 
 
 def BY_CURVATURE(height, curvature, level):

@@ -3,7 +3,7 @@
 import numpy as np
 import pytest
 
-from asperity.plan import interference_grid, job_keys, make_plan, sample_grid, sample_key
+from asperity.population.plan import interference_grid, job_keys, make_plan, sample_grid, sample_key
 
 JOB = {"material": {"youngs_modulus": 2e11, "poisson": 0.3}, "effects": [], "accuracy": "standard"}
 

@@ -1,4 +1,4 @@
-"""The scene accuracy study (asperity.scene_accuracy) on synthetic interfaces whose
+"""The scene accuracy study (asperity.studies.scenes) on synthetic interfaces whose
 deviations from the reference are known exactly."""
 
 from __future__ import annotations
@@ -8,7 +8,7 @@ import pytest
 import xarray as xr
 
 from asperity.io.netcdf import missing_attributes
-from asperity.scene_accuracy import branch_deviation, scene_accuracy
+from asperity.studies.scenes import branch_deviation, scene_accuracy
 
 UM = 1e-6
 #: the reference (fine) loading pressure [Pa] on separations 0..6 um: largest 100, so with
@@ -175,7 +175,7 @@ def test_scene_accuracy_refuses_mixed_up_inputs():
 
 
 def test_scene_accuracy_figure_lines():
-    from asperity.plots_accuracy import scene_accuracy_figure
+    from asperity.plots.accuracy_scenes import scene_accuracy_figure
 
     ds = scene_accuracy(_study(), ["unloads", "loads"], ["draft", "standard", "fine"])
     fig = scene_accuracy_figure(ds)

@@ -4,7 +4,8 @@ import json
 import numpy as np
 import pytest
 
-from asperity import hertz, stages
+from asperity import stages
+from asperity.references import hertz
 
 UNITS = {"length": "um", "pressure": "MPa"}
 STEEL = {"statistics": {"sigma": 4.91, "sigma_slope": 0.16, "sigma_curvature": 0.0227,
@@ -82,14 +83,15 @@ def test_keys_hash_what_the_job_depends_on_only():
     assert set(_fe_plan(accuracy="standard")["key"].values).isdisjoint(keys)
     spec = json.loads(str(plan["spec"].values[0]))
     assert "height" not in spec and spec["material"]["youngs_modulus"] == 209e9
-    from asperity.plan import sample_key
+    from asperity.population.plan import sample_key
     assert sample_key(spec) == str(plan["key"].values[0])
 
 
 def test_a_failed_sample_is_recorded_and_the_gather_names_it(monkeypatch):
     """A job that fails leaves a record naming sample and step; the gather refuses
     to homogenize over the hole and names it."""
-    from asperity import fe, models
+    from asperity import fe
+    from asperity.population import models
 
     plan = _fe_plan()
     keys = [str(k) for k in np.unique(plan["key"].values)]

@@ -10,7 +10,7 @@ from scipy.integrate import solve_ivp
 
 from asperity.fe.bodner_partom import BodnerPartom
 from asperity.fe.j2 import J2Plasticity
-from asperity.uniaxial import (
+from asperity.uniaxial.point import (
     aluminum_tension,
     b1900_histories,
     run_uniaxial,

@@ -18,8 +18,8 @@ from scipy.integrate import solve_ivp
 
 from asperity.fe.bodner_partom import BodnerPartom
 from asperity.io.netcdf import missing_attributes, read_dataset, write_dataset
-from asperity.uniaxial import uniaxial_flow_stress
-from asperity.uniaxial_study import (
+from asperity.uniaxial.point import uniaxial_flow_stress
+from asperity.uniaxial.scene import (
     accuracy_study,
     history_from_test,
     material_from_test,

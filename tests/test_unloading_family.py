@@ -8,7 +8,7 @@ import pytest
 import xarray as xr
 
 from asperity import unloading
-from asperity.plan import interference_grid
+from asperity.population.plan import interference_grid
 
 RHO = 0.8   # residual interference / maximum interference of the exact family
 C = 2.0e6   # F = C w^1.5 on loading
@@ -23,7 +23,7 @@ def exact_path(w_max, n=60):
 
 
 def gathered(levels, check=None):
-    """What asperity.models.gather writes: loading curves and computed paths."""
+    """What asperity.population.models.gather writes: loading curves and computed paths."""
     grid = interference_grid(1e-6, 241)
     all_levels = sorted(list(levels) + ([check] if check else []))
     n = 60

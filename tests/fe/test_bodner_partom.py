@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from asperity.fe.bodner_partom import BodnerPartom
-from asperity.uniaxial import run_uniaxial
+from asperity.uniaxial.point import run_uniaxial
 
 MPA = 1e6
 

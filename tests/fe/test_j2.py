@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from asperity.fe.j2 import J2Plasticity
-from asperity.uniaxial import run_uniaxial
+from asperity.uniaxial.point import run_uniaxial
 
 E, NU, SY = 200e9, 0.3, 250e6
 

@@ -6,8 +6,8 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from asperity import models
-from asperity.plan import interference_grid, make_plan
+from asperity.population import models
+from asperity.population.plan import interference_grid, make_plan
 
 ASPERITY = {"model": "fe", "geometry": "cosine", "width_to_height": 17.0, "levels": 24}
 ELASTIC = {"youngs_modulus": 65e9, "poisson": 0.3}

@@ -16,7 +16,7 @@ from asperity.fe.material import equivalent_strain, von_mises
 from asperity.fe.sliding import FrictionLaw, ShearResistance
 from asperity.fe.solid3d import (FlatMotion, HalfModel, MeshSpec, SlidingModel, build_mesh,
                                  sliding_preset, solve_prescribed, solve_sliding)
-from asperity.hertz import hertz_response
+from asperity.references.hertz import hertz_response
 
 MPA = 1e6
 HILL = CosineHill(1e-6, math.pi / 5e-6)          # report 9.2: 2 um high, 10 um across

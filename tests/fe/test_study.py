@@ -8,7 +8,7 @@ three members of the default refinement sequence, penalty factors 100 and
 import numpy as np
 import pytest
 
-from asperity.fe.study import DEFAULT_REFINEMENT, hertz_accuracy_study
+from asperity.studies.hertz import DEFAULT_REFINEMENT, hertz_accuracy_study
 
 pytestmark = pytest.mark.slow
 
@@ -83,7 +83,7 @@ def test_units_and_long_names_everywhere(study):
 def test_figure_has_three_panels(study):
     import matplotlib.pyplot as plt
 
-    from asperity.fe.study_figure import accuracy_figure
+    from asperity.plots.accuracy_hertz import accuracy_figure
 
     fig = accuracy_figure(study)
     try:

@@ -20,7 +20,7 @@ import pytest
 import yaml
 
 from asperity.io.netcdf import read_dataset
-from asperity.plan import job_keys
+from asperity.population.plan import job_keys
 
 from .conftest import REPO, copy_workflow, planned_jobs, snakemake
 

@@ -33,7 +33,7 @@ import xarray as xr
 import yaml
 
 from asperity.io.netcdf import missing_attributes, read_dataset
-from asperity.plan import job_keys
+from asperity.population.plan import job_keys
 
 from .conftest import (REPO, SNAKEMAKE, assert_same_results, copy_workflow, nc_files,
                        planned_jobs, snakemake)

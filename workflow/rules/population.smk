@@ -36,7 +36,7 @@ def sample_files(wildcards):
     """The per-sample job outputs the plan asks for (none for analytic asperities).
     Samples live in one folder for all scenes: a key is the hash of what its job
     depends on, so scenes (and presets) that need the same asperity share it."""
-    from asperity.plan import job_keys
+    from asperity.population.plan import job_keys
     from asperity.io.netcdf import read_dataset
 
     plan = read_dataset(checkpoints.plan.get(scene=wildcards.scene).output[0])

@@ -1,10 +1,10 @@
 """results/accuracy/hertz.nc and its figure: what accuracy costs in time."""
 
-from asperity.fe.study import hertz_accuracy_study
-from asperity.fe.study_figure import accuracy_figure
+from asperity.studies.hertz import hertz_accuracy_study
+from asperity.plots.accuracy_hertz import accuracy_figure
 from asperity.io.figures import save_figure
 from asperity.io.netcdf import write_dataset
-from asperity.joblog import job_log
+from asperity.io.joblog import job_log
 
 with job_log(snakemake.log[0], "accuracy study (Hertz)"):
     s = snakemake.params.study

@@ -2,9 +2,9 @@
 
 from asperity.io.figures import save_figure
 from asperity.io.netcdf import read_dataset, write_dataset
-from asperity.joblog import job_log
-from asperity.plots_accuracy import scene_accuracy_figure
-from asperity.scene_accuracy import scene_accuracy
+from asperity.io.joblog import job_log
+from asperity.plots.accuracy_scenes import scene_accuracy_figure
+from asperity.studies.scenes import scene_accuracy
 
 with job_log(snakemake.log[0], "accuracy study of the scenes") as log:
     s = snakemake.params.study

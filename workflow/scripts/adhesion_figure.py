@@ -1,9 +1,9 @@
 """figures/adhesion.png from interface.nc, asperities.nc and the compared scenes' interfaces."""
 
-from asperity import plots_adhesion
+from asperity.plots import adhesion as plots_adhesion
 from asperity.io.figures import save_figure
 from asperity.io.netcdf import read_dataset
-from asperity.joblog import job_log
+from asperity.io.joblog import job_log
 
 with job_log(snakemake.log[0], "adhesion figure"):
     i, p = snakemake.input, snakemake.params

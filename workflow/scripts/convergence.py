@@ -2,7 +2,7 @@
 
 from asperity import stages
 from asperity.io.netcdf import write_dataset
-from asperity.joblog import job_log
+from asperity.io.joblog import job_log
 
 with job_log(snakemake.log[0], "convergence"):
     gen, units = snakemake.params.generate, snakemake.params.units

@@ -3,7 +3,7 @@
 from asperity import plots, stages
 from asperity.io.figures import save_figure
 from asperity.io.netcdf import read_dataset, scene_config
-from asperity.joblog import job_log
+from asperity.io.joblog import job_log
 
 with job_log(snakemake.log[0], "expectation figure"):
     surface, expectation = read_dataset(snakemake.input.surface), read_dataset(snakemake.input.expectation)

@@ -3,7 +3,7 @@
 from asperity import stages
 from asperity.friction import friction_dataset
 from asperity.io.netcdf import read_dataset, write_dataset
-from asperity.joblog import job_log
+from asperity.io.joblog import job_log
 
 with job_log(snakemake.log[0], "friction") as log:
     p, i = snakemake.params, snakemake.input

@@ -3,7 +3,7 @@
 from asperity import plots
 from asperity.io.figures import save_figure
 from asperity.io.netcdf import read_dataset
-from asperity.joblog import job_log
+from asperity.io.joblog import job_log
 
 with job_log(snakemake.log[0], "interface figure"):
     i, p = snakemake.input, snakemake.params

@@ -1,7 +1,7 @@
 """laws.nc: analytic laws fitted to the loading curve (report section 10)."""
 
 from asperity.io.netcdf import read_dataset, write_dataset
-from asperity.joblog import job_log
+from asperity.io.joblog import job_log
 from asperity.laws import laws_dataset
 
 with job_log(snakemake.log[0], "laws") as log:

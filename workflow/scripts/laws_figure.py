@@ -1,9 +1,9 @@
 """figures/laws.png from laws.nc."""
 
-from asperity import plots_friction
+from asperity.plots import friction as plots_friction
 from asperity.io.figures import save_figure
 from asperity.io.netcdf import read_dataset
-from asperity.joblog import job_log
+from asperity.io.joblog import job_log
 
 with job_log(snakemake.log[0], "laws figure"):
     i, p = snakemake.input, snakemake.params

@@ -4,7 +4,7 @@ import json
 
 from asperity import stages
 from asperity.io.netcdf import write_dataset
-from asperity.joblog import job_log
+from asperity.io.joblog import job_log
 
 with job_log(snakemake.log[0], f"sample {snakemake.params.key}"):
     p = snakemake.params

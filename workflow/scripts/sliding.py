@@ -2,7 +2,7 @@
 
 from asperity.fe.solid3d import solve_sliding_scene
 from asperity.io.netcdf import write_dataset
-from asperity.joblog import job_log
+from asperity.io.joblog import job_log
 
 p = snakemake.params
 with job_log(snakemake.log[0], f"sliding asperity of {p.scene}") as log:

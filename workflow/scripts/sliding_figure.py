@@ -2,8 +2,8 @@
 
 from asperity.io.figures import save_figure
 from asperity.io.netcdf import read_dataset
-from asperity.joblog import job_log
-from asperity.plots_sliding import sliding_figure
+from asperity.io.joblog import job_log
+from asperity.plots.sliding import sliding_figure
 
 with job_log(snakemake.log[0], "sliding figure"):
     units = snakemake.params.units

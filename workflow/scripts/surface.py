@@ -5,7 +5,7 @@ from pathlib import Path
 from asperity import stages
 from asperity.io import inputs
 from asperity.io.netcdf import write_dataset
-from asperity.joblog import job_log
+from asperity.io.joblog import job_log
 
 with job_log(snakemake.log[0], "surface statistics") as log:
     cfg, units = snakemake.params.surface, snakemake.params.units

@@ -6,7 +6,7 @@ from asperity import plots
 from asperity.io import inputs
 from asperity.io.figures import save_figure
 from asperity.io.netcdf import read_dataset
-from asperity.joblog import job_log
+from asperity.io.joblog import job_log
 from asperity.units import length_scale
 
 with job_log(snakemake.log[0], "surface figure"):

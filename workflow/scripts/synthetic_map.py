@@ -2,7 +2,7 @@
 
 from asperity import stages
 from asperity.io.writers import write_map
-from asperity.joblog import job_log
+from asperity.io.joblog import job_log
 
 with job_log(snakemake.log[0], "synthetic map"):
     write_map(snakemake.output[0], stages.synthetic_map(snakemake.params.generate))

@@ -2,7 +2,7 @@
 
 from asperity import stages
 from asperity.io.writers import write_profile
-from asperity.joblog import job_log
+from asperity.io.joblog import job_log
 
 with job_log(snakemake.log[0], "synthetic profile"):
     gen = snakemake.params.generate

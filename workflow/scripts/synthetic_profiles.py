@@ -4,7 +4,7 @@ from pathlib import Path
 
 from asperity import stages
 from asperity.io.writers import write_profile
-from asperity.joblog import job_log
+from asperity.io.joblog import job_log
 
 with job_log(snakemake.log[0], "synthetic profiles"):
     gen = snakemake.params.generate

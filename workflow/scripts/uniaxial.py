@@ -1,8 +1,8 @@
 """results/<scene>/uniaxial.nc: the scene's uniaxial material-point tests."""
 
 from asperity.io.netcdf import write_dataset
-from asperity.joblog import job_log
-from asperity.uniaxial_study import run_uniaxial_scene
+from asperity.io.joblog import job_log
+from asperity.uniaxial.scene import run_uniaxial_scene
 
 p = snakemake.params
 with job_log(snakemake.log[0], f"uniaxial tests of {p.scene}") as log:

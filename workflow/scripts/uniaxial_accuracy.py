@@ -2,9 +2,9 @@
 
 from asperity.io.figures import save_figure
 from asperity.io.netcdf import read_dataset, write_dataset
-from asperity.joblog import job_log
-from asperity.plots_uniaxial import uniaxial_accuracy_figure
-from asperity.uniaxial_study import accuracy_study
+from asperity.io.joblog import job_log
+from asperity.plots.uniaxial import uniaxial_accuracy_figure
+from asperity.uniaxial.scene import accuracy_study
 
 with job_log(snakemake.log[0], "accuracy study (Bodner-Partom material point)") as log:
     s = snakemake.params.study

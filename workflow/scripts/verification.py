@@ -2,7 +2,7 @@
 
 from asperity import stages
 from asperity.io.netcdf import read_dataset, write_dataset
-from asperity.joblog import job_log
+from asperity.io.joblog import job_log
 
 with job_log(snakemake.log[0], "verification") as log:
     p, i = snakemake.params, snakemake.input

@@ -1053,7 +1053,7 @@ def interpolate_adhesive(ds: xr.Dataset, grid, branch: str = "approach",
                          names=("force", "contact_area", "contact_radius")) -> dict:
     """An adhesive sample's curves on an interference grid, for one branch.
 
-    The log-log interpolation of `asperity.models.gather` assumes positive
+    The log-log interpolation of `asperity.population.models.gather` assumes positive
     curves growing from w = 0; an adhesive sample has negative forces,
     negative interferences (attraction before touching) and jumps, and two
     branches.  Here the records of `branch` ('approach', or 'retract' with

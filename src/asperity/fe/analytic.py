@@ -4,11 +4,11 @@ from __future__ import annotations
 
 import numpy as np
 
-from asperity.hertz import hertz_response, plane_strain_modulus
+from asperity.references.hertz import hertz_response, plane_strain_modulus
 
 
 def hertz(radius: float, E: float, nu: float, interference) -> dict[str, np.ndarray]:
-    """Hertz (report 6.1) for a paraboloid of radius R, from `asperity.hertz`.
+    """Hertz (report 6.1) for a paraboloid of radius R, from `asperity.references.hertz`.
 
     Returns contact_radius [m], contact_area [m^2], force [N] and
     normal_stiffness dP/dw = 2 E' r [N/m].

@@ -21,7 +21,7 @@ domain_factor
     cut-off radius L of the block / `Profile.length_scale` (footprint
     radius of the hill) for bodies of revolution.  Fixing u = 0 at L makes
     the body stiffer, by about 1.1 a / L relative in load on the Hertz
-    problem (a the contact radius, measured by `asperity.fe.study`); at 300
+    problem (a the contact radius, measured by `asperity.studies.hertz`); at 300
     that is most of the 'standard' preset's 0.12 % load error there.
     Plane-strain sections use
     the fixed `PLANE_STRAIN_DOMAIN` instead (see below).

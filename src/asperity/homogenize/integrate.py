@@ -37,7 +37,7 @@ from typing import Any, Callable, NamedTuple
 import numpy as np
 import xarray as xr
 
-from .peaks import FixedCurvatureDensity, JointDensity, SampledDensity
+from asperity.peaks import FixedCurvatureDensity, JointDensity, SampledDensity
 
 __all__ = [
     "RULES",

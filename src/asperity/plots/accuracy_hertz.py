@@ -6,17 +6,13 @@ Dataset holds them as fractions).
 
 from __future__ import annotations
 
-import matplotlib
+import matplotlib.pyplot as plt
+import numpy as np
+import xarray as xr
+from matplotlib.lines import Line2D
 
-matplotlib.use("Agg")  # headless, as `asperity.plots`; harmless if pyplot is not yet in use
-
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
-import xarray as xr  # noqa: E402
-from matplotlib.lines import Line2D  # noqa: E402
-
-from .contact import PENALTY_FACTOR  # noqa: E402
-from .study import REPORT_MAX_FORCE_ERROR, REPORT_MAX_RADIUS_ERROR  # noqa: E402
+from asperity.fe.contact import PENALTY_FACTOR
+from asperity.studies.hertz import REPORT_MAX_FORCE_ERROR, REPORT_MAX_RADIUS_ERROR
 
 #: colour per quantity
 QUANTITY = {

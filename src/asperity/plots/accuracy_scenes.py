@@ -1,18 +1,14 @@
 """Figure of results/accuracy/scenes.nc: what accuracy costs for a whole scene.
 
-Drawn from the dataset of `asperity.scene_accuracy.scene_accuracy` only;
+Drawn from the dataset of `asperity.studies.scenes.scene_accuracy` only;
 `asperity.io.figures.save_figure` saves it.
 """
 
 from __future__ import annotations
 
-import matplotlib
-
-matplotlib.use("Agg")
-
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
-import xarray as xr  # noqa: E402
+import matplotlib.pyplot as plt
+import numpy as np
+import xarray as xr
 
 __all__ = ["scene_accuracy_figure"]
 

@@ -1,23 +1,19 @@
 """The adhesion figure (report 7.3, Figs. 7.6 to 7.9): with and without adhesion.
 
 Drawn from ``interface.nc`` and ``asperities.nc`` of an adhesive scene
-(`asperity.adhesive_interface`) and the interfaces of compared scenes.
+(`asperity.population.adhesive`) and the interfaces of compared scenes.
 Pressures change sign (net attraction), so they are drawn on a symmetric
 log scale, linear within the smallest attraction shown.
 """
 
 from __future__ import annotations
 
-import matplotlib
+import matplotlib.pyplot as plt
+import numpy as np
+import xarray as xr
 
-matplotlib.use("Agg")
-
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
-import xarray as xr  # noqa: E402
-
-from asperity import units  # noqa: E402
-from asperity.plots import finish  # noqa: E402
+from asperity import units
+from asperity.plots.figures import finish
 
 STYLE = {"approach": dict(ls="-", marker="o", ms=3), "retract": dict(ls="--", marker=".", ms=3)}
 

@@ -7,14 +7,11 @@ Each function returns a matplotlib Figure; ``asperity.io.figures`` saves it.
 from __future__ import annotations
 
 import matplotlib
+import matplotlib.pyplot as plt
+import numpy as np
+import xarray as xr
 
-matplotlib.use("Agg")
-
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
-import xarray as xr  # noqa: E402
-
-from asperity import units  # noqa: E402
+from asperity import units
 
 METHOD_STYLE = {
     "sampling": dict(color="C0", marker="o"),
@@ -121,7 +118,7 @@ def expectation_figure(density_values: np.ndarray, z: np.ndarray, kappa: np.ndar
     return fig
 
 
-#: with adhesion the branches are the flat's approach and retraction (asperity.adhesive_interface)
+#: with adhesion the branches are the flat's approach and retraction (asperity.population.adhesive)
 ADHESIVE_BRANCH = {"loading": "approach", "unloading": "retract"}
 
 

@@ -6,15 +6,11 @@ the axes.  `asperity.io.figures.save_figure` saves them.
 
 from __future__ import annotations
 
-import matplotlib
+import matplotlib.pyplot as plt
+import numpy as np
+import xarray as xr
 
-matplotlib.use("Agg")
-
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
-import xarray as xr  # noqa: E402
-
-from asperity import units  # noqa: E402
+from asperity import units
 
 __all__ = ["friction_figure", "laws_figure"]
 

@@ -1,6 +1,6 @@
 """Figures of the uniaxial material-point scenes and of the integrators' accuracy study.
 
-Drawn from the result Datasets only (`asperity.uniaxial_study` writes them):
+Drawn from the result Datasets only (`asperity.uniaxial.scene` writes them):
 ``uniaxial_figure`` from ``results/<scene>/uniaxial.nc`` (panels like the
 report's Figs. 5.1 to 5.4, 6.14 and 8.13), ``uniaxial_accuracy_figure`` from
 ``results/accuracy/bodner_partom.nc``.  Files hold SI; figures show MPa,
@@ -12,14 +12,10 @@ from __future__ import annotations
 
 import math
 
-import matplotlib
-
-matplotlib.use("Agg")
-
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
-import xarray as xr  # noqa: E402
-from matplotlib.lines import Line2D  # noqa: E402
+import matplotlib.pyplot as plt
+import numpy as np
+import xarray as xr
+from matplotlib.lines import Line2D
 
 #: variable -> (factor from SI, axis label)
 AXES = {

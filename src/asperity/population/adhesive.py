@@ -22,7 +22,7 @@ What changes against an asperity without adhesion:
   out, joined to the usual geometric grid of w > 0.
 - **Job** (`job_spec`, `solve_job`): one job per curvature (the response is
   shift invariant in height but not self-similar: d does not scale;
-  `asperity.models.self_similar` refuses adhesion).  It approaches the
+  `asperity.population.models.self_similar` refuses adhesion).  It approaches the
   flat from the cut-off to the top of the sample's range and retracts it
   until the asperity lets go, recording jumps and the pull-off force.  The
   law (dgamma, d, cutoff, SI) is in the spec, hence in the key.
@@ -31,7 +31,7 @@ What changes against an asperity without adhesion:
   as jumps); force is negative where the asperity attracts, contact area 0
   where it does not touch; ``in_contact`` is 1 where the contact area is
   positive; ``extrapolated`` flags grid points beyond the job's deepest
-  level (the last tangent), as `asperity.models.gather`.  Per curvature:
+  level (the last tangent), as `asperity.population.models.gather`.  Per curvature:
   pull-off force, Tabor parameter, jump interferences, the DMT and JKR
   pull-off forces 2 pi R W_c and 3/2 pi R W_c, and the computed paths
   (Fig. 7.6) on (curvature, step).
@@ -56,8 +56,8 @@ from typing import Any, Callable, Mapping
 import numpy as np
 import xarray as xr
 
-from asperity import materials
-from asperity.plan import interference_grid as contact_grid
+from asperity.scene import materials
+from asperity.population.plan import interference_grid as contact_grid
 
 Config = Mapping[str, Any]
 
@@ -125,7 +125,7 @@ def interference_grid(largest: float, count: int, adhesion_si: Config) -> np.nda
 
 # --- the job ------------------------------------------------------------------------------
 def job_spec(spec: dict, adhesion_si: Config, effects, level: float) -> dict:
-    """The spec of an adhesive job: geometry, range and body (`asperity.models.job_spec`)
+    """The spec of an adhesive job: geometry, range and body (`asperity.population.models.job_spec`)
     and the law in SI (`law_si`); the path is the solver's own, no level count."""
     if "plasticity" in set(effects):
         raise ValueError("effect `adhesion` needs an elastic body (no `plasticity`): "
@@ -141,7 +141,8 @@ def job_spec(spec: dict, adhesion_si: Config, effects, level: float) -> dict:
 def solve_job(spec: Config, key: str) -> xr.Dataset:
     """The adhesive FE job of `spec`: approach from the cut-off to the top of the range
     and retraction until the asperity lets go (`solve_asperity_adhesive`)."""
-    from asperity import fe, models
+    from asperity import fe
+    from asperity.population import models
 
     curvature = float(spec["curvature"])
     geometry = models.fe_geometry(spec, curvature, spec.get("width_to_height"), spec.get("height"))
@@ -177,7 +178,7 @@ PATH = {"interference": "path_interference", "force": "path_force",
 
 def gather(plan: xr.Dataset, samples: Mapping[str, xr.Dataset]) -> xr.Dataset:
     """Adhesive samples onto (branch, height, curvature, interference) (module docstring)."""
-    from asperity import models
+    from asperity.population import models
     from asperity.fe.adhesive import interpolate_adhesive, stack_runs
 
     by_key = models.samples_by_key(plan, samples)

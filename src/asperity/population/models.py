@@ -39,7 +39,7 @@ from typing import Any, Mapping
 import numpy as np
 import xarray as xr
 
-from asperity import materials
+from asperity.scene import materials
 
 Config = Mapping[str, Any]
 
@@ -198,7 +198,7 @@ def job_spec(asperity: Config, material_si: Config, effects, accuracy: str, *,
              adhesion: Config | None = None) -> dict:
     """Exactly what the FE job of one sample depends on, as plain JSON-able values.
 
-    The key of a sample is the hash of this dict (`asperity.plan.sample_key`),
+    The key of a sample is the hash of this dict (`asperity.population.plan.sample_key`),
     so two scenes (or two presets' runs) that need the same asperity share
     its job and its file ``results/samples/<key>.nc``.  Holds the
     geometry (kind, mapping, resolved width-to-height ratio, the job's tip
@@ -227,8 +227,8 @@ def job_spec(asperity: Config, material_si: Config, effects, accuracy: str, *,
         spec["width_to_height"] = asperity.get("width_to_height", width_to_height)
     if is_coupled(asperity):
         spec["height"] = float(height)
-    if "adhesion" in set(effects):  # approach and retraction (asperity.adhesive_interface)
-        from asperity import adhesive_interface
+    if "adhesion" in set(effects):  # approach and retraction (asperity.population.adhesive)
+        from asperity.population import adhesive as adhesive_interface
 
         return adhesive_interface.job_spec(spec, adhesion, effects, level)
     if "plasticity" in set(effects):
@@ -257,8 +257,8 @@ def solve_job(spec: Config, key: str) -> xr.Dataset:
     """
     from asperity import fe
 
-    if "adhesion" in spec:  # approach and retraction (asperity.adhesive_interface)
-        from asperity import adhesive_interface
+    if "adhesion" in spec:  # approach and retraction (asperity.population.adhesive)
+        from asperity.population import adhesive as adhesive_interface
 
         return adhesive_interface.solve_job(spec, key)
     curvature = float(spec["curvature"])

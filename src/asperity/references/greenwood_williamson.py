@@ -25,7 +25,7 @@ import math
 import numpy as np
 import xarray as xr
 
-from .hertz import plane_strain_modulus
+from asperity.references.hertz import plane_strain_modulus
 
 __all__ = ["gw_integral", "gw_interface"]
 

@@ -25,7 +25,7 @@ from __future__ import annotations
 import math
 from typing import Any, Mapping
 
-from . import units
+from asperity import units
 
 Config = Mapping[str, Any]
 

@@ -15,9 +15,13 @@ from typing import Any, Mapping
 import numpy as np
 import xarray as xr
 
-from asperity import (adhesive_interface, greenwood_williamson, hertz, homogenize, materials, models,
-                      peaks, surface, units)
-from asperity.plan import interference_grid, make_plan, sample_grid
+from asperity import homogenize, peaks, surface, units
+from asperity.population import adhesive as adhesive_interface
+from asperity.references import greenwood_williamson
+from asperity.references import hertz
+from asperity.scene import materials
+from asperity.population import models
+from asperity.population.plan import interference_grid, make_plan, sample_grid
 from asperity.unloading import family_table as unloading_family_table
 from asperity.unloading import unloading_asperities
 
@@ -35,7 +39,7 @@ def length_factor(units_cfg: Config) -> float:
 
 
 def material_si(material: Config, units_cfg: Config) -> dict[str, Any]:
-    """The scene's material in SI (`asperity.materials.material_si`)."""
+    """The scene's material in SI (`asperity.scene.materials.material_si`)."""
     return materials.material_si(material, units_cfg)
 
 
@@ -256,7 +260,7 @@ def plan_dataset(
     adhesion: Config | None = None,
 ) -> xr.Dataset:
     """The samples a scene needs (DESIGN.md: the plan); `adhesion`: the scene's section,
-    used with the effect ``adhesion`` (`asperity.adhesive_interface`)."""
+    used with the effect ``adhesion`` (`asperity.population.adhesive`)."""
     density = population_density(surface_ds, population)
     threshold = population.get("support_threshold", 1e-4)
     z0, z1, k0, k1 = bounds(density, population, units_cfg, threshold)
@@ -360,7 +364,7 @@ def asperities_dataset(
             plan["height"].values, plan["curvature"].values, plan["interference"].values,
             mat["youngs_modulus"], mat["poisson"],
         )
-    if model == "fe" and "adhesion" in plan.attrs:  # both branches (asperity.adhesive_interface)
+    if model == "fe" and "adhesion" in plan.attrs:  # both branches (asperity.population.adhesive)
         return adhesive_interface.gather(plan, samples or {})
     if model == "fe":
         return models.gather(plan, samples or {})
@@ -448,7 +452,7 @@ def interface_dataset(
         if rebound.size:
             extra = h0 + np.linspace(0.0, float(np.nanmax(rebound)), REBOUND_POINTS)[1:]
             h = np.unique(np.concatenate([h, extra]))
-    if "branch" in asperities.dims:  # adhesion: approach and retraction (asperity.adhesive_interface)
+    if "branch" in asperities.dims:  # adhesion: approach and retraction (asperity.population.adhesive)
         out = adhesive_interface.by_branch(asperities, h, lambda table, **options: _homogenized(
             table, density, h, rect, homogenization, surface_ds, **options))
     else:
@@ -563,7 +567,7 @@ def verification_dataset(
 
 def sample_dataset(spec: Config, key: str) -> xr.Dataset:
     """The response of one sample job (DESIGN.md: samples/<key>.nc) from its spec
-    (`asperity.models.job_spec`, stored in the plan): everything it depends on."""
+    (`asperity.population.models.job_spec`, stored in the plan): everything it depends on."""
     model = spec["model"]
     if model == "fe":
         return models.solve_job(spec, key)
@@ -695,10 +699,10 @@ def hertz_verification_dataset(single: Config, material: Config, units_cfg: Conf
     """One FE asperity against Hertz at the scene's presets (report 6.1, Fig. 6.5).
 
     The paraboloid (Hertz's own idealization) and the true sphere, one run
-    per preset: `asperity.fe.study.hertz_accuracy_study` without its
+    per preset: `asperity.studies.hertz.hertz_accuracy_study` without its
     refinement sequence and penalty study.
     """
-    from asperity.fe.study import hertz_accuracy_study
+    from asperity.studies.hertz import hertz_accuracy_study
 
     length = length_factor(units_cfg)
     mat = material_si(material, units_cfg)

@@ -57,10 +57,10 @@ import numpy as np
 import xarray as xr
 from scipy.integrate import solve_ivp
 
-from . import units as _units
-from .fe.bodner_partom import BodnerPartom
-from .materials import CONSTANTS, DAMAGE_CONSTANTS, unit_scale
-from .uniaxial import run_uniaxial, uniaxial_flow_stress
+from asperity import units as _units
+from asperity.fe.bodner_partom import BodnerPartom
+from asperity.scene.materials import CONSTANTS, DAMAGE_CONSTANTS, unit_scale
+from asperity.uniaxial.point import run_uniaxial, uniaxial_flow_stress
 
 __all__ = [
     "PRESETS",
