@@ -20,7 +20,11 @@ import numpy as np
 import pytest
 import xarray as xr
 
-from asperity import homogenize, stages
+from asperity import homogenize
+from asperity.population import density as population_density
+from asperity.stages import homogenize as homogenize_stage
+from asperity.stages import population as population_stage
+from asperity.stages import surface as surface_stage
 from asperity.population import adhesive as adhesive_interface
 from asperity.fe.adhesion import LennardJones, derjaguin_force
 from asperity.peaks import JointDensity
@@ -115,12 +119,12 @@ def fake_sample(spec, key, kind="dmt"):
 
 @pytest.fixture(scope="module")
 def surface():
-    return stages.surface_from_statistics(SMOOTH, UNITS)
+    return surface_stage.surface_from_statistics(SMOOTH, UNITS)
 
 
 def make_plan(surface, curvatures=41, adhesion=ADHESION):
     population = {"samples": {"height": 41, "curvature": curvatures, "interference": 241}}
-    return stages.plan_dataset(surface, population, ASPERITY, MATERIAL, ["adhesion"], UNITS,
+    return population_stage.plan_dataset(surface, population, ASPERITY, MATERIAL, ["adhesion"], UNITS,
                                "draft", adhesion)
 
 
@@ -129,7 +133,7 @@ def gathered(plan, kind):
     for key, spec in zip(plan["key"].values, plan["spec"].values):
         if str(key) not in samples:
             samples[str(key)] = fake_sample(json.loads(str(spec)), str(key), kind)
-    return stages.asperities_dataset(plan, ASPERITY, MATERIAL, UNITS, samples)
+    return population_stage.asperities_dataset(plan, ASPERITY, MATERIAL, UNITS, samples)
 
 
 @pytest.fixture(scope="module")
@@ -184,12 +188,12 @@ def test_plan_runs_one_adhesive_job_per_curvature_with_the_law_in_its_key(surfac
     other = make_plan(surface, 3, {**ADHESION, "spacing": 0.3})
     again = make_plan(surface, 3)
     assert not set(other["key"].values) & set(again["key"].values)
-    without = stages.plan_dataset(surface, {"samples": {"height": 41, "curvature": 3}},
+    without = population_stage.plan_dataset(surface, {"samples": {"height": 41, "curvature": 3}},
                                   ASPERITY, MATERIAL, [], UNITS, "draft", ADHESION)
     assert "adhesion" not in json.loads(str(without["spec"].values[0]))
     assert without["interference"].values[0] == 0.0 and "reach" not in without.attrs
     with pytest.raises(ValueError, match="elastic"):
-        stages.plan_dataset(surface, {"samples": {"curvature": 2}}, ASPERITY,
+        population_stage.plan_dataset(surface, {"samples": {"curvature": 2}}, ASPERITY,
                             {**MATERIAL, "model": "j2", "yield_stress": 320.0},
                             ["adhesion", "plasticity"], UNITS, "draft", ADHESION)
 
@@ -243,7 +247,7 @@ def _gl(lo, hi, n):
 
 
 def support(surface, plan):
-    density = stages.population_density(surface, {})
+    density = population_density.population_density(surface, {})
     return density, density.support(float(plan.attrs["support_threshold"]))
 
 
@@ -253,7 +257,7 @@ def direct(surface, plan, h, kind, branch="approach", h_turn=None):
     Columns: pressure, contact count, and the gross pressure n / I int int |F| f (the
     scale of the errors where compression and attraction cancel)."""
     density, (z0, z1, k0, k1) = support(surface, plan)
-    n = stages.peak_density(surface)
+    n = population_density.peak_density(surface)
     k, wk = _gl(k0, k1, 400)
     zf, wzf = _gl(z0, z1, 800)
     norm = (density.pdf(zf[:, None], k[None, :]) * wzf[:, None] * wk[None, :]).sum()
@@ -283,7 +287,7 @@ def direct(surface, plan, h, kind, branch="approach", h_turn=None):
 
 @pytest.fixture(scope="module")
 def dmt_interface(surface, plan, dmt):
-    return stages.interface_dataset(dmt, surface, plan, {}, HOMOGENIZATION, UNITS)
+    return homogenize_stage.interface_dataset(dmt, surface, plan, {}, HOMOGENIZATION, UNITS)
 
 
 def test_homogenized_attraction_against_direct_quadrature(surface, plan, dmt_interface):
@@ -311,7 +315,7 @@ def test_retract_branch_hangs_on_against_direct_quadrature(surface, plan, jkr):
     """Jumps in the table: within 2 % of the gross pressure and 2 % in the contact count
     below the highest peak (measured 1.0 % and 1.3 % on approach, 1.5 % and 1.2 % on
     retraction: a jump between two grid levels d / 8 apart is integrated as a ramp)."""
-    out = stages.interface_dataset(jkr, surface, plan, {}, HOMOGENIZATION, UNITS)
+    out = homogenize_stage.interface_dataset(jkr, surface, plan, {}, HOMOGENIZATION, UNITS)
     h = out["separation"].values
     below = h < support(surface, plan)[1][1]
     for branch in ("approach", "retract"):
@@ -343,7 +347,7 @@ def test_integrator_refuses_a_table_that_does_not_reach(dmt):
 def test_adhesion_figure_draws_both_branches_and_the_samples(surface, plan, jkr, dmt_interface):
     from asperity.plots import adhesion as plots_adhesion
 
-    out = stages.interface_dataset(jkr, surface, plan, {}, HOMOGENIZATION, UNITS)
+    out = homogenize_stage.interface_dataset(jkr, surface, plan, {}, HOMOGENIZATION, UNITS)
     fig = plots_adhesion.adhesion_figure(out, jkr.isel(curvature=[0, 20, 40]),
                                          {"no adhesion": dmt_interface.sel(branch="approach")},
                                          length_unit="um", pressure_unit="MPa")

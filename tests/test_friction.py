@@ -7,7 +7,8 @@ import pytest
 import xarray as xr
 from scipy import integrate
 
-from asperity import friction, stages
+from asperity import friction
+from asperity.stages import surface as surface_stage
 from asperity.references import greenwood_williamson
 from asperity.references.hertz import plane_strain_modulus
 from asperity.io.netcdf import missing_attributes, read_dataset, write_dataset
@@ -32,7 +33,7 @@ def _gw_interface(h):
 
 
 def _gw_surface():
-    return stages.surface_from_statistics(
+    return surface_stage.surface_from_statistics(
         {"gaussian_heights": {"sigma_peak_height": SIGMA_P, "radius": R, "peak_density": N}}, {"length": "m"})
 
 
@@ -61,7 +62,7 @@ def test_mu_shear_against_greenwood_williamson_closed_form():
 def test_interlocking_of_a_gaussian_surface():
     """E|z'| = sqrt(2/pi) sigma_slope: exact for the scene statistics, and against
     2e6 Gaussian slopes within 4 standard errors of their sample mean."""
-    surface = stages.surface_from_statistics(STEEL, UNITS)
+    surface = surface_stage.surface_from_statistics(STEEL, UNITS)
     choice = lambda c: friction.interlocking(surface, c)[0]  # noqa: E731
     assert choice("mean_absolute_slope") == pytest.approx(0.16 * math.sqrt(2 / math.pi), rel=1e-15)
     assert choice("rms_slope") == pytest.approx(0.16, rel=1e-15)  # the report's 0.16 (9.1)
@@ -102,7 +103,7 @@ def test_measured_values_pressure_lookup_and_report_side_by_side(tmp_path):
                         {"label": "no pressure", "value": 0.25}],
            "report": {"shear": 0.093, "interlocking": 0.16, "total": 0.253, "nominal_pressure": 2.1947,
                       "source": "9.1, Fig. 9.3"}}
-    surface = stages.surface_from_statistics(STEEL, UNITS)
+    surface = surface_stage.surface_from_statistics(STEEL, UNITS)
     ds = friction.friction_dataset(gw, surface, cfg, {}, UNITS)
     at = ds["mu_at_measurement"].values
     assert at[0] == pytest.approx(float(ds["mu"][5]), rel=1e-12)
@@ -128,6 +129,6 @@ def test_no_load_and_adhesive_tension_give_nan_and_loading_branch_is_used():
         {"nominal_pressure": (("branch", "separation"), np.stack([p, 0.5 * p])),
          "contact_area_ratio": (("branch", "separation"), np.stack([area, area]))},
         coords={"separation": sep, "branch": ["loading", "unloading"]})
-    ds = friction.friction_dataset(two, stages.surface_from_statistics(STEEL, UNITS),
+    ds = friction.friction_dataset(two, surface_stage.surface_from_statistics(STEEL, UNITS),
                                    {"junction_shear_strength": 100.0}, {}, UNITS)
     np.testing.assert_allclose(ds["mu_shear"].values[2:], mu[2:], rtol=1e-15)

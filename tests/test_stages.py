@@ -4,7 +4,8 @@ import json
 import numpy as np
 import pytest
 
-from asperity import stages
+from asperity.stages import population as population_stage
+from asperity.stages import surface as surface_stage
 from asperity.references import hertz
 
 UNITS = {"length": "um", "pressure": "MPa"}
@@ -13,7 +14,7 @@ STEEL = {"statistics": {"sigma": 4.91, "sigma_slope": 0.16, "sigma_curvature": 0
 
 
 def test_given_statistics_in_si():
-    ds = stages.surface_from_statistics(STEEL, UNITS)
+    ds = surface_stage.surface_from_statistics(STEEL, UNITS)
     assert float(ds["sigma"].sel({"method": "given"})) == pytest.approx(4.91e-6)
     assert float(ds["sigma_curvature"].sel({"method": "given"})) == pytest.approx(0.0227e6)
     assert float(ds["peak_density"].sel({"method": "given"})) == pytest.approx(508e6)
@@ -23,14 +24,14 @@ def test_given_statistics_in_si():
 
 
 def test_plan_and_per_sample_response_agree_with_gathered():
-    surface = stages.surface_from_statistics(STEEL, UNITS)
+    surface = surface_stage.surface_from_statistics(STEEL, UNITS)
     mat = {"youngs_modulus": 209000.0, "poisson": 0.3}
-    plan = stages.plan_dataset(surface, {"samples": {"height": 3, "curvature": 4, "interference": 20}},
+    plan = population_stage.plan_dataset(surface, {"samples": {"height": 3, "curvature": 4, "interference": 20}},
                                {"model": "hertz"}, mat, [], UNITS, "standard")
     assert plan.sizes["sample"] == 12
-    asperities = stages.asperities_dataset(plan, {"model": "hertz"}, mat, UNITS)
+    asperities = population_stage.asperities_dataset(plan, {"model": "hertz"}, mat, UNITS)
     key = str(plan["key"].values[5])
-    one = stages.sample_dataset(json.loads(str(plan["spec"].values[5])), key)
+    one = population_stage.sample_dataset(json.loads(str(plan["spec"].values[5])), key)
     k = one.attrs["curvature"]
     np.testing.assert_allclose(one["force"].values,
                                asperities["force"].sel(curvature=k).isel(height=0).values, rtol=1e-14)
@@ -41,7 +42,7 @@ def test_plan_and_per_sample_response_agree_with_gathered():
 
 def test_synthetic_map_statistics():
     gen = {"points": 128, "spacing": 1.0, "sigma": 2.0, "correlation_length": 8.0, "seed": 3}
-    z = stages.synthetic_map(gen)
+    z = surface_stage.synthetic_map(gen)
     assert z.shape == (128, 128)
     assert z.std() == pytest.approx(2.0, rel=1e-12)
     assert abs(z.mean()) < 1e-12
@@ -52,7 +53,7 @@ def test_map_peak_density_matches_nayak():
     m4 = 12 sigma^2/l^4, so D_p = m4/(6 pi sqrt3 m2) = 1/(pi sqrt3 l^2) (2.3.1).
     ~490 peaks: the Poisson spread is 4.5 %; bound 10 %."""
     gen = {"points": 512, "spacing": 2.0, "sigma": 1.0, "correlation_length": 20.0, "seed": 7}
-    ds = stages.surface_from_map(stages.synthetic_map(gen), 2.0, 2.0, {})
+    ds = surface_stage.surface_from_map(surface_stage.synthetic_map(gen), 2.0, 2.0, {})
     expected = 1.0 / (np.pi * np.sqrt(3) * 20.0**2)
     assert float(ds["peak_density"]) == pytest.approx(expected, rel=0.10)
     # isotropic: 3 m22 = m40 = m04 (2.3.1), within the sampling spread of one map
@@ -65,9 +66,9 @@ STEEL_E = {"youngs_modulus": 209000.0, "poisson": 0.3}
 
 
 def _fe_plan(population=None, material=STEEL_E, accuracy="draft"):
-    surface = stages.surface_from_statistics(STEEL, UNITS)
+    surface = surface_stage.surface_from_statistics(STEEL, UNITS)
     population = population or {"samples": {"height": 3, "curvature": 4, "interference": 20}}
-    return stages.plan_dataset(surface, population, FE_SPHERE, material, [], UNITS, accuracy)
+    return population_stage.plan_dataset(surface, population, FE_SPHERE, material, [], UNITS, accuracy)
 
 
 def test_keys_hash_what_the_job_depends_on_only():
@@ -101,7 +102,7 @@ def test_a_failed_sample_is_recorded_and_the_gather_names_it(monkeypatch):
         raise fe.ConvergenceError(step=3, interference=1e-7, reached=5e-8, cuts=8)
 
     monkeypatch.setattr(fe, "solve_asperity", fail)
-    record = stages.sample_or_failure(specs[keys[0]], keys[0])
+    record = population_stage.sample_or_failure(specs[keys[0]], keys[0])
     assert record.attrs["status"] == "failed" and "step 3" in record.attrs["error"]
     assert keys[0] in record.attrs["error"]
     with pytest.raises(ValueError, match=rf"4 of 4 samples missing.*{keys[0]}.*step 3"):

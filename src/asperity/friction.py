@@ -52,7 +52,8 @@ from typing import Any, Mapping
 import numpy as np
 import xarray as xr
 
-from . import units
+from asperity import units
+from asperity.units import attrs
 
 __all__ = ["mean_absolute_slope", "slope_deviation", "junction_shear_strength",
            "mu_shear", "interlocking", "friction_dataset", "at_pressure", "loading_branch"]
@@ -62,9 +63,6 @@ Config = Mapping[str, Any]
 SQRT_2_OVER_PI = math.sqrt(2.0 / math.pi)
 INTERLOCKING = ("mean_absolute_slope", "rms_slope", "none")
 
-
-def _attrs(units_: str, long_name: str) -> dict[str, str]:
-    return {"units": units_, "long_name": long_name}
 
 
 def loading_branch(interface: xr.Dataset) -> xr.Dataset:
@@ -185,22 +183,22 @@ def friction_dataset(interface: xr.Dataset, surface: xr.Dataset, friction_cfg: C
     ds = xr.Dataset(
         coords={
             "separation": ("separation", sep.values, dict(sep.attrs)),
-            "nominal_pressure": ("separation", p, _attrs("Pa", "nominal contact pressure (loading)")),
+            "nominal_pressure": ("separation", p, attrs("Pa", "nominal contact pressure (loading)")),
         })
-    ds["mu_shear"] = ("separation", shear, _attrs(
+    ds["mu_shear"] = ("separation", shear, attrs(
         "1", "coefficient of friction from junction shearing tau_s A_c / F (9.41)"))
-    ds["mu_interlocking"] = ((), mu_i, _attrs("1", f"interlocking part of friction: {mu_i_origin}"))
-    ds["mu"] = ("separation", shear + mu_i, _attrs("1", "coefficient of friction, shearing plus interlocking"))
+    ds["mu_interlocking"] = ((), mu_i, attrs("1", f"interlocking part of friction: {mu_i_origin}"))
+    ds["mu"] = ("separation", shear + mu_i, attrs("1", "coefficient of friction, shearing plus interlocking"))
     ds["contact_area_ratio"] = ("separation", interface["contact_area_ratio"].values,
-                                _attrs("1", "real contact area per unit nominal area (loading)"))
-    ds["junction_shear_strength"] = ((), tau_s, _attrs("Pa", f"junction shear strength tau_s: {tau_origin}"))
+                                attrs("1", "real contact area per unit nominal area (loading)"))
+    ds["junction_shear_strength"] = ((), tau_s, attrs("Pa", f"junction shear strength tau_s: {tau_origin}"))
     try:
         s = slope_deviation(surface)
     except ValueError:
         s = math.nan
-    ds["sigma_slope"] = ((), s, _attrs("1", "rms slope of the surface (standard deviation of profile slope)"))
+    ds["sigma_slope"] = ((), s, attrs("1", "rms slope of the surface (standard deviation of profile slope)"))
     ds["mean_absolute_slope"] = ((), float(mean_absolute_slope(s)),
-                                 _attrs("1", "mean absolute slope sqrt(2/pi) sigma_slope (Gaussian surface)"))
+                                 attrs("1", "mean absolute slope sqrt(2/pi) sigma_slope (Gaussian surface)"))
 
     measured = list(friction_cfg.get("measured", []) or [])
     if measured:
@@ -208,27 +206,27 @@ def friction_dataset(interface: xr.Dataset, surface: xr.Dataset, friction_cfg: C
         get = lambda key, scale=1.0: np.array(  # noqa: E731
             [float(m[key]) * scale if m.get(key) is not None else np.nan for m in measured])
         mp = get("nominal_pressure", pscale)
-        ds = ds.assign_coords(measurement=("measurement", labels, _attrs("1", "friction test")))
-        ds["measured_mu"] = ("measurement", get("value"), _attrs("1", "measured static coefficient of friction"))
+        ds = ds.assign_coords(measurement=("measurement", labels, attrs("1", "friction test")))
+        ds["measured_mu"] = ("measurement", get("value"), attrs("1", "measured static coefficient of friction"))
         ds["measured_mu_uncertainty"] = ("measurement", get("uncertainty"),
-                                         _attrs("1", "estimated error of the measured coefficient"))
-        ds["measured_nominal_pressure"] = ("measurement", mp, _attrs("Pa", "nominal pressure of the test"))
-        ds["mu_shear_at_measurement"] = ("measurement", at_pressure(p, shear, mp), _attrs(
+                                         attrs("1", "estimated error of the measured coefficient"))
+        ds["measured_nominal_pressure"] = ("measurement", mp, attrs("Pa", "nominal pressure of the test"))
+        ds["mu_shear_at_measurement"] = ("measurement", at_pressure(p, shear, mp), attrs(
             "1", "computed mu_shear at the test's nominal pressure (NaN outside the computed range)"))
-        ds["mu_at_measurement"] = ("measurement", at_pressure(p, shear + mu_i, mp), _attrs(
+        ds["mu_at_measurement"] = ("measurement", at_pressure(p, shear + mu_i, mp), attrs(
             "1", "computed mu at the test's nominal pressure (NaN outside the computed range)"))
         ds["measured_source"] = ("measurement", [str(m.get("source", "")) for m in measured],
-                                 _attrs("1", "where the measurement is reported"))
+                                 attrs("1", "where the measurement is reported"))
     report = dict(friction_cfg.get("report", {}) or {})
     if report:
         names = {"shear": "mu_shear", "interlocking": "mu_interlocking", "total": "mu"}
         for key, name in names.items():
             if report.get(key) is not None:
-                ds[f"report_{name}"] = ((), float(report[key]), _attrs(
+                ds[f"report_{name}"] = ((), float(report[key]), attrs(
                     "1", f"the report's {name} (for comparison, not computed here)"))
         if report.get("nominal_pressure") is not None:
             ds["report_nominal_pressure"] = ((), float(report["nominal_pressure"]) * pscale,
-                                             _attrs("Pa", "nominal pressure of the report's estimate"))
+                                             attrs("Pa", "nominal pressure of the report's estimate"))
         ds.attrs["report_source"] = str(report.get("source", ""))
     positive = p > 0
     if positive.any():

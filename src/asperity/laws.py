@@ -47,8 +47,9 @@ import numpy as np
 import xarray as xr
 from scipy import optimize
 
-from . import units
-from .friction import loading_branch
+from asperity import units
+from asperity.units import attrs
+from asperity.friction import loading_branch
 
 __all__ = ["A0", "LAWS", "PARAMETERS", "LawFit", "oden_martins", "exponential",
            "fit_oden_martins", "fit_exponential", "fit_law", "approach", "laws_dataset"]
@@ -62,9 +63,6 @@ PARAMETER_UNITS = {"c": "Pa", "g": "m", "m": "1", "decay_length": "m"}
 RESIDUALS = ("absolute", "log")
 _TOL = 1e-15
 
-
-def _attrs(units_: str, long_name: str) -> dict[str, str]:
-    return {"units": units_, "long_name": long_name}
 
 
 def oden_martins(a, c: float, g: float, m: float, a0: float = A0) -> np.ndarray:
@@ -397,39 +395,39 @@ def laws_dataset(interface: xr.Dataset, laws_cfg: Config, units_cfg: Config) -> 
     long_par = "fitted parameter, SI, units per parameter in parameter_units"
     ds = xr.Dataset(
         {
-            "approach": ("separation", a, _attrs("m", f"approach a = h0 - h, h0 = {origin_how}")),
-            "nominal_pressure": ("separation", p, _attrs("Pa", "nominal contact pressure (loading; the data fitted)")),
-            "in_window": ("separation", window, _attrs("1", "point used in the fit (positive, in the pressure range)")),
-            "estimate": (("law", "parameter"), est, _attrs("see parameter_units", long_par)),
-            "standard_error": (("law", "parameter"), se, _attrs(
+            "approach": ("separation", a, attrs("m", f"approach a = h0 - h, h0 = {origin_how}")),
+            "nominal_pressure": ("separation", p, attrs("Pa", "nominal contact pressure (loading; the data fitted)")),
+            "in_window": ("separation", window, attrs("1", "point used in the fit (positive, in the pressure range)")),
+            "estimate": (("law", "parameter"), est, attrs("see parameter_units", long_par)),
+            "standard_error": (("law", "parameter"), se, attrs(
                 "see parameter_units", "standard error sqrt(diag(s^2 (J^T J)^-1)); 0 for a fixed parameter")),
-            "fixed": (("law", "parameter"), fixed, _attrs("1", "parameter held fixed in the fit")),
-            "covariance": (("law", "parameter", "parameter_2"), cov, _attrs(
+            "fixed": (("law", "parameter"), fixed, attrs("1", "parameter held fixed in the fit")),
+            "covariance": (("law", "parameter", "parameter_2"), cov, attrs(
                 "product of parameter_units", "covariance of the parameters s^2 (J^T J)^-1")),
-            "report_value": (("law", "parameter"), rep, _attrs(
+            "report_value": (("law", "parameter"), rep, attrs(
                 "see parameter_units", "the report's fitted parameter in SI, for comparison "
                 "(section 10; as printed in attribute report_as_printed)")),
-            "pressure_fit": (("law", "separation"), curve, _attrs("Pa", "fitted law at the data's approaches")),
-            "pressure_report": (("law", "separation"), report_curve, _attrs(
+            "pressure_fit": (("law", "separation"), curve, attrs("Pa", "fitted law at the data's approaches")),
+            "pressure_report": (("law", "separation"), report_curve, attrs(
                 "Pa", "the report's law at the data's approaches (its own approach origin)")),
-            "residual": (("law", "separation"), resid, _attrs(res_units, f"residual {res_name} in the window")),
-            "relative_error": (("law", "separation"), rel, _attrs("1", "p_fit / p - 1")),
-            "r_squared": ("law", [fits[l_].r_squared for l_ in which], _attrs(
+            "residual": (("law", "separation"), resid, attrs(res_units, f"residual {res_name} in the window")),
+            "relative_error": (("law", "separation"), rel, attrs("1", "p_fit / p - 1")),
+            "r_squared": ("law", [fits[l_].r_squared for l_ in which], attrs(
                 "1", f"coefficient of determination of the fit ({residual} residuals)")),
             "rms_residual": ("law", [math.sqrt(fits[l_].ssr / fits[l_].points) for l_ in which],
-                             _attrs(res_units, "root mean square residual in the window")),
+                             attrs(res_units, "root mean square residual in the window")),
             "max_relative_error": ("law", [float(np.nanmax(np.abs(rel[i][window]))) for i in range(nl)],
-                                   _attrs("1", "largest |p_fit / p - 1| in the window")),
-            "points": ("law", [fits[l_].points for l_ in which], _attrs("1", "points fitted")),
+                                   attrs("1", "largest |p_fit / p - 1| in the window")),
+            "points": ("law", [fits[l_].points for l_ in which], attrs("1", "points fitted")),
         },
         coords={
             "separation": ("separation", h, dict(interface["separation"].attrs)),
-            "law": ("law", which, _attrs("1", "analytic law: oden_martins p = c ((a - g)/a0)^m (10.42); "
+            "law": ("law", which, attrs("1", "analytic law: oden_martins p = c ((a - g)/a0)^m (10.42); "
                                              "exponential p = c exp(a / decay_length)")),
-            "parameter": ("parameter", list(PARAMETERS), _attrs("1", "parameter of the law")),
-            "parameter_2": ("parameter_2", list(PARAMETERS), _attrs("1", "parameter of the law")),
+            "parameter": ("parameter", list(PARAMETERS), attrs("1", "parameter of the law")),
+            "parameter_2": ("parameter_2", list(PARAMETERS), attrs("1", "parameter of the law")),
             "parameter_units": ("parameter", [PARAMETER_UNITS[n] for n in PARAMETERS],
-                                _attrs("1", "SI unit of each parameter")),
+                                attrs("1", "SI unit of each parameter")),
         },
     )
     ds.attrs.update(

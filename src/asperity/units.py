@@ -52,3 +52,8 @@ def pressure_scale(unit: str) -> float:
 def energy_per_area_scale(unit: str) -> float:
     """J/m^2 per `unit`."""
     return _factor(ENERGY_PER_AREA, unit, "surface energy")
+
+
+def attrs(units: str, long_name: str) -> dict[str, str]:
+    """The attributes every netCDF variable carries (DESIGN.md, netCDF contract)."""
+    return {"units": units, "long_name": long_name}

@@ -8,7 +8,8 @@ import numpy as np
 import pytest
 import yaml
 
-from asperity import homogenize, stages
+from asperity import homogenize
+from asperity.population import density as population_density
 from asperity.fe.adhesion import LennardJones, derjaguin_force
 from asperity.io.netcdf import missing_attributes
 
@@ -97,8 +98,8 @@ def test_interface_attracts_before_contact(run):
                       np.broadcast_to(np.where(w < 0, rigid, 0.0), table["force"].shape).copy(),
                       table["force"].attrs)
     ref = homogenize.interface_response(
-        table, stages.population_density(surface, {}), h[far], bounds=interface.attrs["bounds"],
-        cells=(60, 40), rule="gauss", peak_density=stages.peak_density(surface), reach=reach,
+        table, population_density.population_density(surface, {}), h[far], bounds=interface.attrs["bounds"],
+        cells=(60, 40), rule="gauss", peak_density=population_density.peak_density(surface), reach=reach,
         contact="in_contact")
     np.testing.assert_allclose(p[far], ref["nominal_pressure"].values, rtol=0.03)
     ret = interface["nominal_pressure"].sel(branch="retract").values

@@ -54,6 +54,8 @@ rule expectation_figure:
             category="{scene}",
             caption="../report/expectation.rst",
         ),
+    params:
+        population=scene_part("population", {}),
     log:
         f"{RESULTS}/{{scene}}/logs/expectation_figure.log",
     script:

@@ -1,12 +1,12 @@
 """convergence.nc: sampled statistics of a synthetic series versus spacing."""
 
-from asperity import stages
+from asperity.stages import surface
 from asperity.io.netcdf import write_dataset
 from asperity.io.joblog import job_log
 
 with job_log(snakemake.log[0], "convergence"):
     gen, units = snakemake.params.generate, snakemake.params.units
-    ds = stages.series_convergence(gen, units)
+    ds = surface.series_convergence(gen, units)
     write_dataset(ds, snakemake.output[0], scene=snakemake.params.scene,
                   title="profile statistics versus sampling interval",
                   config={"generate": gen, "units": units})

@@ -1,14 +1,13 @@
 """friction.nc: static coefficient of friction of the interface (report 9.1)."""
 
-from asperity import stages
-from asperity.friction import friction_dataset
-from asperity.io.netcdf import read_dataset, write_dataset
 from asperity.io.joblog import job_log
+from asperity.io.netcdf import read_dataset, write_dataset
+from asperity.stages import friction
 
 with job_log(snakemake.log[0], "friction") as log:
     p, i = snakemake.params, snakemake.input
-    ds = friction_dataset(read_dataset(i.interface), read_dataset(i.surface), p.friction,
-                          stages.material_si(p.material, p.units) if p.material else {}, p.units)
+    ds = friction.friction_dataset(read_dataset(i.interface), read_dataset(i.surface), p.friction,
+                                   p.material, p.units)
     log.info("tau_s %.6g Pa (%s); mu_interlocking %.4g; mu from %.4g to %.4g",
              float(ds["junction_shear_strength"]), ds.attrs["junction_shear_strength_origin"],
              float(ds["mu_interlocking"]), float(ds["mu"].min()), float(ds["mu"].max()))

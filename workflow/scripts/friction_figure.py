@@ -1,14 +1,12 @@
-"""figures/friction.png from friction.nc (and the compared scenes' friction.nc)."""
+"""figures/friction.png: mu against pressure (report Figs. 9.1-9.3)."""
 
-from asperity.plots import friction as plots_friction
 from asperity.io.figures import save_figure
-from asperity.io.netcdf import read_dataset
 from asperity.io.joblog import job_log
+from asperity.io.netcdf import read_dataset
+from asperity.stages import friction
 
 with job_log(snakemake.log[0], "friction figure"):
     i, p = snakemake.input, snakemake.params
     others = {name: read_dataset(path) for name, path in zip(p.compare_with, i.others)}
-    fig = plots_friction.friction_figure(read_dataset(i.friction), others,
-                                         pressure_unit=p.units.get("pressure", "Pa"),
-                                         length_unit=p.units["length"])
-    save_figure(fig, snakemake.output[0])
+    save_figure(friction.friction_figure(read_dataset(i.friction), p.units, others),
+                snakemake.output[0])

@@ -1,12 +1,12 @@
 """interface.nc: the homogenized interface versus separation."""
 
-from asperity import stages
+from asperity.stages import homogenize
 from asperity.io.netcdf import read_dataset, write_dataset
 from asperity.io.joblog import job_log
 
 with job_log(snakemake.log[0], "interface"):
     p, i = snakemake.params, snakemake.input
-    ds = stages.interface_dataset(read_dataset(i.asperities), read_dataset(i.surface),
+    ds = homogenize.interface_dataset(read_dataset(i.asperities), read_dataset(i.surface),
                                   read_dataset(i.plan), p.population, p.homogenization, p.units,
                                   read_dataset(i.unloading) if "unloading" in i.keys() else None)
     write_dataset(ds, snakemake.output[0], scene=p.scene, title="homogenized interface",

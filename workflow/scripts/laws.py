@@ -1,12 +1,12 @@
 """laws.nc: analytic laws fitted to the loading curve (report section 10)."""
 
-from asperity.io.netcdf import read_dataset, write_dataset
 from asperity.io.joblog import job_log
-from asperity.laws import laws_dataset
+from asperity.io.netcdf import read_dataset, write_dataset
+from asperity.stages import friction
 
 with job_log(snakemake.log[0], "laws") as log:
     p, i = snakemake.params, snakemake.input
-    ds = laws_dataset(read_dataset(i.interface), p.laws, p.units)
+    ds = friction.laws_dataset(read_dataset(i.interface), p.laws, p.units)
     for law in ds["law"].values:
         est = ds["estimate"].sel(law=law)
         log.info("%s: %s; R^2 %.6f", law, ", ".join(

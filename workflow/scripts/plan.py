@@ -1,12 +1,12 @@
 """plan.nc: the asperity samples the scene needs."""
 
-from asperity import stages
+from asperity.stages import population
 from asperity.io.netcdf import read_dataset, write_dataset
 from asperity.io.joblog import job_log
 
 with job_log(snakemake.log[0], "plan"):
     p = snakemake.params
-    plan = stages.plan_dataset(read_dataset(snakemake.input.surface), p.population, p.asperity,
+    plan = population.plan_dataset(read_dataset(snakemake.input.surface), p.population, p.asperity,
                                p.material, p.effects, p.units, p.accuracy, p.adhesion)
     write_dataset(plan, snakemake.output[0], scene=p.scene, title="asperity samples",
                   config={"population": p.population, "asperity": p.asperity, "material": p.material,

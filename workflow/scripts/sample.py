@@ -2,13 +2,13 @@
 
 import json
 
-from asperity import stages
+from asperity.stages import population
 from asperity.io.netcdf import write_dataset
 from asperity.io.joblog import job_log
 
 with job_log(snakemake.log[0], f"sample {snakemake.params.key}"):
     p = snakemake.params
     spec = json.loads(p.spec)
-    ds = stages.sample_or_failure(spec, p.key)
+    ds = population.sample_or_failure(spec, p.key)
     write_dataset(ds, snakemake.output[0], scene="shared by every scene whose plan holds the key",
                   title=f"asperity sample {p.key}", config={"spec": spec})

@@ -1,15 +1,12 @@
 """results/<scene>/sliding.nc: one asperity pressed and slid by the flat (report 9.2)."""
 
-from asperity.fe.solid3d import solve_sliding_scene
-from asperity.io.netcdf import write_dataset
 from asperity.io.joblog import job_log
+from asperity.io.netcdf import write_dataset
+from asperity.stages import sliding
 
 p = snakemake.params
 with job_log(snakemake.log[0], f"sliding asperity of {p.scene}") as log:
-    try:
-        ds = solve_sliding_scene(p.sliding, p.units, p.accuracy, progress=log.info)
-    except Exception as err:
-        raise RuntimeError(f"scene {p.scene}, sliding asperity: {err}") from err
+    ds = sliding.sliding_dataset(p.scene, p.sliding, p.units, p.accuracy, progress=log.info)
     log.info("largest deformation %s (depth %.3g m below the flat)",
              ds.attrs["largest_deformation"], ds.attrs["largest_deformation_depth"])
     ds.attrs["report"] = p.report

@@ -1,29 +1,19 @@
 """figures/surface.png from surface.nc (and the profile or map, convergence.nc)."""
 
-import numpy as np
-
-from asperity import plots
 from asperity.io import inputs
 from asperity.io.figures import save_figure
-from asperity.io.netcdf import read_dataset
 from asperity.io.joblog import job_log
-from asperity.units import length_scale
+from asperity.io.netcdf import read_dataset
+from asperity.stages import figures
 
 with job_log(snakemake.log[0], "surface figure"):
     i, p = snakemake.input, snakemake.params
     surface = read_dataset(i.surface)
-    if p.kind == "profiles":
-        fig = plots.directional_figure(surface, length_unit=p.units["length"])
-    elif p.kind == "map":
-        unit = p.units["length"]
-        spacing = float(surface["spacing_x"]) / length_scale(unit)  # back to the scene's unit
-        z, _, _ = inputs.read_map(i.data, spacing=spacing, length_unit=unit)
-        fig = plots.map_figure(z, surface, length_unit=p.units["length"])
-    else:
-        profile = None
-        if p.kind == "profile":
-            z, dx = inputs.read_profile(i.data, spacing=None, length_unit=p.units["length"])
-            profile = (dx * np.arange(z.size), z)
-        conv = read_dataset(i.convergence) if "convergence" in i.keys() else None
-        fig = plots.surface_figure(surface, profile, conv, length_unit=p.units["length"])
-    save_figure(fig, snakemake.output[0])
+    data = None
+    if p.kind == "map":
+        data, _, _ = inputs.read_map(i.data, spacing=figures.map_spacing(surface, p.units),
+                                     length_unit=p.units["length"])
+    elif p.kind == "profile":
+        data = inputs.read_profile(i.data, spacing=None, length_unit=p.units["length"])
+    conv = read_dataset(i.convergence) if "convergence" in i.keys() else None
+    save_figure(figures.surface_figure(p.kind, surface, p.units, data, conv), snakemake.output[0])

@@ -1,12 +1,12 @@
 """results/<scene>/uniaxial.nc: the scene's uniaxial material-point tests."""
 
-from asperity.io.netcdf import write_dataset
 from asperity.io.joblog import job_log
-from asperity.uniaxial.scene import run_uniaxial_scene
+from asperity.io.netcdf import write_dataset
+from asperity.stages import uniaxial
 
 p = snakemake.params
 with job_log(snakemake.log[0], f"uniaxial tests of {p.scene}") as log:
-    ds = run_uniaxial_scene(p.uniaxial, p.units)
+    ds = uniaxial.uniaxial_dataset(p.uniaxial, p.units)
     for name, steps, wall in zip(ds["test"].values, ds["steps"].values, ds["wall_time"].values):
         log.info("%s: %d steps, %.2f s", name, steps, wall)
     ds.attrs["report"] = p.report

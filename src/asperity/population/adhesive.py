@@ -56,8 +56,9 @@ from typing import Any, Callable, Mapping
 import numpy as np
 import xarray as xr
 
-from asperity.scene import materials
 from asperity.population.plan import interference_grid as contact_grid
+from asperity.scene import materials
+from asperity.units import attrs
 
 Config = Mapping[str, Any]
 
@@ -70,9 +71,6 @@ NEAR_STEP = 0.125
 NEAR_RANGE = 12.0
 GROWTH = 0.1
 
-
-def _attrs(units_: str, long_name: str) -> dict[str, str]:
-    return {"units": units_, "long_name": long_name}
 
 
 # --- the law ------------------------------------------------------------------------------
@@ -208,32 +206,32 @@ def gather(plan: xr.Dataset, samples: Mapping[str, xr.Dataset]) -> xr.Dataset:
         return np.broadcast_to(a[:, None], full)
 
     out = xr.Dataset(
-        {name: (dims, over_heights(tables[name]), _attrs(*GATHERED[name])) for name in GATHERED},
+        {name: (dims, over_heights(tables[name]), attrs(*GATHERED[name])) for name in GATHERED},
         coords={
-            "branch": ("branch", list(BRANCHES), _attrs(
+            "branch": ("branch", list(BRANCHES), attrs(
                 "1", "approach of the flat, or its retraction (report 7.3, Fig. 7.6)")),
-            "height": ("height", heights, _attrs("m", "asperity peak height")),
-            "curvature": ("curvature", curvatures, _attrs("1/m", "tip curvature")),
-            "interference": ("interference", grid, _attrs(
+            "height": ("height", heights, attrs("m", "asperity peak height")),
+            "curvature": ("curvature", curvatures, attrs("1/m", "tip curvature")),
+            "interference": ("interference", grid, attrs(
                 "m", "interference (negative: gap before first touch)")),
         })
-    out["extrapolated"] = (dims, over_heights(beyond), _attrs(
+    out["extrapolated"] = (dims, over_heights(beyond), attrs(
         "1", "beyond the largest interference the FE job computed (continued with its last "
         "tangent)"))
-    paths = stack_runs(runs, "curvature", curvatures, _attrs("1/m", "tip curvature"))
+    paths = stack_runs(runs, "curvature", curvatures, attrs("1/m", "tip curvature"))
     for name in PER_CURVATURE:
         out[name] = ("curvature", paths[name].values, dict(paths[name].attrs))
     W = float(runs[0].attrs["work_of_adhesion"])
     radius = np.array([float(r.attrs["tip_radius"]) for r in runs])
     out["pull_off_force_dmt"] = ("curvature", 2 * np.pi * radius * W,
-                                 _attrs("N", "DMT pull-off 2 pi R W_c (rigid sphere, Derjaguin)"))
+                                 attrs("N", "DMT pull-off 2 pi R W_c (rigid sphere, Derjaguin)"))
     out["pull_off_force_jkr"] = ("curvature", 1.5 * np.pi * radius * W,
-                                 _attrs("N", "JKR pull-off 3/2 pi R W_c"))
+                                 attrs("N", "JKR pull-off 3/2 pi R W_c"))
     for src, dst in PATH.items():
         var = paths[src]
         out[dst] = (("curvature", "step"), var.values,
-                    _attrs(var.attrs["units"], f"computed path: {var.attrs['long_name']}"))
-    out = out.assign_coords(step=("step", paths["step"].values, _attrs("1", "path step index")))
+                    attrs(var.attrs["units"], f"computed path: {var.attrs['long_name']}"))
+    out = out.assign_coords(step=("step", paths["step"].values, attrs("1", "path step index")))
     adh = runs[0].attrs
     out.attrs.update(
         reach=-float(grid[0]), adhesion=str(adh.get("adhesion", "")),
@@ -267,7 +265,7 @@ def by_branch(asperities: xr.Dataset, separations: np.ndarray,
     """The interface on dim ``branch`` (approach, retract from the smallest separation).
 
     `homogenized(table, reach=..., contact=...)` is the pipeline's homogenization of
-    one (height, curvature, interference) table over `separations` (`asperity.stages`).
+    one (height, curvature, interference) table over `separations` (`asperity.stages.homogenize`).
     """
     grid_dims = {"height", "curvature", "interference"}
     r = float(asperities.attrs["reach"])
@@ -281,11 +279,11 @@ def by_branch(asperities: xr.Dataset, separations: np.ndarray,
         parts.append(homogenized(t, reach=r, contact="in_contact"))
     out = xr.concat(parts, dim="branch", data_vars="all", coords="minimal", compat="override")
     out["density_integral"] = out["density_integral"].isel(branch=0, drop=True)
-    out = out.assign_coords(branch=("branch", list(BRANCHES), _attrs(
+    out = out.assign_coords(branch=("branch", list(BRANCHES), attrs(
         "1", "approach of the flat, or its retraction from the smallest separation (7.3)")))
     h = out["separation"].values
     p = out["nominal_pressure"].transpose("branch", "separation").values
-    out["normal_stiffness"] = (("branch", "separation"), -np.gradient(p, h, axis=1), _attrs(
+    out["normal_stiffness"] = (("branch", "separation"), -np.gradient(p, h, axis=1), attrs(
         "Pa/m", "normal stiffness -dp/dh of the homogenized pressure"))
     retract_p = p[1]
     out.attrs.update(

@@ -21,7 +21,7 @@ where S holds the separations h that both runs computed (equal to within
 `threshold` (default 1e-3) times its largest value on that branch, and q_P
 is finite.  No interpolation: the configured separations are common to
 every preset, while the separations an unloading scene adds to resolve the
-rebound (`asperity.stages.REBOUND_POINTS`) depend on each run's own rebound
+rebound (`asperity.stages.homogenize.REBOUND_POINTS`) depend on each run's own rebound
 and are compared only where they coincide.  How many separations entered,
 and where the largest deviation lies, are stored beside it, as is the largest
 share of contacting asperities the gather extrapolated beyond their FE job's
@@ -35,6 +35,8 @@ from typing import Mapping, Sequence
 
 import numpy as np
 import xarray as xr
+
+from asperity.units import attrs
 
 __all__ = ["QUANTITIES", "COST_ATTRS", "branch_deviation", "scene_accuracy"]
 
@@ -59,9 +61,6 @@ BRANCHES = ("loading", "unloading")
 #: separations of two runs closer than this times the largest separation are the same
 SAME_SEPARATION = 1e-9
 
-
-def _attrs(units: str, long_name: str) -> dict:
-    return {"units": units, "long_name": long_name}
 
 
 def branch_deviation(
@@ -161,25 +160,25 @@ def scene_accuracy(
                         run["separation"].values, qp, ref["separation"].values, qr, threshold)
     dims4 = ("scene", "preset", "quantity", "branch")
     data = {
-        "deviation": (dims4, deviation, _attrs(
+        "deviation": (dims4, deviation, attrs(
             "1", f"largest relative deviation from the {reference} preset over the separations both "
             f"runs computed where the {reference} value is above {threshold:g} of its largest")),
-        "deviation_separation": (dims4, where, _attrs(
+        "deviation_separation": (dims4, where, attrs(
             "m", "separation at which the largest deviation occurs")),
-        "compared_separations": (dims4, count, _attrs(
+        "compared_separations": (dims4, count, attrs(
             "1", "number of separations compared (common to both runs, above the threshold)")),
     }
     for name, (units, long_name) in COST_ATTRS.items():
-        data[name] = (("scene", "preset"), cost[name], _attrs(units, long_name))
-    data["max_extrapolated_fraction"] = (("scene", "preset"), extrapolated, _attrs(
+        data[name] = (("scene", "preset"), cost[name], attrs(units, long_name))
+    data["max_extrapolated_fraction"] = (("scene", "preset"), extrapolated, attrs(
         "1", "largest fraction of contacting asperities beyond their FE job's largest interference "
         "(continued with the last tangent), loading branch, over all separations"))
     out = xr.Dataset(data, coords={
-        "scene": ("scene", scenes, _attrs("1", "scene")),
-        "preset": ("preset", presets, _attrs("1", "accuracy preset of the FE asperities")),
-        "quantity": ("quantity", quantities, _attrs("1", "compared interface quantity: "
+        "scene": ("scene", scenes, attrs("1", "scene")),
+        "preset": ("preset", presets, attrs("1", "accuracy preset of the FE asperities")),
+        "quantity": ("quantity", quantities, attrs("1", "compared interface quantity: "
                                                     + "; ".join(QUANTITIES.values()))),
-        "branch": ("branch", list(BRANCHES), _attrs(
+        "branch": ("branch", list(BRANCHES), attrs(
             "1", "loading, or unloading from the separation unloading_from (report 8.3)")),
     })
     out.attrs.update(reference=reference, threshold=float(threshold))

@@ -1,0 +1,78 @@
+"""The peak density of a scene's population (2.4.1, 7.1, 2.4.3) and the statistics it draws
+on: which estimator of `surface.nc` feeds it, and the rectangle of its effective support."""
+
+from __future__ import annotations
+
+import logging
+from typing import Any, Mapping
+
+import xarray as xr
+
+from asperity import peaks
+from asperity.scene import length_factor
+
+log = logging.getLogger("asperity")
+
+Config = Mapping[str, Any]
+
+
+def default_density(surface_ds: xr.Dataset) -> str:
+    method = surface_ds.attrs.get("population_method")
+    return {"gaussian_heights": "fixed_curvature", "map": "sampled"}.get(method, "nayak")
+
+
+def population_density(surface_ds: xr.Dataset, population: Config):
+    """The peak density of a scene: Nayak/Francis, fixed curvature, or sampled."""
+    kind = population.get("density") or default_density(surface_ds)
+    method = surface_ds.attrs.get("population_method")
+    if kind == "fixed_curvature":
+        if "sigma_peak_height" not in surface_ds:
+            raise ValueError("population.density fixed_curvature needs surface.gaussian_heights")
+        return peaks.FixedCurvatureDensity(
+            sigma_p=float(surface_ds["sigma_peak_height"]),
+            curvature=float(surface_ds["tip_curvature"]),
+        )
+    if kind == "sampled":
+        if "peak" not in surface_ds.dims:
+            raise ValueError("population.density sampled needs a 2-D map (surface.map)")
+        bins = tuple(population.get("histogram_bins", (20, 20)))
+        return peaks.SampledDensity.from_peaks(
+            surface_ds["height"].values, surface_ds["curvature"].values, bins=bins
+        )
+    stats = surface_ds.sel({"method": method}) if "method" in surface_ds.dims else surface_ds
+    return peaks.JointDensity(
+        sigma=float(stats["sigma"]),
+        sigma_slope=float(stats["sigma_slope"]),
+        sigma_curvature=float(stats["sigma_curvature"]),
+    )
+
+
+def peak_density(surface_ds: xr.Dataset) -> float:
+    """Peaks per unit area (1/m^2) from the surface dataset."""
+    return population_stat(surface_ds, "peak_density")
+
+
+def population_stat(surface_ds: xr.Dataset, name: str) -> float:
+    """A statistic of the method that feeds the population."""
+    value = surface_ds[name]
+    if "method" in value.dims:
+        value = value.sel({"method": surface_ds.attrs["population_method"]})
+    return float(value)
+
+
+def height_scale(surface_ds: xr.Dataset) -> float:
+    """The standard deviation that `sigma` units of separation refer to."""
+    if "sigma_peak_height" in surface_ds:
+        return float(surface_ds["sigma_peak_height"])
+    return population_stat(surface_ds, "sigma")
+
+
+def bounds(density, cfg: Config, units_cfg: Config, threshold: float) -> tuple[float, float, float, float]:
+    """Integration/sampling rectangle: the effective support, or the scene's ranges."""
+    length = length_factor(units_cfg)
+    z0, z1, k0, k1 = density.support(threshold)
+    if "height_range" in cfg:
+        z0, z1 = (v * length for v in cfg["height_range"])
+    if "curvature_range" in cfg:
+        k0, k1 = (v / length for v in cfg["curvature_range"])
+    return float(z0), float(z1), float(k0), float(k1)

@@ -1,0 +1,39 @@
+"""Stage `friction` (workflow/rules/friction.smk): the static coefficient of friction of
+the interface (report 9.1) and analytic laws fitted to its loading curve (section 10),
+with their figures."""
+
+from __future__ import annotations
+
+from typing import Any, Mapping
+
+import xarray as xr
+
+from asperity import friction, laws
+from asperity.plots import friction as friction_plots
+from asperity.scene import material_si
+
+Config = Mapping[str, Any]
+
+
+def friction_dataset(interface: xr.Dataset, surface: xr.Dataset, friction_cfg: Config,
+                     material: Config, units_cfg: Config) -> xr.Dataset:
+    """`asperity.friction.friction_dataset` with the scene's material in SI."""
+    mat = material_si(material, units_cfg) if material else {}
+    return friction.friction_dataset(interface, surface, friction_cfg, mat, units_cfg)
+
+
+def laws_dataset(interface: xr.Dataset, laws_cfg: Config, units_cfg: Config) -> xr.Dataset:
+    """`asperity.laws.laws_dataset`: Oden-Martins (10.42) and exponential fits."""
+    return laws.laws_dataset(interface, laws_cfg, units_cfg)
+
+
+def friction_figure(friction_ds: xr.Dataset, units_cfg: Config,
+                    others: Mapping[str, xr.Dataset] | None = None):
+    return friction_plots.friction_figure(friction_ds, others or {},
+                                          pressure_unit=units_cfg.get("pressure", "Pa"),
+                                          length_unit=units_cfg["length"])
+
+
+def laws_figure(laws_ds: xr.Dataset, units_cfg: Config):
+    return friction_plots.laws_figure(laws_ds, pressure_unit=units_cfg.get("pressure", "Pa"),
+                                      length_unit=units_cfg["length"])
