@@ -4,7 +4,7 @@ the statistical routes' error against the boundary-element solution (`make time-
 Each measurement runs in its own fresh copy of the workflow (benchmarks.workflow_copy),
 Snakemake's start-up included, with
 
-    snakemake --cores 2 --config 'scenes=[deterministic_reference]' accuracy=<preset> studies=False [target]
+    snakemake --cores 2 [target] --config 'scenes=[deterministic_reference]' accuracy=<preset> studies=False
 
 for the targets: the whole scene; the boundary-element solve alone
 (results/deterministic_reference/reference.nc: the map, its statistics and the solve);
@@ -42,8 +42,9 @@ SCENE = "deterministic_reference"
 
 
 def command(preset: str, cores: int, target: str | None) -> list[str]:
-    return ["snakemake", "--cores", str(cores), "--config", f"scenes=[{SCENE}]",
-            f"accuracy={preset}", "studies=False", *([target] if target else [])]
+    # the target before --config, which takes every argument after it
+    return ["snakemake", "--cores", str(cores), *([target] if target else []), "--config",
+            f"scenes=[{SCENE}]", f"accuracy={preset}", "studies=False"]
 
 
 def _read(path: Path):
