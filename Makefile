@@ -8,7 +8,7 @@ CORES ?= 2
 export OPENBLAS_NUM_THREADS = 1
 export OMP_NUM_THREADS = 1
 
-.PHONY: all reproduce test test-fast bench time-scenes time-jobs time-adhesion figures clean-results
+.PHONY: all reproduce test test-fast bench time-scenes time-jobs time-adhesion time-reference figures clean-results
 
 all: reproduce
 
@@ -53,6 +53,12 @@ time-jobs: $(STAMP)
 # Fig. 7.6's curves); writes benchmarks/results/adhesion-cost.json.
 time-adhesion: $(STAMP)
 	$(BIN)/python benchmarks/adhesion_cost.py
+
+# The deterministic_reference scene at draft: its wall time and each route's, and the
+# routes' errors against the boundary-element solution; writes
+# benchmarks/results/reference-draft.json.
+time-reference: $(STAMP)
+	$(BIN)/python benchmarks/reference_cost.py --accuracy draft --cores $(CORES)
 
 # The figures shown in the README, copied from a full run.
 README_FIGURES := profile_quasirandom/figures/surface.png expectation_unit/figures/expectation.png \

@@ -8,6 +8,8 @@ import yaml
 from snakemake.exceptions import WorkflowError
 from snakemake.utils import validate
 
+from asperity.stages.reference import ROUTE_SEPARATOR, route_scene
+
 RESULTS = config.get("results", "results")
 SCENE_DIR = Path(config.get("scene_dir", "config/scenes"))
 
@@ -87,12 +89,18 @@ PRESETS = ("draft", "standard", "fine")
 class _Scenes(dict):
     """Scene name -> definition.  ``<scene>@<preset>`` is the scene run at another
     accuracy preset, in its own results folder (the accuracy study of the scenes);
-    its samples share keys, hence files, with runs of the same preset."""
+    its samples share keys, hence files, with runs of the same preset.
+    ``<scene>+<route>`` is a statistical route of a scene with a deterministic
+    reference (asperity.stages.reference.route_scene)."""
 
     def __missing__(self, name):
         base, _, preset = name.partition("@")
-        if preset in PRESETS and base in self:
+        if preset in PRESETS:
             return self[base]
+        reference, plus, route = name.partition(ROUTE_SEPARATOR)
+        if plus and reference in self and route in (self[reference].get("routes") or {}):
+            self[name] = _canonical(route_scene(reference, self[reference], route, RESULTS))
+            return self[name]
         raise WorkflowError(
             f"scene {name!r} is not among the scenes of config/config.yaml (nor compared with "
             f"by one); add it to `scenes:` or run with --config 'scenes=[{name}]'"
@@ -142,6 +150,8 @@ def scene_targets(name):
     if "sliding" in SCENES[name]:
         return [f"{out}/sliding.nc", f"{out}/figures/sliding.png"]
     targets = [f"{out}/surface.nc", f"{out}/figures/surface.png"]
+    if "reference" in SCENES[name]:
+        targets += [f"{out}/reference.nc", f"{out}/comparison.nc", f"{out}/figures/reference.png"]
     gen = generated(name)
     if gen and gen.get("convergence_spacings"):
         targets.append(f"{out}/convergence.nc")

@@ -843,6 +843,14 @@ def map_statistics(z, dx: float, dy: float, order: int = DEFAULT_ORDER) -> xr.Da
         "sigma_slope_y": v(s["sigma_slope_y"], "1", "standard deviation of slope along y"),
         "sigma_curvature_x": v(s["sigma_curvature_x"], "1/m", "standard deviation of second derivative along x"),
         "sigma_curvature_y": v(s["sigma_curvature_y"], "1/m", "standard deviation of second derivative along y"),
+        # the profile moments of an isotropic surface with the same invariants (2.3.2):
+        # m2 = (m20 + m02)/2, m4 = 3 (m40 + 2 m22 + m04)/8 (the averages over directions),
+        # what the Nayak density of 2.4.1 takes
+        "sigma_slope": v(float(np.sqrt(inv[2] / 2)), "1",
+                         "standard deviation of slope of the isotropic equivalent, sqrt((m20 + m02)/2)"),
+        "sigma_curvature": v(float(np.sqrt(3 * inv[4] / 8)), "1/m",
+                             "standard deviation of curvature of the isotropic equivalent, "
+                             "sqrt(3 (m40 + 2 m22 + m04)/8)"),
         "peak_count": v(np.int64(count), "1", "number of peaks (eight-neighbour rule)"),
         "peak_density": v(count / area, "1/m^2", "peaks per unit area of the tested interior"),
         "points_x": v(np.int64(nx), "1", "number of points along x"),

@@ -1,0 +1,157 @@
+"""The `deterministic_reference` scene: its wall time and each route's, side by side, and
+the statistical routes' error against the boundary-element solution (`make time-reference`).
+
+Each measurement runs in its own fresh copy of the workflow (benchmarks.workflow_copy),
+Snakemake's start-up included, with
+
+    snakemake --cores 2 [target] --config 'scenes=[deterministic_reference]' accuracy=<preset> studies=False
+
+for the targets: the whole scene; the boundary-element solve alone
+(results/deterministic_reference/reference.nc: the map, its statistics and the solve);
+and each statistical route alone (results/deterministic_reference+<route>/interface.nc:
+the map, its statistics, the plan, the asperities (FE jobs for nayak_fe) and the
+homogenization).  CPU times are the jobs' own: the solve's (reference.nc, per limit) and
+the FE jobs' (interface.nc, fe_cpu_time).  Wall times on a shared machine are noisy;
+compare CPU times.
+
+The whole-scene run's comparison.nc gives the table of each route's error against the
+elastic boundary-element solution and the range of separations where it holds.
+
+Writes benchmarks/results/reference-<preset>.json and prints markdown tables.
+
+    python benchmarks/reference_cost.py --accuracy draft
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import platform
+import sys
+import tempfile
+from pathlib import Path
+
+import numpy as np
+import yaml
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))  # run as a script: `benchmarks` importable
+from benchmarks.scenes import OUT, run_snakemake  # noqa: E402
+from benchmarks.workflow_copy import REPO, copy_workflow  # noqa: E402
+
+SCENE = "deterministic_reference"
+
+
+def command(preset: str, cores: int, target: str | None) -> list[str]:
+    # the target before --config, which takes every argument after it
+    return ["snakemake", "--cores", str(cores), *([target] if target else []), "--config",
+            f"scenes=[{SCENE}]", f"accuracy={preset}", "studies=False"]
+
+
+def _read(path: Path):
+    from asperity.io.netcdf import read_dataset
+
+    return read_dataset(path)
+
+
+def comparison_rows(results: Path) -> list[dict]:
+    """Per route: errors against the elastic BEM at a few separations, and where it holds."""
+    ref = _read(results / SCENE / "reference.nc")
+    cmp_ = _read(results / SCENE / "comparison.nc")
+    sigma = float(ref.attrs["sigma"])
+    rows = []
+    for route in cmp_["route"].values:
+        c = cmp_.sel(route=route)
+        rows.append({
+            "route": str(route),
+            "separation_sigma": [round(float(h) / sigma, 3) for h in cmp_["separation"].values],
+            "reference_area_ratio": [float(a) for a in cmp_["reference_area_ratio"].values],
+            "pressure_error": [float(e) for e in c["pressure_error"].values],
+            "area_error": [float(e) for e in c["area_error"].values],
+            "contact_count_ratio": [float(e) for e in c["contact_count_ratio"].values],
+            "holds_from_sigma": float(c["holds_from"]) / sigma,
+            "holds_to_sigma": float(c["holds_to"]) / sigma,
+            "holds_pressure_low_Pa": float(c["holds_pressure_low"]),
+            "holds_pressure_high_Pa": float(c["holds_pressure_high"]),
+        })
+    extra = {"agreement": float(cmp_.attrs["agreement"]), "sigma_m": sigma,
+             "bem_cpu_time_s": {str(k): float(v) for k, v in zip(ref["limit"].values, ref["cpu_time"].values)},
+             "plastic_departure": ([float(v) for v in cmp_["plastic_departure"].values]
+                                   if "plastic_departure" in cmp_ else None)}
+    return rows, extra
+
+
+def measure(preset: str, cores: int, timeout: float | None) -> dict:
+    scene = yaml.safe_load((REPO / "config" / "scenes" / f"{SCENE}.yaml").read_text())
+    routes = list(scene["routes"])
+    targets = {"whole scene": None, "boundary elements": f"results/{SCENE}/reference.nc"}
+    targets |= {f"route {r}": f"results/{SCENE}+{r}/interface.nc" for r in routes}
+    runs, comparison, extra = [], None, None
+    for label, target in targets.items():
+        with tempfile.TemporaryDirectory(prefix="reference-") as tmp:
+            workdir = copy_workflow(Path(tmp))
+            record = run_snakemake(workdir, command(preset, cores, target), timeout)
+            record["what"] = label
+            results = workdir / "results"
+            if record["status"] == "ok":
+                if target is None:
+                    comparison, extra = comparison_rows(results)
+                if label == "boundary elements" or target is None:
+                    ref = _read(results / SCENE / "reference.nc")
+                    record["bem_cpu_time_s"] = float(ref["cpu_time"].sum())
+                if label.startswith("route"):
+                    interface = _read(results / f"{SCENE}+{label.split()[1]}" / "interface.nc")
+                    record["fe_cpu_time_s"] = float(interface.attrs.get("fe_cpu_time", 0.0))
+            runs.append(record)
+            print(f"{label}: {record['wall_time_s']} s ({record['status']})", flush=True)
+    return {"scene": SCENE, "accuracy": preset, "cores": cores, "machine": platform.platform(),
+            "runs": runs, "comparison": comparison, "comparison_extra": extra}
+
+
+def _pct(v: float) -> str:
+    return "n/a" if not np.isfinite(v) else f"{100 * v:+.0f} %"
+
+
+def markdown(result: dict) -> str:
+    lines = ["| run | jobs (FE) | wall time | CPU of the solve / FE jobs |", "|---|---|---|---|"]
+    for r in result["runs"]:
+        cpu = r.get("bem_cpu_time_s", r.get("fe_cpu_time_s"))
+        cpu_text = "" if cpu is None else f"{cpu:.1f} s"
+        lines.append(f"| {r['what']} | {r['jobs']} ({r['fe_jobs']}) | {r['wall_time_s']:.1f} s "
+                     f"{'' if r['status'] == 'ok' else '(' + r['status'] + ')'}| {cpu_text} |")
+    if result["comparison"]:
+        rows = result["comparison"]
+        seps = rows[0]["separation_sigma"]
+        pick = [i for i, s in enumerate(seps) if i % 2 == 0]
+        lines += ["", "| route | " + " | ".join(f"h = {seps[i]:g} sigma" for i in pick)
+                  + " | holds (separation, BEM pressure) |",
+                  "|---|" + "---|" * len(pick) + "---|"]
+        area = rows[0]["reference_area_ratio"]
+        lines.append("| BEM A/A0 | " + " | ".join(f"{100 * area[i]:.2g} %" for i in pick) + " | |")
+        for r in rows:
+            cells = " | ".join(f"{_pct(r['pressure_error'][i])} / {_pct(r['area_error'][i])}" for i in pick)
+            held = ("nowhere" if not np.isfinite(r["holds_from_sigma"]) else
+                    f"{r['holds_from_sigma']:.2f}-{r['holds_to_sigma']:.2f} sigma, "
+                    f"{r['holds_pressure_low_Pa'] / 1e6:.3g}-{r['holds_pressure_high_Pa'] / 1e6:.3g} MPa")
+            lines.append(f"| {r['route']} | {cells} | {held} |")
+        lines.append(f"(pressure error at equal separation / area error at equal pressure; "
+                     f"holds: both within {100 * result['comparison_extra']['agreement']:g} %)")
+    return "\n".join(lines)
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--accuracy", default="draft", choices=("draft", "standard", "fine"))
+    ap.add_argument("--cores", type=int, default=2)
+    ap.add_argument("--timeout", type=float, default=1800.0)
+    args = ap.parse_args(argv)
+    result = measure(args.accuracy, args.cores, args.timeout)
+    OUT.mkdir(parents=True, exist_ok=True)
+    path = OUT / f"reference-{args.accuracy}.json"
+    path.write_text(json.dumps(result, indent=1) + "\n")
+    print(markdown(result))
+    print(f"written {path.relative_to(REPO)}")
+    return 0 if all(r["status"] == "ok" for r in result["runs"]) else 1
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())

@@ -1,0 +1,301 @@
+"""Deterministic contact of a rough height map with a rigid flat (boundary elements).
+
+The statistical route of the report (2.4 - 2.5, 7.1) replaces the surface by a
+population of independent asperities.  This module solves the contact of the
+same surface deterministically, with the elastic half-space discretized by
+boundary elements on the map's own grid, so that the statistical route can be
+measured against it (the `deterministic_reference` scene).
+
+The elastic half-space is ContactMechanics' FFT boundary-element operator on
+the grid (piecewise-constant pressure on each cell); the contact problem is
+its dual, a quadratic program in the cell forces (Polonsky and Keer, Wear
+231 (1999) 206), solved by the library's bound-constrained conjugate
+gradients (Bugnicourt et al., Tribol. Lett. 66 (2018) 29), or with a
+hardness by L-BFGS-B in the box 0 <= p <= H.
+
+Problem solved
+--------------
+An elastic body with the map's heights z(x, y) (its mean plane at z = 0, the
+undefined points left out) pressed by a rigid flat held at height
+``separation`` h above that mean plane.  For small slopes this is the same
+problem as a rigid rough surface against an elastic flat with the contact
+(plane-strain) modulus E* = E / (1 - nu^2) (Johnson, *Contact Mechanics*,
+1985, sec. 13.1), which is what is solved.  Per separation: the nominal
+pressure p (total force over the nominal area), the real contact area ratio
+A/A0 (grid cells carrying pressure over all defined cells), the number of
+contact patches per unit area (connected sets of contacting cells, eight
+neighbours), the mean gap and the largest pressure.
+
+Separation and the mean plane
+-----------------------------
+The statistical route measures the separation h from the mean plane of the
+rough surface and neglects the bulk deformation (GW 7.1, 2.5).  Here:
+
+* ``periodic`` (default): the map is one period of an infinite surface, the
+  kernel is the periodic half-space, and its uniform (q = 0) displacement is
+  set to zero: the mean plane of the deformed surface stays where the
+  undeformed one was, so the flat's height above the mean plane equals the
+  mean gap exactly for an elastic body.  A map that is not periodic (a
+  measurement) is treated as one tile of a periodic surface: the height jump
+  at its edges is part of the geometry (the method needs no slopes) and the
+  interface is infinite, as the statistical route's is.
+* ``free``: the map is a finite patch on an otherwise unloaded half-space,
+  fixed at infinity (Hockney's method: the map zero-padded to twice its size
+  so that the FFT's periodic images do not interact).  The separation is
+  then the flat's height above the map's undeformed mean plane measured from
+  the far field, and includes the sink-in of the whole loaded patch, which
+  an infinite interface does not have; ``mean_gap`` gives the separation
+  from the deformed surface.
+
+With a ``hardness`` H the surface is perfectly plastic: no cell carries more
+than H, and where the flat penetrates a cell at H the material has flowed
+away (its gap is zero) (Almqvist et al., Tribol. Int. 40 (2007) 574; Weber
+et al., Nat. Commun. 9 (2018) 888).  Separations are solved in decreasing
+order (increasing load), each from the forces of the last; each is the
+bounded problem of the undeformed surface, which is the loading path's as
+long as no flowed cell is unloaded by its neighbours.  At full plasticity
+the contact area tends to F/H.
+
+Resolution
+----------
+Against Hertz on its grid (free boundary, tests/references/test_boundary_element.py),
+the force of a paraboloid is within 0.15 (dx/a)^2 of Hertz (second order in
+the grid step, as piecewise-constant pressure elements are) and the radius of
+the counted contact area within a quarter of a grid step, for contact radii
+a from 4 to 16 grid steps: about 50 cells per contact give the force to
+1 % and the radius to 6 %.  On a rough surface the smallest contacts of a
+light load have only a few cells: the counted area there is too large (each
+contact edge is resolved to a cell), which is why the area-load slope of
+rough surfaces converges slowly with the grid (Yastrebov, Anciaux and
+Molinari, Tribol. Int. 114 (2017) 161).  ``cells_per_patch`` (contacting
+cells over patches) is reported per separation so that this can be judged.
+
+Undefined points (NaN) neither touch the flat nor count in the nominal area
+(the solver masks them); their share is recorded.
+"""
+
+from __future__ import annotations
+
+import time
+
+import numpy as np
+import xarray as xr
+
+from asperity.references.hertz import plane_strain_modulus
+
+__all__ = ["BOUNDARIES", "BoundaryElementError", "solve_map", "contact_patches", "plane_strain_modulus"]
+
+#: how the map's edges are treated (see the module docstring)
+BOUNDARIES = ("periodic", "free")
+#: how far (in standard deviations) below the lowest defined point undefined points are put
+UNDEFINED_DEPTH = 1.0e3
+
+
+class BoundaryElementError(RuntimeError):
+    """The boundary-element solver did not converge at a separation."""
+
+
+def _attrs(units: str, long_name: str) -> dict[str, str]:
+    return {"units": units, "long_name": long_name}
+
+
+def contact_patches(mask: np.ndarray, periodic: bool) -> int:
+    """Number of connected patches of True cells (eight neighbours); with
+    `periodic`, patches that meet across the map's edges are one."""
+    from scipy import ndimage
+    from scipy.sparse import coo_matrix
+    from scipy.sparse.csgraph import connected_components
+
+    labels, count = ndimage.label(mask, structure=np.ones((3, 3), dtype=bool))
+    if not periodic or count == 0:
+        return int(count)
+    ny, nx = labels.shape
+    pairs = []
+    for shift in (-1, 0, 1):  # the edge cells' eight neighbours across the wrap
+        pairs.append((labels[-1, :], np.roll(labels[0, :], shift)))
+        pairs.append((labels[:, -1], np.roll(labels[:, 0], shift)))
+    a = np.concatenate([p[0] for p in pairs])
+    b = np.concatenate([p[1] for p in pairs])
+    keep = (a > 0) & (b > 0)
+    graph = coo_matrix((np.ones(keep.sum()), (a[keep] - 1, b[keep] - 1)), shape=(count, count))
+    return int(connected_components(graph, directed=False)[0])
+
+
+def _system(heights: np.ndarray, sizes: tuple[float, float], modulus: float, boundary: str):
+    from ContactMechanics import FreeFFTElasticHalfSpace, PeriodicFFTElasticHalfSpace
+    from ContactMechanics.Factory import make_system
+    from SurfaceTopography import Topography
+
+    shape = heights.shape
+    periodic = boundary == "periodic"
+    if periodic:  # q = 0 stiffness zero: the mean plane of the deformed surface stays put
+        substrate = PeriodicFFTElasticHalfSpace(shape, modulus, sizes, stiffness_q0=0.0, fft="serial")
+    else:
+        substrate = FreeFFTElasticHalfSpace(shape, modulus, sizes, fft="serial")
+    return make_system(substrate=substrate, surface=Topography(heights, sizes, periodic=periodic))
+
+
+def _solve(system, offset: float, start: np.ndarray, upper: float | None, tolerance: float,
+           max_iterations: int):
+    """Cell forces and gaps at `offset`: the dual (pressure) problem of the library,
+    min 1/2 f K^-1 f - f (z + offset) over 0 <= f (<= `upper`): bounded below by the
+    library's constrained conjugate gradients (Bugnicourt et al., Tribol. Lett. 66 (2018) 29),
+    in a box by L-BFGS-B; `tolerance` bounds the gap's projected gradient."""
+    if upper is None:
+        result = system.dual_minimize_proxy(offset, init_force=start, gtol=tolerance,
+                                            maxiter=max_iterations)
+    else:
+        from scipy.optimize import minimize
+
+        bounds = np.zeros((start.size, 2))
+        bounds[:, 1] = np.broadcast_to(upper, start.shape).ravel()
+        result = minimize(system.dual_objective(offset, gradient=True), start.ravel(),
+                          method="L-BFGS-B", jac=True, bounds=bounds,
+                          options={"gtol": tolerance, "ftol": 0.0, "maxiter": max_iterations,
+                                   "maxfun": 2 * max_iterations, "maxcor": 20})
+    force = np.asarray(result.x).reshape(start.shape)
+    # the gap is the dual objective's gradient (the solvers return it projected)
+    gap = system.dual_objective(offset, gradient=True)(force.ravel())[1].reshape(start.shape)
+    return result, force, gap
+
+
+def solve_map(
+    heights,
+    dx: float,
+    dy: float,
+    separations,
+    contact_modulus: float,
+    *,
+    hardness: float | None = None,
+    boundary: str = "periodic",
+    tolerance: float = 1e-6,
+    max_iterations: int = 5000,
+) -> xr.Dataset:
+    """Contact of the map `heights` with a rigid flat at each of `separations`.
+
+    Parameters
+    ----------
+    heights : array_like, shape (ny, nx)
+        ``z[i, j] = z(x = j dx, y = i dy)`` (m); NaN where undefined.
+    dx, dy : float
+        Grid spacings along x (axis 1) and y (axis 0) (m).
+    separations : array_like
+        Heights of the flat above the mean plane of the defined heights (m).
+    contact_modulus : float
+        E* = E / (1 - nu^2) of the body (the flat is rigid) (Pa).
+    hardness : float, optional
+        Largest pressure a cell carries (Pa): a perfectly plastic surface.
+    boundary : {"periodic", "free"}
+        How the edges are treated (module docstring).
+    tolerance : float
+        Largest violation of the contact conditions at convergence (a gap
+        where there is pressure, a penetration where there is none), relative
+        to the standard deviation of the heights.
+    max_iterations : int
+        Iterations of the solver per separation before it gives up.
+
+    Returns
+    -------
+    xarray.Dataset
+        On dim ``separation`` (as given, increasing): nominal_pressure,
+        contact_area_ratio, contact_count, mean_gap, max_pressure,
+        cells_per_patch, flowing_area_ratio (hardness only), iterations;
+        attributes: boundary, contact_modulus, hardness, undefined_fraction,
+        cpu_time, grid.
+
+    Raises
+    ------
+    BoundaryElementError
+        The solver did not converge at a separation (named in the message).
+    """
+    z = np.array(heights, dtype=float)
+    if z.ndim != 2 or min(z.shape) < 2:
+        raise ValueError(f"heights must be a 2-D map of at least 2 x 2 points; got shape {z.shape}")
+    if boundary not in BOUNDARIES:
+        raise ValueError(f"boundary must be one of {BOUNDARIES}; got {boundary!r}")
+    if not (dx > 0 and dy > 0):
+        raise ValueError(f"grid spacings must be positive; got dx = {dx!r}, dy = {dy!r}")
+    if not contact_modulus > 0:
+        raise ValueError(f"contact modulus must be positive; got {contact_modulus!r}")
+    if hardness is not None and not hardness > 0:
+        raise ValueError(f"hardness must be positive; got {hardness!r}")
+    h = np.asarray(separations, dtype=float)
+    if h.ndim != 1 or h.size == 0 or not np.all(np.isfinite(h)):
+        raise ValueError("separations must be a non-empty 1-D array of finite numbers")
+    defined = np.isfinite(z)
+    n_defined = int(defined.sum())
+    if n_defined == 0:
+        raise ValueError("the map has no defined height")
+    z = z - z[defined].mean()
+    sigma = float(z[defined].std())
+    if not sigma > 0:
+        raise ValueError("the map is flat (zero standard deviation of height)")
+    # solved in units of sigma (lengths) and E* (pressures): the solvers' tolerances are
+    # absolute.  Undefined points sit far below the lowest point: they never touch.
+    zs = np.where(defined, z / sigma, np.nanmin(z) / sigma - UNDEFINED_DEPTH)
+    ny, nx = z.shape
+    dxs, dys = dx / sigma, dy / sigma
+    sizes = (ny * dys, nx * dxs)  # ContactMechanics' physical sizes follow the array's axes
+    cell = dxs * dys
+    area = n_defined * cell
+    upper = None if hardness is None else np.where(defined, hardness / contact_modulus * cell, 0.0)
+    system = _system(zs, sizes, 1.0, boundary)
+    order = np.argsort(h)[::-1]  # largest separation first: increasing load
+    names = ("nominal_pressure", "contact_area_ratio", "contact_count", "mean_gap",
+             "max_pressure", "cells_per_patch", "flowing_area_ratio", "iterations")
+    out = {name: np.full(h.size, np.nan) for name in names}
+    force = np.zeros(z.shape)
+    start = time.process_time()
+    for k in order:  # each from the last solution: a loading path
+        result, force, gap = _solve(system, -float(h[k]) / sigma, force, upper, tolerance,
+                                    max_iterations)
+        if not result.success:
+            raise BoundaryElementError(
+                f"boundary-element solve ({boundary}, "
+                f"{'elastic' if hardness is None else 'hardness %g Pa' % hardness}) did not converge "
+                f"at separation {h[k]:.6g} m after {result.nit} iterations: {result.message}")
+        force = np.where(defined, force, 0.0)
+        touching = force > 0.0
+        patches = contact_patches(touching, boundary == "periodic")
+        cells = int(touching.sum())
+        out["nominal_pressure"][k] = force.sum() / area * contact_modulus
+        out["contact_area_ratio"][k] = cells / n_defined
+        out["contact_count"][k] = patches / (n_defined * dx * dy)
+        # a flowing cell's penetration is material pushed away: its gap is zero
+        out["mean_gap"][k] = float(np.mean(np.maximum(gap[defined], 0.0))) * sigma
+        out["max_pressure"][k] = force.max() / cell * contact_modulus
+        out["cells_per_patch"][k] = cells / patches if patches else np.nan
+        if upper is not None:
+            flowing = force >= upper * (1 - 1e-6)
+            out["flowing_area_ratio"][k] = np.count_nonzero(flowing & defined) / n_defined
+        out["iterations"][k] = result.nit
+    cpu = time.process_time() - start
+    meta = {
+        "nominal_pressure": ("Pa", "nominal pressure: total force over the nominal (defined) area"),
+        "contact_area_ratio": ("1", "real contact area ratio A/A0: contacting cells over defined cells"),
+        "contact_count": ("1/m^2", "contact patches (connected contacting cells, eight neighbours) per unit area"),
+        "mean_gap": ("m", "mean gap between the flat and the deformed surface over the defined cells"),
+        "max_pressure": ("Pa", "largest pressure of a cell"),
+        "cells_per_patch": ("1", "contacting cells per contact patch (resolution of the contacts)"),
+        "flowing_area_ratio": ("1", "share of the nominal area at the hardness (flowing)"),
+        "iterations": ("1", "conjugate-gradient iterations of the solve"),
+    }
+    ds = xr.Dataset(
+        {name: ("separation", out[name], _attrs(*meta[name])) for name in names
+         if hardness is not None or name != "flowing_area_ratio"},
+        coords={"separation": ("separation", h, _attrs(
+            "m", "height of the rigid flat above the mean plane of the surface"))},
+    ).sortby("separation")
+    ds.attrs.update({
+        "method": "boundary elements, FFT half-space (ContactMechanics): dual problem by "
+                  "bound-constrained conjugate gradients, or L-BFGS-B under a hardness",
+        "boundary": boundary,
+        "contact_modulus": float(contact_modulus),
+        "hardness": float(hardness) if hardness is not None else np.nan,
+        "undefined_fraction": 1.0 - n_defined / z.size,
+        "sigma": sigma,
+        "grid": f"{ny} x {nx} points, dx = {dx:.6g} m, dy = {dy:.6g} m",
+        "tolerance": tolerance,
+        "cpu_time": cpu,
+    })
+    return ds

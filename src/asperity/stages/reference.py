@@ -1,0 +1,264 @@
+"""The deterministic reference stage: the boundary-element contact of a scene's height
+map, and the statistical routes' error against it (scene `deterministic_reference`).
+
+The statistical routes (the Nayak density of 2.4.1 with Hertz or finite element
+asperities, and the peaks sampled from the map, 2.4.3 and 2.5.3) run as scenes of
+their own, one per route, derived from the reference scene by :func:`route_scene`:
+the same map, material and separations, with the route's population, asperity and
+homogenization.  Their `interface.nc` files are compared here with the
+boundary-element solution (:mod:`asperity.references.boundary_element`) at the same
+separations of the flat above the surface's mean plane, the separation of the
+statistical route (2.5, 7.1).
+"""
+
+from __future__ import annotations
+
+import copy
+import logging
+from typing import Any, Mapping
+
+import numpy as np
+import xarray as xr
+
+from asperity.references import boundary_element
+from asperity.population.density import height_scale
+from asperity.references.hertz import plane_strain_modulus
+from asperity.scene import length_factor, material_si
+from asperity.plots.reference import reference_figure as _reference_figure
+from asperity.units import attrs, pressure_scale
+
+log = logging.getLogger("asperity")
+
+Config = Mapping[str, Any]
+
+#: `<scene>+<route>`: the scene of one statistical route of a reference scene
+ROUTE_SEPARATOR = "+"
+#: Tabor's constraint factor: hardness of a perfectly plastic indentation ~ 2.8 Y
+#: (Tabor, *The Hardness of Metals*, 1951), used when the scene gives a yield stress only
+TABOR_FACTOR = 2.8
+#: what a route's scene takes from the route; the rest is the reference scene's
+ROUTE_PARTS = ("population", "asperity", "homogenization", "effects")
+
+
+def route_scene(name: str, definition: Config, route: str, results: str) -> dict:
+    """The scene of statistical route `route` of reference scene `name`.
+
+    The reference scene's units, material and surface, its reference
+    separations as the route's, and the route's population, asperity and
+    homogenization.  A generated map is read from the reference scene's
+    own file (``<results>/<name>/input/map.npy``), so every route and the
+    boundary-element solve see the same heights.
+    """
+    routes = definition.get("routes") or {}
+    if route not in routes:
+        raise KeyError(f"scene {name!r} has no route {route!r} (routes: {', '.join(routes) or 'none'})")
+    derived = {k: copy.deepcopy(v) for k, v in definition.items()
+               if k not in ("routes", "reference", "compare_with", *ROUTE_PARTS)}
+    for part in ROUTE_PARTS:
+        if part in routes[route]:
+            derived[part] = copy.deepcopy(routes[route][part])
+    derived["title"] = f"{definition.get('title', name)}: route {route}"
+    source = definition["surface"]["map"]
+    if "generate" in source:
+        derived["surface"] = {"map": {"file": f"{results}/{name}/input/map.npy",
+                                      "spacing": source["generate"]["spacing"]}}
+    homogenization = derived.setdefault("homogenization", {})
+    homogenization["separations"] = copy.deepcopy(definition["reference"]["separations"])
+    return derived
+
+
+def hardness_si(material: Config, reference: Config, units_cfg: Config) -> float | None:
+    """The hardness of the perfectly plastic solve (Pa): the reference's `hardness`, else
+    Tabor's 2.8 times the material's yield stress, else None (elastic only)."""
+    if "hardness" in reference:
+        return float(reference["hardness"]) * pressure_scale(units_cfg.get("pressure", "Pa"))
+    yield_stress = material_si(material, units_cfg).get("yield_stress")
+    return None if yield_stress is None else TABOR_FACTOR * float(yield_stress)
+
+
+def reference_separations(reference: Config, surface_ds: xr.Dataset, units_cfg: Config) -> np.ndarray:
+    """The separations [m] of the reference section (in sigma of the map, or the length unit)."""
+    sep = reference["separations"]
+    scale = height_scale(surface_ds) if sep.get("unit", "sigma") == "sigma" else length_factor(units_cfg)
+    h = np.linspace(sep["start"], sep["stop"], sep["count"]) * scale
+    if reference.get("boundary", "periodic") == "periodic" and h.min() <= 0:
+        raise ValueError("reference.separations: a periodic interface's mean gap equals the separation "
+                         "and cannot be zero or negative (full contact); start above 0")
+    return h
+
+
+def reference_dataset(z: np.ndarray, dx: float, dy: float, surface_ds: xr.Dataset,
+                      material: Config, reference: Config, units_cfg: Config) -> xr.Dataset:
+    """The boundary-element solution of the map (SI input) on dims (limit, separation):
+    limit ``elastic``, and ``hardness`` where the scene gives one (`hardness_si`)."""
+    mat = material_si(material, units_cfg)
+    modulus = float(plane_strain_modulus(mat["youngs_modulus"], mat["poisson"]))
+    h = reference_separations(reference, surface_ds, units_cfg)
+    hardness = hardness_si(material, reference, units_cfg)
+    options = {"boundary": reference.get("boundary", "periodic"),
+               "tolerance": reference.get("tolerance", 1e-6),
+               "max_iterations": reference.get("max_iterations", 5000)}
+    limits = {"elastic": None} | ({"hardness": hardness} if hardness is not None else {})
+    parts = []
+    for limit, cap in limits.items():  # two solves at most
+        ds = boundary_element.solve_map(z, dx, dy, h, modulus, hardness=cap, **options)
+        log.info("boundary elements, %s: %d separations, %.3g s CPU, largest A/A0 %.3g",
+                 limit, h.size, ds.attrs["cpu_time"], float(ds["contact_area_ratio"].max()))
+        parts.append(ds.expand_dims(limit=[limit]).assign_coords(
+            cpu_time=("limit", [ds.attrs.pop("cpu_time")], {"units": "s", "long_name": "CPU time of the solve"})))
+    out = xr.concat(parts, dim="limit", data_vars="all", combine_attrs="drop_conflicts")
+    for name in parts[0].data_vars:
+        out[name].attrs = parts[0][name].attrs
+    if "flowing_area_ratio" in out:
+        out["flowing_area_ratio"].attrs = parts[-1]["flowing_area_ratio"].attrs
+    out["limit"].attrs = {"units": "1", "long_name": "elastic, or perfectly plastic at the hardness"}
+    out["separation"].attrs = parts[0]["separation"].attrs
+    out.attrs.update({
+        "hardness": np.nan if hardness is None else hardness,
+        "contact_modulus": modulus,
+        "gradient_rms": gradient_rms(z, dx, dy),
+    })
+    undefined = float(out.attrs.get("undefined_fraction", 0.0))
+    if undefined > 0:
+        log.warning("%.3g %% of the map is undefined: those points neither touch nor count in A0",
+                    100 * undefined)
+    return out
+
+
+def gradient_rms(z: np.ndarray, dx: float, dy: float) -> float:
+    """h'_rms, the rms gradient of the defined heights (spectral, undefined points at the mean)."""
+    zz = np.where(np.isfinite(z), z - np.nanmean(z), 0.0)
+    qy = 2 * np.pi * np.fft.fftfreq(zz.shape[0], d=dy)
+    qx = 2 * np.pi * np.fft.fftfreq(zz.shape[1], d=dx)
+    power = np.abs(np.fft.fft2(zz)) ** 2
+    return float(np.sqrt(np.sum((qy[:, None] ** 2 + qx[None, :] ** 2) * power)) / zz.size)
+
+
+def _interp_log(x_new: np.ndarray, x: np.ndarray, y: np.ndarray) -> np.ndarray:
+    """y(x_new), linear in log-log over the positive points (x increasing), NaN outside."""
+    ok = (x > 0) & (y > 0) & np.isfinite(x) & np.isfinite(y)
+    if ok.sum() < 2:
+        return np.full(np.shape(x_new), np.nan)
+    order = np.argsort(x[ok])
+    lx, ly = np.log(x[ok][order]), np.log(y[ok][order])
+    with np.errstate(divide="ignore", invalid="ignore"):
+        out = np.exp(np.interp(np.log(x_new), lx, ly, left=np.nan, right=np.nan))
+    return np.where(np.asarray(x_new) > 0, out, np.nan)
+
+
+def _interp_semilog(x_new: np.ndarray, x: np.ndarray, y: np.ndarray) -> np.ndarray:
+    """y(x_new) linear in log y (exact for the exponential tails of p(h)), NaN outside x;
+    zeros stay (near) zero."""
+    order = np.argsort(x)
+    log_y = np.log(np.maximum(y[order], np.finfo(float).tiny))
+    out = np.exp(np.interp(x_new, x[order], log_y, left=np.nan, right=np.nan))
+    return np.where(np.isnan(out) | (out > 2 * np.finfo(float).tiny), out, 0.0)
+
+
+
+def _longest_run(mask: np.ndarray) -> tuple[int, int] | None:
+    """First and last index of the longest run of True, None if there is none."""
+    best, start = None, None
+    for i, v in enumerate(list(mask) + [False]):  # separations: a few dozen
+        if v and start is None:
+            start = i
+        elif not v and start is not None:
+            if best is None or i - start > best[1] - best[0] + 1:
+                best = (start, i - 1)
+            start = None
+    return best
+
+
+def comparison_dataset(reference: xr.Dataset, interfaces: Mapping[str, xr.Dataset],
+                       agreement: float) -> xr.Dataset:
+    """Each statistical route's error against the elastic boundary-element solution.
+
+    Per route and separation: the pressure error p_route / p_BEM - 1 at the same
+    separation; the contact area error A_route / A_BEM - 1 at the same nominal
+    pressure (the route's A(p) interpolated in log-log at the BEM's p); the ratio of
+    contact counts (asperities in contact against contact patches).  A route holds
+    where both errors are within `agreement`; ``holds_from``/``holds_to`` give the
+    longest such range of separations, with the BEM's pressures there.  With a
+    hardness, ``plastic_departure`` is p_hardness / p_elastic - 1: where it is large,
+    an elastic route describes a surface that has yielded.
+    """
+    el = reference.sel(limit="elastic")
+    h = reference["separation"].values
+    p_ref = el["nominal_pressure"].values
+    a_ref = el["contact_area_ratio"].values
+    names = list(interfaces)
+    shape = (len(names), h.size)
+    vals = {k: np.full(shape, np.nan) for k in ("nominal_pressure", "contact_area_ratio",
+                                                 "pressure_error", "area_error", "contact_count_ratio")}
+    for i, name in enumerate(names):
+        ds = interfaces[name]
+        if "branch" in ds.dims:
+            ds = ds.sel(branch=ds["branch"].values[0])
+        hs = ds["separation"].values
+        p, a, n = (_interp_semilog(h, hs, ds[k].values)
+                   for k in ("nominal_pressure", "contact_area_ratio", "contact_count"))
+        with np.errstate(divide="ignore", invalid="ignore"):
+            vals["nominal_pressure"][i] = p
+            vals["contact_area_ratio"][i] = a
+            vals["pressure_error"][i] = np.where(p_ref > 0, p / p_ref - 1, np.nan)
+            a_at_p = _interp_log(p_ref, ds["nominal_pressure"].values, ds["contact_area_ratio"].values)
+            vals["area_error"][i] = np.where(a_ref > 0, a_at_p / a_ref - 1, np.nan)
+            vals["contact_count_ratio"][i] = np.where(el["contact_count"].values > 0,
+                                                      n / el["contact_count"].values, np.nan)
+    holds = (np.abs(vals["pressure_error"]) <= agreement) & (np.abs(vals["area_error"]) <= agreement)
+    meta = {
+        "nominal_pressure": ("Pa", "nominal pressure of the statistical route"),
+        "contact_area_ratio": ("1", "real contact area ratio of the statistical route"),
+        "pressure_error": ("1", "route's nominal pressure over the elastic boundary-element one, minus 1, "
+                                "at the same separation"),
+        "area_error": ("1", "route's real contact area over the elastic boundary-element one, minus 1, "
+                            "at the same nominal pressure"),
+        "contact_count_ratio": ("1", "route's asperities in contact over the boundary-element contact "
+                                     "patches, at the same separation"),
+    }
+    out = xr.Dataset(
+        {k: (("route", "separation"), v, attrs(*meta[k])) for k, v in vals.items()},
+        coords={"route": ("route", names, attrs("1", "statistical route (scene <reference>+<route>)")),
+                "separation": ("separation", h, dict(reference["separation"].attrs))},
+    )
+    out["reference_pressure"] = ("separation", p_ref, attrs("Pa", "nominal pressure, elastic boundary elements"))
+    out["reference_area_ratio"] = ("separation", a_ref, attrs("1", "real contact area ratio, elastic boundary elements"))
+    out["holds"] = (("route", "separation"), holds, attrs(
+        "1", f"pressure and area errors both within {agreement:g}"))
+    ranges = {k: np.full(len(names), np.nan) for k in ("holds_from", "holds_to", "holds_pressure_low",
+                                                        "holds_pressure_high")}
+    for i in range(len(names)):
+        run = _longest_run(holds[i])
+        if run is not None:
+            ranges["holds_from"][i], ranges["holds_to"][i] = h[run[0]], h[run[1]]
+            ranges["holds_pressure_low"][i], ranges["holds_pressure_high"][i] = p_ref[run[1]], p_ref[run[0]]
+    range_meta = {
+        "holds_from": ("m", "smallest separation of the longest range where the route holds"),
+        "holds_to": ("m", "largest separation of the longest range where the route holds"),
+        "holds_pressure_low": ("Pa", "boundary-element pressure at holds_to"),
+        "holds_pressure_high": ("Pa", "boundary-element pressure at holds_from"),
+    }
+    for k, v in ranges.items():
+        out[k] = ("route", v, attrs(*range_meta[k]))
+    if "hardness" in reference["limit"].values:
+        pl = reference.sel(limit="hardness")["nominal_pressure"].values
+        with np.errstate(divide="ignore", invalid="ignore"):
+            out["plastic_departure"] = ("separation", np.where(p_ref > 0, pl / p_ref - 1, np.nan), attrs(
+                "1", "boundary-element pressure with the hardness over the elastic one, minus 1"))
+    out.attrs.update({"agreement": agreement, "hardness": reference.attrs.get("hardness", np.nan),
+                      "boundary": reference.attrs.get("boundary", "")})
+    if reference.attrs.get("boundary") == "free":
+        log.warning("free boundary: the map is a finite patch, whose sink-in the statistical routes "
+                    "(an infinite interface) do not have; compare mean gaps with care")
+        out.attrs["warning"] = "free boundary: finite patch against infinite-interface routes"
+    for i, name in enumerate(names):
+        log.info("route %s: holds (within %g) from separation %.4g to %.4g m", name, agreement,
+                 ranges["holds_from"][i], ranges["holds_to"][i])
+    return out
+
+
+def reference_figure(reference: xr.Dataset, comparison: xr.Dataset, units_cfg: Config):
+    """Pressure against separation and contact area against pressure, every route beside
+    the boundary-element solution."""
+    return _reference_figure(reference, comparison, length_unit=units_cfg["length"],
+                             pressure_unit=units_cfg.get("pressure", "Pa"))

@@ -1,0 +1,99 @@
+"""The deterministic reference stage (asperity.stages.reference): route scenes, the
+hardness rule, and the comparison of statistical routes with the reference."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+import xarray as xr
+
+from asperity.stages import reference as stage
+
+SCENE = {
+    "title": "t", "report": "r", "units": {"length": "um", "pressure": "MPa"},
+    "surface": {"map": {"generate": {"points": 64, "spacing": 1.25, "sigma": 1.0,
+                                     "correlation_length": 20.0, "seed": 1}}},
+    "material": {"youngs_modulus": 70000.0, "poisson": 0.33, "yield_stress": 280.0},
+    "reference": {"separations": {"start": 0.5, "stop": 3.0, "count": 6, "unit": "sigma"}},
+    "routes": {"fe": {"population": {"density": "nayak"}, "asperity": {"model": "fe"},
+                      "homogenization": {"rule": "gauss"}}},
+    "compare_with": ["other"],
+}
+
+
+def test_route_scene_reads_the_reference_map_at_its_separations():
+    derived = stage.route_scene("ref", SCENE, "fe", "results")
+    assert derived["surface"] == {"map": {"file": "results/ref/input/map.npy", "spacing": 1.25}}
+    assert derived["homogenization"] == {"rule": "gauss", "separations": SCENE["reference"]["separations"]}
+    assert derived["asperity"] == {"model": "fe"} and derived["population"] == {"density": "nayak"}
+    assert derived["material"] == SCENE["material"] and derived["units"] == SCENE["units"]
+    assert not {"routes", "reference", "compare_with"} & set(derived)
+    assert SCENE["routes"]["fe"]["homogenization"] == {"rule": "gauss"}  # not modified
+    user = {**SCENE, "surface": {"map": {"file": "data/m.nc"}}}
+    assert stage.route_scene("ref", user, "fe", "results")["surface"] == {"map": {"file": "data/m.nc"}}
+    with pytest.raises(KeyError, match="no route 'hertz'"):
+        stage.route_scene("ref", SCENE, "hertz", "results")
+
+
+def test_hardness_given_or_tabor():
+    units = SCENE["units"]
+    assert stage.hardness_si(SCENE["material"], {"hardness": 900.0}, units) == pytest.approx(9.0e8)
+    assert stage.hardness_si(SCENE["material"], {}, units) == pytest.approx(2.8 * 280e6)
+    assert stage.hardness_si({"youngs_modulus": 1.0, "poisson": 0.3}, {}, units) is None
+
+
+def test_periodic_separations_must_be_positive():
+    surface = xr.Dataset({"sigma": ((), 1e-6)}, attrs={"population_method": "map"})
+    ref = {"separations": {"start": 0.0, "stop": 3.0, "count": 4, "unit": "sigma"}}
+    with pytest.raises(ValueError, match="reference.separations"):
+        stage.reference_separations(ref, surface, SCENE["units"])
+    free = {**ref, "boundary": "free"}
+    assert np.allclose(stage.reference_separations(free, surface, SCENE["units"]), [0, 1e-6, 2e-6, 3e-6])
+
+
+def _reference(h, p, a, count, hardness_p=None):
+    limits = ["elastic"] + (["hardness"] if hardness_p is not None else [])
+    data = {"nominal_pressure": np.array([p] + ([hardness_p] if hardness_p is not None else [])),
+            "contact_area_ratio": np.array([a] * len(limits)),
+            "contact_count": np.array([count] * len(limits))}
+    return xr.Dataset({k: (("limit", "separation"), v) for k, v in data.items()},
+                      coords={"limit": limits, "separation": h},
+                      attrs={"boundary": "periodic", "hardness": 1.0})
+
+
+def _interface(h, p, a, count):
+    return xr.Dataset({"nominal_pressure": ("separation", p), "contact_area_ratio": ("separation", a),
+                       "contact_count": ("separation", count)}, coords={"separation": h})
+
+
+def test_comparison_errors_and_range():
+    """A route equal to the reference holds everywhere; one with the same A(p) but
+    shifted in separation has a pressure error and no area error (areas are compared
+    at equal pressure); twice the pressure at equal area fails both; the range where
+    a route holds is the longest run of separations."""
+    h = np.linspace(1e-6, 3e-6, 9)
+    p = 1e8 * np.exp(-3 * h / 1e-6)
+    a = 2.0 * p / 1e10
+    n = np.full(h.size, 1e9)
+    ref = _reference(h, p, a, n, hardness_p=0.5 * p)
+    shifted = _interface(h - 0.1e-6, p, a, n)  # the same curve, 0.1 um lower
+    double = _interface(h, 2 * p, a, n)
+    partial = _interface(h, np.where(h < 2e-6, p, 1.5 * p), np.where(h < 2e-6, a, 1.5 * a), 2 * n)
+    out = stage.comparison_dataset(ref, {"same": _interface(h, p, a, n), "shifted": shifted,
+                                         "double": double, "partial": partial}, agreement=0.25)
+    same = out.sel(route="same")
+    assert np.allclose(same["pressure_error"], 0) and np.allclose(same["area_error"], 0)
+    assert same["holds"].all() and float(same["holds_from"]) == h[0] and float(same["holds_to"]) == h[-1]
+    sh = out.sel(route="shifted")
+    inside = np.isfinite(sh["area_error"].values)
+    assert np.allclose(sh["area_error"].values[inside], 0, atol=1e-12) and inside.sum() >= 7
+    assert np.allclose(sh["pressure_error"].values[:-1], np.exp(-0.3) - 1)
+    assert np.isnan(float(sh["pressure_error"][-1]))  # beyond the route's separations
+    d = out.sel(route="double")
+    assert np.allclose(d["pressure_error"], 1.0) and not d["holds"].any()
+    assert np.isnan(float(d["holds_from"]))
+    part = out.sel(route="partial")
+    assert float(part["holds_from"]) == h[0] and float(part["holds_to"]) == h[h < 2e-6][-1]
+    assert float(part["holds_pressure_high"]) == pytest.approx(p[0])
+    assert np.allclose(part["contact_count_ratio"], 2.0)
+    assert np.allclose(out["plastic_departure"], -0.5)

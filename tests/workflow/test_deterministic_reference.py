@@ -1,0 +1,85 @@
+"""Scene deterministic_reference at draft, end to end through Snakemake: the
+boundary-element reference beside the statistical routes on the same map."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from asperity.io.netcdf import missing_attributes
+
+from .conftest import planned_jobs, result, run_scenes, snakemake
+
+pytestmark = [pytest.mark.workflow, pytest.mark.slow]
+
+SCENE = "deterministic_reference"
+ARGS = ("--config", f"scenes=[{SCENE}]", "accuracy=draft", "studies=False")
+
+
+@pytest.fixture(scope="module")
+def run(tmp_path_factory):
+    return run_scenes(tmp_path_factory, "reference", *ARGS)
+
+
+def test_files_and_attributes(run):
+    for name in ("reference.nc", "comparison.nc", "surface.nc"):
+        ds = result(run, SCENE, name)
+        assert missing_attributes(ds) == [], name
+    assert (run / "results" / SCENE / "figures" / "reference.png").stat().st_size > 10_000
+    for route in ("nayak_hertz", "nayak_fe", "peaks"):
+        assert (run / "results" / f"{SCENE}+{route}" / "interface.nc").exists()
+
+
+def test_light_load_agreement_with_asperity_theory(run):
+    """Where asperity theory is expected to hold (A/A0 from 0.5 to 4 %: separate contacts,
+    about 20 to 100 of them), the map-peaks route (Hertz asperities on the map's own peaks)
+    is within 30 % of the elastic boundary-element pressure and the Nayak-Hertz route within
+    a factor 1.5 (the Nayak density is an ensemble average; the map is one realization)."""
+    cmp_ = result(run, SCENE, "comparison.nc")
+    light = (cmp_["reference_area_ratio"] >= 0.005) & (cmp_["reference_area_ratio"] <= 0.04)
+    assert int(light.sum()) >= 3
+    peaks = cmp_["pressure_error"].sel(route="peaks").values[light.values]
+    assert np.all(np.abs(peaks) < 0.30), peaks
+    ratio = 1 + cmp_["pressure_error"].sel(route="nayak_hertz").values[light.values]
+    assert np.all((ratio > 1 / 1.5) & (ratio < 1.5)), ratio
+    assert np.isfinite(float(cmp_["holds_from"].sel(route="peaks")))
+
+
+def test_area_load_slope_and_hardness(run):
+    """Elastic, A/A0 from 1 to 10 %: the linear regime A/A0 = kappa p / (E* h'_rms), i.e. a
+    log-log slope of area against pressure between 0.85 and 1 (the boundary-element area
+    grows slightly slower than the load as contacts merge), and kappa above Persson's
+    sqrt(8/pi) and below 3: at the scene's 16 points per correlation length counting cells
+    overestimates the small contacts (up to 2.7 on this map; the literature's bracket is
+    asserted on a finer-sampled window in tests/references); hardness: no pressure above
+    H, and at equal pressure the plastic area is larger than the elastic one."""
+    ref = result(run, SCENE, "reference.nc")
+    el = ref.sel(limit="elastic")
+    kappa = el["contact_area_ratio"] * ref.attrs["contact_modulus"] * ref.attrs["gradient_rms"] \
+        / el["nominal_pressure"]
+    window = (el["contact_area_ratio"] >= 0.01) & (el["contact_area_ratio"] <= 0.10)
+    k = kappa.values[window.values]
+    assert k.size >= 3 and np.all((k > np.sqrt(8 / np.pi)) & (k < 3.0)), k
+    a, p = el["contact_area_ratio"].values[window.values], el["nominal_pressure"].values[window.values]
+    slope = np.polyfit(np.log(p), np.log(a), 1)[0]
+    assert 0.85 < slope <= 1.0, slope
+    pl = ref.sel(limit="hardness")
+    assert float(pl["max_pressure"].max()) <= ref.attrs["hardness"] * (1 + 1e-6)
+    p = el["nominal_pressure"].values
+    a_plastic = np.interp(np.log(p[window.values]), np.log(pl["nominal_pressure"].values[::-1]),
+                          pl["contact_area_ratio"].values[::-1])
+    assert np.all(a_plastic > el["contact_area_ratio"].values[window.values])
+
+
+def test_reference_is_cached_apart_from_the_routes(run):
+    """A route's homogenization changed: its interface and the comparison rerun, the
+    boundary-element solve does not (it depends on the map, material and solver only)."""
+    scene_file = run / "config" / "scenes" / f"{SCENE}.yaml"
+    text = scene_file.read_text()
+    scene_file.write_text(text.replace("cells: [60, 40]}\n  nayak_fe", "cells: [50, 40]}\n  nayak_fe"))
+    try:
+        jobs = planned_jobs(snakemake(run, "-n", *ARGS))
+    finally:
+        scene_file.write_text(text)
+    assert "reference" not in jobs and jobs.get("reference_comparison") == 1, jobs
+    assert jobs.get("interface") == 1, jobs
