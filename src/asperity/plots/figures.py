@@ -12,6 +12,7 @@ import numpy as np
 import xarray as xr
 
 from asperity import units
+from asperity.plots.validity import shade_invalid
 
 METHOD_STYLE = {
     "sampling": dict(color="C0", marker="o"),
@@ -193,6 +194,9 @@ def interface_figure(interface: xr.Dataset, verification: xr.Dataset | None = No
                                  color=f"C{i + 4}", label=f"{oname}: {FRACTIONS[name]}")
         axes[3].set(xlabel=f"separation [{length_unit}]", ylim=(-2, 102),
                     ylabel="share of contacting asperities [%]")
+    load = _branch(interface, "loading")
+    h_load = load["separation"].values / ls_
+    shade_invalid(axes, [h_load, h_load, load["contact_area_ratio"].values, h_load], load)
     return finish(fig, axes, fontsize=8)
 
 
