@@ -407,7 +407,8 @@ def valid_ranges(ds: xr.Dataset) -> list[str]:
         reasons = {}
         for hk, why, good, d in zip(h, one["validity"].values, ok, defined):
             if d and not good:
-                kind = str(why).split(" ")[0] if not str(why).startswith("unloads") else str(why)
+                kind = "unloading from a failing state" if str(why).startswith("unloads") else \
+                    str(why).split(" ")[0]
                 reasons.setdefault(kind, []).append((hk, str(why)))
         for kind, items in reasons.items():
             text += (f"; {kind} fails at {_count(len(items))} ({items[0][0]:.4g} .. "
