@@ -221,3 +221,17 @@ def test_show_prints_the_valid_separation_range(tmp_path, capsys):
     assert ("valid (loading): 4 of 5 separations, 1e-06 .. 4e-06 m; contact_area_ratio fails at 1 "
             "separation (0 .. 0 m), e.g. contact_area_ratio 0.5 > 0.1") in text
     assert "valid (unloading): every separation, 1e-06 .. 4e-06 m" in text
+
+
+def test_interface_figure_shades_the_invalid_separations():
+    from asperity.plots import interface_figure
+
+    h = np.linspace(-1.0, 2.0, 7) * SIGMA_P
+    out = _hertz_interface(validity.plasticity_of({"youngs_modulus": E, "poisson": NU}, [], HARDNESS), h)
+    fig = interface_figure(out)
+    spans = [p for p in fig.axes[0].patches]
+    bad = h[~out["valid"].values]
+    assert len(spans) == 1  # one run of invalid separations, out to midway to the first valid one
+    lo, hi = spans[0].get_x(), spans[0].get_x() + spans[0].get_width()
+    assert lo == pytest.approx(bad.min()) and hi == pytest.approx(bad.max() + 0.25 * SIGMA_P)
+    assert "outside validity, e.g. yielded_fraction" in fig.axes[0].get_legend().get_texts()[-1].get_text()
