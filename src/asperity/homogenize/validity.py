@@ -268,10 +268,8 @@ def assess(interface: xr.Dataset, plasticity: Plasticity | None, peaks: tuple[fl
     if radius is not None:
         n = out["contact_count"]
         out["interaction"] = 2.0 * radius * np.sqrt(n.where(n > 0, 0.0))
-    out = out.drop_vars([v for v in out.data_vars if v.startswith("raw_") and v[4:] in
-                         (EXTRAPOLATED_FORCE, YIELDED)]
-                        + [f"{v}_per_unit_area" for v in (EXTRAPOLATED_FORCE, YIELDED)
-                           if f"{v}_per_unit_area" in out])
+    helpers = [name for v in (EXTRAPOLATED_FORCE, YIELDED) for name in (f"raw_{v}", f"{v}_per_unit_area")]
+    out = out.drop_vars([name for name in helpers if name in out])
     for name, (units, long_name) in INDICATORS.items():
         if name in out and name != "contact_area_ratio":
             if name == "yielded_fraction" and plasticity is not None:
@@ -316,7 +314,7 @@ def _limit_attrs(limits: Limits) -> dict[str, float]:
 
 
 def _checks(out: xr.Dataset, plasticity: Plasticity | None, psi: float, limits: Limits):
-    """(name, values or None, limit) in the order they are reported."""
+    """(name, values (array or scalar), limit) in the order they are reported."""
     elastic = plasticity is not None and not plasticity.modelled
     checks = []
     if elastic and limits.plasticity_index is not None and math.isfinite(psi):
