@@ -183,6 +183,9 @@ def test_a_scene_invalid_everywhere_still_writes_its_files_and_says_why(run):
     assert float(interface["yielded_fraction"].min()) > 0.99
     assert float(interface["plasticity_index"]) > 1.0  # GW: plastic at the lightest loads
     assert "yielded_fraction" in interface.attrs["validity_warning"]
+    # the limits are the schema's defaults (the scene has no validity section)
+    assert interface["valid"].attrs["limit_yielded_fraction"] == 0.5
+    assert interface["valid"].attrs["limit_extrapolated_load_fraction"] == 0.02
     friction = result(run, "steel_hertz", "friction.nc")
     assert not friction["valid"].values.any()
     logs = run / "results" / "steel_hertz" / "logs"
