@@ -14,6 +14,7 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
+from asperity.homogenize.validity import valid_ranges
 from asperity.io.netcdf import read_dataset
 
 
@@ -43,6 +44,7 @@ def describe(path: Path) -> str:
                if isinstance(v, (int, float, np.number)) and not isinstance(v, bool)}
     if numbers:  # the file's headline numbers (FE cost, errors against closed forms, ...)
         lines.append("  " + ", ".join(f"{k} = {float(v):.6g}" for k, v in numbers.items()))
+    lines += [f"  {line}" for line in valid_ranges(ds)]  # where the interface holds
     for name, var in ds.data_vars.items():
         shape = f"({', '.join(var.dims)})" if var.dims else ""
         lines.append(f"  {name:<32s}{shape:<34s}{_headline(var)}")

@@ -228,6 +228,14 @@ def friction_dataset(interface: xr.Dataset, surface: xr.Dataset, friction_cfg: C
             ds["report_nominal_pressure"] = ((), float(report["nominal_pressure"]) * pscale,
                                              attrs("Pa", "nominal pressure of the report's estimate"))
         ds.attrs["report_source"] = str(report.get("source", ""))
+    if "valid" in interface:  # where the interface holds (asperity.homogenize.validity)
+        from asperity.homogenize.validity import warn_invalid
+
+        for name in ("valid", "validity"):
+            ds[name] = ("separation", interface[name].values, dict(interface[name].attrs))
+        warning = warn_invalid(ds, "friction")
+        if warning:
+            ds.attrs["validity_warning"] = warning
     positive = p > 0
     if positive.any():
         ds.attrs["pressure_range"] = f"[{p[positive].min():.6g}, {p[positive].max():.6g}] Pa"

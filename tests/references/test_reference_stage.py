@@ -37,9 +37,9 @@ def test_route_scene_reads_the_reference_map_at_its_separations():
 
 def test_hardness_given_or_tabor():
     units = SCENE["units"]
-    assert stage.hardness_si(SCENE["material"], {"hardness": 900.0}, units) == pytest.approx(9.0e8)
-    assert stage.hardness_si(SCENE["material"], {}, units) == pytest.approx(2.8 * 280e6)
-    assert stage.hardness_si({"youngs_modulus": 1.0, "poisson": 0.3}, {}, units) is None
+    assert stage.reference_hardness(SCENE["material"], {"hardness": 900.0}, units) == pytest.approx(9.0e8)
+    assert stage.reference_hardness(SCENE["material"], {}, units) == pytest.approx(2.8 * 280e6)
+    assert stage.reference_hardness({"youngs_modulus": 1.0, "poisson": 0.3}, {}, units) is None
 
 
 def test_periodic_separations_must_be_positive():

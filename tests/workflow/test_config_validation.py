@@ -28,8 +28,10 @@ def _edit(workdir, scene, change):
         (lambda s: s["homogenization"].update(cells="twenty"), "homogenization.cells",
          "is not of type 'array'"),
         (lambda s: s["units"].update(length="furlong"), "units.length", "is not one of"),
+        (lambda s: s.update(validity={"contact_area_ratio": 1.5}), "validity.contact_area_ratio",
+         "is greater than the maximum of 1"),
     ],
-    ids=["negative-roughness", "unknown-key", "wrong-type", "unknown-unit"],
+    ids=["negative-roughness", "unknown-key", "wrong-type", "unknown-unit", "validity-share"],
 )
 def test_bad_scene_names_file_and_key(workflow_copy, change, key, words):
     path = _edit(workflow_copy, "expectation_unit", change)

@@ -173,6 +173,33 @@ def test_coupled_hills_one_job_per_height_and_curvature(run):
     assert np.all((ratio > 0.9) & (ratio < 1.1)), ratio
 
 
+def test_a_scene_invalid_everywhere_still_writes_its_files_and_says_why(run):
+    """steel_hertz: elastic Hertz asperities on the sand-blasted steel (hardness 1370 MPa,
+    psi about 68) are pressed beyond the hardness almost all: every file and figure is
+    written, `valid` is false at every separation, with the reason, in the file and the log."""
+    interface = result(run, "steel_hertz", "interface.nc")
+    assert not interface["valid"].values.any()
+    assert all(str(w).startswith("yielded_fraction") for w in interface["validity"].values)
+    assert float(interface["yielded_fraction"].min()) > 0.99
+    assert float(interface["plasticity_index"]) > 1.0  # GW: plastic at the lightest loads
+    assert "yielded_fraction" in interface.attrs["validity_warning"]
+    # the limits are the schema's defaults (the scene has no validity section)
+    assert interface["valid"].attrs["limit_yielded_fraction"] == 0.5
+    assert interface["valid"].attrs["limit_extrapolated_load_fraction"] == 0.02
+    friction = result(run, "steel_hertz", "friction.nc")
+    assert not friction["valid"].values.any()
+    logs = run / "results" / "steel_hertz" / "logs"
+    for job in ("interface", "friction"):
+        log = (logs / f"{job}.log").read_text()
+        assert "WARNING" in log and "none of 31 separations; yielded_fraction" in log, job
+    for png in ("interface.png", "friction.png", "laws.png"):
+        assert (run / "results" / "steel_hertz" / "figures" / png).exists()
+    # the FE scene continued beyond its jobs' range says how much of the load that carries
+    shape = result(run, "asperity_shape", "interface.nc")
+    assert np.all(shape["extrapolated_load_fraction"] > shape["extrapolated_fraction"])
+    assert not shape["valid"].values.any()
+
+
 def test_accuracy_study_written(run):
     ds = read_dataset(run / "results" / "accuracy" / "hertz.nc")
     assert missing_attributes(ds) == []

@@ -57,6 +57,9 @@ rule interface:
         population=scene_part("population", {}),
         homogenization=scene_part("homogenization", {}),
         units=scene_part("units"),
+        material=scene_part("material", {}),
+        effects=scene_part("effects", []),
+        validity=scene_part("validity", {}),
     log:
         f"{RESULTS}/{{scene}}/logs/interface.log",
     script:

@@ -8,7 +8,9 @@ with job_log(snakemake.log[0], "interface"):
     p, i = snakemake.params, snakemake.input
     ds = homogenize.interface_dataset(read_dataset(i.asperities), read_dataset(i.surface),
                                   read_dataset(i.plan), p.population, p.homogenization, p.units,
-                                  read_dataset(i.unloading) if "unloading" in i.keys() else None)
+                                  read_dataset(i.unloading) if "unloading" in i.keys() else None,
+                                  material=p.material, effects=p.effects, validity=p.validity)
     write_dataset(ds, snakemake.output[0], scene=p.scene, title="homogenized interface",
                   config={"population": p.population, "homogenization": p.homogenization,
-                          "units": p.units})
+                          "units": p.units, "material": p.material, "effects": p.effects,
+                          "validity": p.validity})

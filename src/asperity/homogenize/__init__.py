@@ -2,7 +2,9 @@
 
 `integrate`: the expectation integrals of eqs. 2.5-2.7 (trapezoid or Gauss
 cells, or a sum over a map's peaks) and the interface response versus
-separation built from a table of asperity responses.
+separation built from a table of asperity responses.  `validity`: where the
+homogenized interface holds (extrapolated responses, yield, small strain,
+independent asperities).
 """
 
 from asperity.homogenize.integrate import (RULES, Expectation, Quadrature, expectation,

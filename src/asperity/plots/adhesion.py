@@ -14,6 +14,7 @@ import xarray as xr
 
 from asperity import units
 from asperity.plots.figures import finish
+from asperity.plots.validity import shade_invalid
 
 STYLE = {"approach": dict(ls="-", marker="o", ms=3), "retract": dict(ls="--", marker=".", ms=3)}
 
@@ -64,6 +65,8 @@ def adhesion_figure(interface: xr.Dataset, asperities: xr.Dataset,
     top = float(np.nanmax(interface["contact_area_ratio"].values))
     for ax in axes[1:3]:  # eight decades: below, the few asperities caught mid-jump
         ax.set_ylim(1e-8 * top, 2 * top)
+    approach = interface.sel(branch=interface["branch"].values[0])
+    shade_invalid(axes[:2], [approach["separation"].values / ls_] * 2, approach)
     pull = interface.attrs.get("pull_off_pressure", np.nan) / ps
     axes[0].axhline(0.0, color="k", lw=0.6)
     axes[0].set(xlabel=f"separation [{length_unit}]", ylabel=f"nominal pressure [{pressure_unit}]",

@@ -12,6 +12,7 @@ import numpy as np
 import xarray as xr
 
 from asperity import units
+from asperity.plots.validity import shade_invalid
 
 METHOD_STYLE = {
     "sampling": dict(color="C0", marker="o"),
@@ -131,7 +132,8 @@ def _branch(ds: xr.Dataset, name: str) -> xr.Dataset | None:
 
 
 FRACTIONS = {"elastic_fraction": "elastic", "small_strain_fraction": "strains below 8 %",
-             "extrapolated_fraction": "beyond the FE range"}
+             "extrapolated_fraction": "beyond the FE range",
+             "extrapolated_load_fraction": "load beyond the FE range (share of p)"}
 
 
 def interface_figure(interface: xr.Dataset, verification: xr.Dataset | None = None,
@@ -166,8 +168,10 @@ def interface_figure(interface: xr.Dataset, verification: xr.Dataset | None = No
     for i, (name, other) in enumerate((others or {}).items()):
         draw(_branch(other, "loading"), name, ls=":", marker="s", ms=3, color=f"C{i + 1}")
     if "extrapolated_fraction" in interface and float(interface["extrapolated_fraction"].max()) > 0:
+        load_share = (f" ({100 * float(interface['extrapolated_load_fraction'].max()):.2g} % of the load)"
+                      if "extrapolated_load_fraction" in interface else "")
         axes[1].set_title(f"largest share of contacts beyond the FE range: "
-                          f"{100 * float(interface['extrapolated_fraction'].max()):.2g} %")
+                          f"{100 * float(interface['extrapolated_fraction'].max()):.2g} %{load_share}")
     if verification is not None:
         h = interface["separation"].values / ls_
         pc = verification["nominal_pressure_closed_form"].values / ps
@@ -192,7 +196,10 @@ def interface_figure(interface: xr.Dataset, verification: xr.Dataset | None = No
                     axes[3].plot(o["separation"].values / ls_, 100 * o[name].values, ls=":",
                                  color=f"C{i + 4}", label=f"{oname}: {FRACTIONS[name]}")
         axes[3].set(xlabel=f"separation [{length_unit}]", ylim=(-2, 102),
-                    ylabel="share of contacting asperities [%]")
+                    ylabel="share of contacting asperities (or of p) [%]")
+    load = _branch(interface, "loading")
+    h_load = load["separation"].values / ls_
+    shade_invalid(axes, [h_load, h_load, load["contact_area_ratio"].values, h_load], load)
     return finish(fig, axes, fontsize=8)
 
 

@@ -11,6 +11,7 @@ import numpy as np
 import xarray as xr
 
 from asperity import units
+from asperity.plots.validity import shade_invalid
 
 __all__ = ["friction_figure", "laws_figure"]
 
@@ -69,6 +70,7 @@ def friction_figure(friction: xr.Dataset, others: dict[str, xr.Dataset] | None =
            title=f"τ_s = {float(friction['junction_shear_strength']) / ps:.4g} {pressure_unit}")
     axes[1].set(xlabel=f"separation [{length_unit}]", ylabel="coefficient of friction μ",
                 title="versus separation (approach grows to the left)")
+    shade_invalid(axes, [p, h], friction)
     for a in axes:
         a.set_ylim(bottom=0)
         a.grid(True, which="both", alpha=0.3)

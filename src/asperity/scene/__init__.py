@@ -23,6 +23,13 @@ def material_si(material: Config, units_cfg: Config) -> dict[str, Any]:
     return materials.material_si(material, units_cfg)
 
 
+def hardness_si(material: Config, units_cfg: Config) -> float | None:
+    """The material's hardness [Pa] if the scene gives one (``material.hardness``; it
+    enters no job's key: only the validity of the interface uses it)."""
+    h = material.get("hardness")
+    return None if h is None else float(h) * units.pressure_scale(units_cfg.get("pressure", "Pa"))
+
+
 def velocity_si(asperity: Config, units_cfg: Config) -> float | None:
     """The flat's loading velocity [m/s] (report 8.2.2), None if the scene gives none."""
     v = asperity.get("velocity")

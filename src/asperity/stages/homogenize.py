@@ -12,9 +12,10 @@ import xarray as xr
 
 from asperity import homogenize, peaks
 from asperity.population import adhesive as adhesive_interface
+from asperity.homogenize import validity as validity_checks
 from asperity.population.density import bounds, height_scale, peak_density, population_density
 from asperity.references import greenwood_williamson
-from asperity.scene import length_factor, material_si
+from asperity.scene import hardness_si, length_factor, material_si
 from asperity.unloading import family_table as unloading_family_table
 from asperity.unloading import unloading_asperities
 from asperity.units import attrs
@@ -76,15 +77,22 @@ def unloading_from(homogenization: Config, surface_ds: xr.Dataset, units_cfg: Co
 def interface_dataset(
     asperities: xr.Dataset, surface_ds: xr.Dataset, plan: xr.Dataset,
     population: Config, homogenization: Config, units_cfg: Config,
-    unloading: xr.Dataset | None = None,
+    unloading: xr.Dataset | None = None, *, material: Config | None = None, effects=(),
+    validity: Config | None = None,
 ) -> xr.Dataset:
     """Nominal pressure, contact area ratio, stiffness versus separation (2.5).
 
     With an `unloading` family (`unloading_dataset`), a ``branch``
     dimension: ``loading``, and ``unloading`` from the separation
     `unloading_from` back up (NaN below it), each asperity on the path from
-    its own maximum interference (report 8.3).
+    its own maximum interference (report 8.3).  With the scene's `validity`
+    limits (and its `material`, `effects`), where the result holds
+    (`asperity.homogenize.validity`).
     """
+    plastic = validity_checks.plasticity_of(
+        material_si(material, units_cfg), effects, hardness_si(material, units_cfg),
+        fe_flag="elastic" in asperities) if validity is not None and material else None
+    asperities = validity_checks.with_indicators(asperities, plastic) if validity is not None else asperities
     density = population_density(surface_ds, population)
     threshold = float(plan.attrs.get("support_threshold", 1e-4))
     rect = bounds(density, homogenization, units_cfg, threshold)
@@ -136,6 +144,9 @@ def interface_dataset(
                  "max_dofs", "max_time_steps"):  # what the asperities cost (FE scenes)
         if name in asperities.attrs:
             out.attrs[name] = asperities.attrs[name]
+    if validity is not None:  # where the result holds
+        out = validity_checks.assess(out, plastic, validity_checks.peak_statistics(density, rect),
+                                     validity_checks.Limits(**validity))
     return out
 
 

@@ -15,15 +15,17 @@ from __future__ import annotations
 
 import copy
 import logging
+import math
 from typing import Any, Mapping
 
 import numpy as np
 import xarray as xr
 
 from asperity.references import boundary_element
+from asperity.homogenize import validity
 from asperity.population.density import height_scale
 from asperity.references.hertz import plane_strain_modulus
-from asperity.scene import length_factor, material_si
+from asperity.scene import hardness_si, length_factor, material_si
 from asperity.plots.reference import reference_figure as _reference_figure
 from asperity.units import attrs, pressure_scale
 
@@ -33,9 +35,6 @@ Config = Mapping[str, Any]
 
 #: `<scene>+<route>`: the scene of one statistical route of a reference scene
 ROUTE_SEPARATOR = "+"
-#: Tabor's constraint factor: hardness of a perfectly plastic indentation ~ 2.8 Y
-#: (Tabor, *The Hardness of Metals*, 1951), used when the scene gives a yield stress only
-TABOR_FACTOR = 2.8
 #: what a route's scene takes from the route; the rest is the reference scene's
 ROUTE_PARTS = ("population", "asperity", "homogenization", "effects")
 
@@ -67,13 +66,17 @@ def route_scene(name: str, definition: Config, route: str, results: str) -> dict
     return derived
 
 
-def hardness_si(material: Config, reference: Config, units_cfg: Config) -> float | None:
-    """The hardness of the perfectly plastic solve (Pa): the reference's `hardness`, else
-    Tabor's 2.8 times the material's yield stress, else None (elastic only)."""
-    if "hardness" in reference:
-        return float(reference["hardness"]) * pressure_scale(units_cfg.get("pressure", "Pa"))
-    yield_stress = material_si(material, units_cfg).get("yield_stress")
-    return None if yield_stress is None else TABOR_FACTOR * float(yield_stress)
+def reference_hardness(material: Config, reference: Config, units_cfg: Config) -> float | None:
+    """The hardness of the perfectly plastic solve (Pa): the reference's `hardness`, else the
+    material's by the rule of `asperity.homogenize.validity.hardness_of` (given, or Tabor's
+    2.8 times the yield or flow stress), else None (elastic only)."""
+    given = reference.get("hardness")
+    if given is not None:
+        given = float(given) * pressure_scale(units_cfg.get("pressure", "Pa"))
+    else:
+        given = hardness_si(material, units_cfg)
+    h, _ = validity.hardness_of(material_si(material, units_cfg), given)
+    return h if math.isfinite(h) else None
 
 
 def reference_separations(reference: Config, surface_ds: xr.Dataset, units_cfg: Config) -> np.ndarray:
@@ -90,11 +93,11 @@ def reference_separations(reference: Config, surface_ds: xr.Dataset, units_cfg: 
 def reference_dataset(z: np.ndarray, dx: float, dy: float, surface_ds: xr.Dataset,
                       material: Config, reference: Config, units_cfg: Config) -> xr.Dataset:
     """The boundary-element solution of the map (SI input) on dims (limit, separation):
-    limit ``elastic``, and ``hardness`` where the scene gives one (`hardness_si`)."""
+    limit ``elastic``, and ``hardness`` where the scene gives one (`reference_hardness`)."""
     mat = material_si(material, units_cfg)
     modulus = float(plane_strain_modulus(mat["youngs_modulus"], mat["poisson"]))
     h = reference_separations(reference, surface_ds, units_cfg)
-    hardness = hardness_si(material, reference, units_cfg)
+    hardness = reference_hardness(material, reference, units_cfg)
     options = {"boundary": reference.get("boundary", "periodic"),
                "tolerance": reference.get("tolerance", 1e-6),
                "max_iterations": reference.get("max_iterations", 5000)}
