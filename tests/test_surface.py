@@ -665,3 +665,14 @@ def test_map_errors():
         S.map_peaks(z[:2], 0.1, 0.1)
     with pytest.raises(ValueError, match="spacing dy"):
         S.map_peaks(z, 0.1, -1.0)
+
+
+def test_estimates_are_selected_by_name():
+    """The dimension is `estimator`: sel by name picks one estimate (with a dimension named
+    `method`, ds.sigma.sel(method="sampling") silently returned all of them)."""
+    z = np.cos(np.arange(2000) * 0.4)
+    ds = S.profile_statistics(z, 0.2)
+    one = ds.sigma.sel(estimator="sampling")
+    assert one.ndim == 0 and str(one["estimator"].values) == "sampling"
+    assert float(one) == pytest.approx(np.std(z, ddof=1), rel=1e-14)
+    assert "method" not in ds.dims

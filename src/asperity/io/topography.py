@@ -100,25 +100,31 @@ def read_measurement(path, kind: str, unit: str | None = None, spacing: float | 
         try:
             return _read_own(p, kind, unit, spacing, key)
         except InputError as err:
-            if suffix not in OWN_TEXT or err.line is None:
+            if suffix not in OWN_TEXT or not _instrument_text(err):
                 raise
             own = err  # a header, or positions rounded in print: perhaps an instrument's export
         try:
             found = _read_instrument(p, kind, unit, spacing, channel, key)
-        except InputError:
-            raise own from None  # the line asperity's reader could not take says most
+        except InputError as err:
+            if err.reason.startswith(("not a format", "cannot read")):
+                raise own from None  # the line asperity's reader could not take says most
+            raise  # SurfaceTopography read the file and found something missing: that says most
         found.notes.insert(0, f"read by {found.reader}, which takes it as uniformly sampled "
                               f"(asperity's reader: {own})")
         return found
     return _read_instrument(p, kind, unit, spacing, channel, key)
 
 
+def _instrument_text(err: InputError) -> bool:
+    """Whether asperity's text reader failed on what an instrument's text export holds: a
+    header line, or positions printed so coarsely that the steps look non-uniform."""
+    return err.line is not None and ("is not a number" in err.reason or "non-uniform" in err.reason)
+
+
 def _read_own(p: Path, kind: str, unit, spacing, key) -> Measurement:
     """Text, .npy, netCDF through asperity.io.inputs."""
     states_unit = p.suffix.lower() == ".nc"
-    if unit is None and not states_unit:
-        raise _unit_error(p, key)
-    file_unit = unit or "m"
+    file_unit = unit or "m"  # parsed first: a header that asperity cannot read may state the unit
     given = None if spacing is None else spacing / length_scale(file_unit)  # in the file's unit
     notes = [f"length unit {unit} from the scene ({key}.unit)"] if unit else []
     if kind == "profile":
@@ -126,13 +132,18 @@ def _read_own(p: Path, kind: str, unit, spacing, key) -> Measurement:
             raise InputError(p, f"a netCDF file holds a map: name it under surface.map, not {key}")
         z, dx = read_profile(p, spacing=given, length_unit=file_unit)
         heights, dy = z, None
+        if unit is None:
+            raise _unit_error(p, key)
     else:
         try:
-            z, dx, dy = read_map(p, spacing=spacing, length_unit=unit, spacing_unit="m")
+            z, dx, dy = read_map(p, spacing=spacing, length_unit=unit if states_unit else file_unit,
+                                 spacing_unit="m")
         except InputError as err:
             if "states no length unit" in err.reason:
                 raise _unit_error(p, key) from None
             raise
+        if unit is None and not states_unit:
+            raise _unit_error(p, key)
         heights = z
         if states_unit and unit is None:
             notes.append("length units from the netCDF file's units attributes")
@@ -251,7 +262,7 @@ def describe_file(path) -> dict:
         try:
             return _describe_own(p)
         except InputError as err:
-            if suffix not in OWN_TEXT or err.line is None:
+            if suffix not in OWN_TEXT or not _instrument_text(err):
                 raise
     reader = _open(p)
     ch = reader.default_channel

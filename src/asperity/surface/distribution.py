@@ -15,13 +15,16 @@ distribution:
 
 The limits: the surface is called clearly non-Gaussian when |Sk| > 0.3, or
 Ku < 2.5, or Ku > 4.  The light-load contact of an asperity model is the
-upper tail of the heights: Greenwood and Williamson's load integral
-F_3/2(h) = int_h^inf (z - h)^(3/2) phi(z) dz at a separation of 2 sigma
-changes by a factor of about 2 at these limits (1.9 for gamma-distributed
-heights with Sk = +0.3, 0.37 for Sk = -0.3; 1.9 for Student-t heights
-with Ku = 4; 0.38 for symmetric beta heights with Ku = 2.5), against a few
-per cent inside them.  They are also well outside the sampling scatter of
-a Gaussian record: the standard errors are sqrt(6/N) and sqrt(24/N) for
+upper tail of the heights, and Greenwood and Williamson's load integral
+F_3/2(h) = int_h^inf (z - h)^(3/2) phi(z) dz is sensitive to it: at these
+limits F_3/2 at a separation of 2 sigma is off by a factor of about 2 (1.9
+for gamma-distributed heights with Sk = +0.3, 0.37 for Sk = -0.3; 1.9 for
+Student-t heights with Ku = 4; 0.38 for symmetric beta heights with
+Ku = 2.5) and at 1 sigma by 8 to 23 %.  Inside the limits the error shrinks
+smoothly but is not zero (Sk = 0.1: 28 % at 2 sigma, 8 % at 1 sigma); the
+warning marks where the light-load answer is off by a factor, not by a
+fraction.  The limits are also outside the sampling scatter of a Gaussian
+record: the standard errors of Sk and Ku are sqrt(6/N) and sqrt(24/N) for
 N independent patches, 0.1 and 0.2 for N = 600.
 """
 

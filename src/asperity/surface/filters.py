@@ -24,9 +24,11 @@ line's transmission at the cut-off becomes 51.1 %; at +-lambda_c the
 weight is 7e-7 of the peak and the transmission 50 % to 1e-7).  Near an
 undefined point or an end of the record the mean line is the normalized
 convolution sum s(x - x') h(x') / sum s(x - x') over defined points x'
-only; the first and last lambda_c / 2 of the record (the run-in and
-run-out of ISO 16610-21, where the weighting function is cut in half)
-are still dropped from the evaluation.
+only (a zero-order end correction); the first and last lambda_c / 2 of
+the record (the run-in and run-out of ISO 16610-21, where the weighting
+function is cut in half) are dropped from the evaluation, and between
+lambda_c / 2 and lambda_c from an end the cut tail of the kernel shifts
+the transmission by a few 1e-5.
 """
 
 from __future__ import annotations

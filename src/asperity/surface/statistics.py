@@ -145,7 +145,9 @@ def derivatives(z, dx: float, order: int = DEFAULT_ORDER, axis: int = -1) -> tup
     slope, curvature : ndarray
         Shape of ``z`` with ``order`` points fewer along ``axis``: the p points
         nearest each end, where a central stencil does not fit, are dropped.
-        ``slope[..., i]`` belongs to ``z[..., i + p]``.
+        ``slope[..., i]`` belongs to ``z[..., i + p]``.  NaN (an undefined
+        height) anywhere in a point's stencil, or at the point, makes its
+        slope and curvature NaN.
 
     Assumptions and accuracy
     ------------------------
@@ -182,6 +184,7 @@ def derivatives(z, dx: float, order: int = DEFAULT_ORDER, axis: int = -1) -> tup
         dn = zz[..., p - jj : p - jj + m]
         slope += a[jj - 1] * (up - dn)
         curv = curv + b[jj] * (up + dn)
+    slope += 0.0 * centre  # the slope's stencil skips the centre: undefined (NaN) there all the same
     slope /= h
     curv /= h * h
     return np.moveaxis(slope, -1, axis), np.moveaxis(curv, -1, axis)
