@@ -8,7 +8,7 @@ CORES ?= 2
 export OPENBLAS_NUM_THREADS = 1
 export OMP_NUM_THREADS = 1
 
-.PHONY: all reproduce test test-fast bench time-scenes time-jobs time-adhesion figures clean-results
+.PHONY: all reproduce test test-fast bench time-scenes time-jobs time-adhesion time-surface figures clean-results
 
 all: reproduce
 
@@ -53,6 +53,12 @@ time-jobs: $(STAMP)
 # Fig. 7.6's curves); writes benchmarks/results/adhesion-cost.json.
 time-adhesion: $(STAMP)
 	$(BIN)/python benchmarks/adhesion_cost.py
+
+# Form removal, statistics and peaks of a 2048 x 2048 map with 10 % undefined points,
+# beside SurfaceTopography's rms height, gradient and curvature of the same map;
+# writes benchmarks/results/surface-speed.json.
+time-surface: $(STAMP)
+	$(BIN)/python benchmarks/surface_speed.py
 
 # The figures shown in the README, copied from a full run.
 README_FIGURES := profile_quasirandom/figures/surface.png expectation_unit/figures/expectation.png \

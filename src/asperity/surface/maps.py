@@ -22,7 +22,7 @@ from __future__ import annotations
 import numpy as np
 import xarray as xr
 
-from asperity.surface.missing import complete_at, complete_neighbourhood, defined_heights, undefined_table
+from asperity.surface.missing import complete_neighbourhood, defined_heights
 from asperity.surface.statistics import (DEFAULT_ORDER, INVARIANT_TEXT, INVARIANT_UNITS, MOMENT_UNITS,
                                          _check_order, _spacing, derivatives, mean_and_deviation,
                                          moment_invariants, stencil)
@@ -94,10 +94,9 @@ def map_peaks(z, dx: float, dy: float, order: int = DEFAULT_ORDER, *, defined=No
     ii += 1
     jj += 1
     # largest half-width whose square fits in the map and is wholly defined around each peak
-    table = undefined_table(mask)
     p = np.ones(ii.shape, dtype=np.int64)
     for q in range(2, pmax + 1):  # loop over stencil sizes, not peaks
-        p = np.where((p == q - 1) & complete_at(table, ii, jj, q), q, p)
+        p = np.where((p == q - 1) & complete_neighbourhood(mask, q)[ii, jj], q, p)
     zz = np.where(mask, zz, 0.0)  # weights beyond a peak's stencil are zero: 0, not NaN, there
     # coefficient tables, row q = weights of the order-2q formulas, zero padded
     A = np.zeros((pmax + 1, pmax))
@@ -200,7 +199,7 @@ def map_statistics(z, dx: float, dy: float, order: int = DEFAULT_ORDER, *, defin
     sigma = float(np.std(values, ddof=1)) if values.size > 1 else np.nan
     zx, zxx = derivatives(zz, hx, order, axis=1)  # (ny, nx - 2p); NaN where a stencil is incomplete
     zy, zyy = derivatives(zz, hy, order, axis=0)  # (ny - 2p, nx)
-    zxy, _ = derivatives(zx, hy, order, axis=0)  # (ny - 2p, nx - 2p)
+    zxy, _ = derivatives(zx, hy, order, axis=0, curvature=False)  # (ny - 2p, nx - 2p)
     # common interior
     zx_c = zx[p : ny - p, :]
     zy_c = zy[:, p : nx - p]
@@ -237,7 +236,7 @@ def map_statistics(z, dx: float, dy: float, order: int = DEFAULT_ORDER, *, defin
     }
     inv = moment_invariants(**mom)
     count = int(np.count_nonzero(_peak_mask(zz)))
-    tested = int(np.count_nonzero(complete_neighbourhood(mask, 1)))
+    tested = (nx - 2) * (ny - 2) if mask.all() else int(np.count_nonzero(complete_neighbourhood(mask, 1)))
     area = tested * hx * hy
 
     def v(val, units, long_name):

@@ -23,9 +23,7 @@ __all__ = [
     "undefined_share",
     "runs",
     "longest_run",
-    "undefined_table",
     "complete_neighbourhood",
-    "complete_at",
     "harmonic_fill",
 ]
 
@@ -86,39 +84,23 @@ def longest_run(defined: np.ndarray) -> slice:
     return slice(int(start[i]), int(stop[i]))
 
 
-def undefined_table(defined: np.ndarray) -> np.ndarray:
-    """Summed-area table of the undefined points: T[i, j] = undefined points in rows < i, columns < j."""
-    d = np.asarray(defined, dtype=bool)
-    table = np.zeros((d.shape[0] + 1, d.shape[1] + 1), dtype=np.int64)
-    table[1:, 1:] = np.cumsum(np.cumsum(~d, axis=0), axis=1)
-    return table
+def _erode(d: np.ndarray) -> np.ndarray:
+    """True where the 3 x 3 square about a point is inside the map and all True (separable)."""
+    rows = np.zeros(d.shape, dtype=bool)
+    rows[:, 1:-1] = d[:, :-2] & d[:, 1:-1] & d[:, 2:]
+    out = np.zeros(d.shape, dtype=bool)
+    out[1:-1, :] = rows[:-2, :] & rows[1:-1, :] & rows[2:, :]
+    return out
 
 
 def complete_neighbourhood(defined: np.ndarray, half_width: int) -> np.ndarray:
     """True where the square of (2 half_width + 1)^2 points centred on a point is inside
-    the map and wholly defined (a summed-area table: one pass, no loop over points)."""
-    d = np.asarray(defined, dtype=bool)
-    p = int(half_width)
-    ny, nx = d.shape
-    out = np.zeros(d.shape, dtype=bool)
-    if ny < 2 * p + 1 or nx < 2 * p + 1:
-        return out
-    t = undefined_table(d)
-    w = 2 * p + 1
-    out[p : ny - p, p : nx - p] = (t[w:, w:] - t[:-w, w:] - t[w:, :-w] + t[:-w, :-w]) == 0
+    the map and wholly defined: the defined mask eroded half_width times by a 3 x 3 square
+    (a (2q+1)-square is defined when the (2q-1)-squares about its 3 x 3 centre are)."""
+    out = np.asarray(defined, dtype=bool)
+    for _ in range(int(half_width)):  # a few erosions, each vectorized over the map
+        out = _erode(out)
     return out
-
-
-def complete_at(table: np.ndarray, rows: np.ndarray, cols: np.ndarray, half_width: int) -> np.ndarray:
-    """Whether the square of half width ``half_width`` about each (row, column) is inside the
-    map and wholly defined, from the :func:`undefined_table` of the map."""
-    ny, nx = table.shape[0] - 1, table.shape[1] - 1
-    p = int(half_width)
-    inside = (rows >= p) & (rows < ny - p) & (cols >= p) & (cols < nx - p)
-    r0, r1 = np.clip(rows - p, 0, ny), np.clip(rows + p + 1, 0, ny)
-    c0, c1 = np.clip(cols - p, 0, nx), np.clip(cols + p + 1, 0, nx)
-    count = table[r1, c1] - table[r0, c1] - table[r1, c0] + table[r0, c0]
-    return inside & (count == 0)
 
 
 def harmonic_fill(z, defined, periodic: bool = False) -> np.ndarray:

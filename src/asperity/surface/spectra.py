@@ -193,7 +193,7 @@ def autocorrelation(z, spacing, defined=None) -> tuple[np.ndarray, np.ndarray, n
     zc = np.where(m, zz - mean, 0.0)
     mf = m.astype(np.float64)
     # lags up to half of each side: padding by half a side keeps the sums acyclic
-    shape = tuple(scipy.fft.next_fast_len(n + n // 2 + 1, real=True) for n in zz.shape)
+    shape = tuple(scipy.fft.next_fast_len(n + n // 2, real=True) for n in zz.shape)
     axes = tuple(range(zz.ndim))
     f_m, f_z, f_zz = (scipy.fft.rfftn(a, shape, axes=axes) for a in (mf, zc, zc * zc))
 

@@ -124,7 +124,8 @@ def stencil(order: int = DEFAULT_ORDER) -> tuple[np.ndarray, np.ndarray]:
     return a, b
 
 
-def derivatives(z, dx: float, order: int = DEFAULT_ORDER, axis: int = -1) -> tuple[np.ndarray, np.ndarray]:
+def derivatives(z, dx: float, order: int = DEFAULT_ORDER, axis: int = -1, curvature: bool = True
+                ) -> tuple[np.ndarray, np.ndarray | None]:
     """Slope z' and curvature z'' at interior points, central differences (report 2.3.1).
 
     Parameters
@@ -139,6 +140,8 @@ def derivatives(z, dx: float, order: int = DEFAULT_ORDER, axis: int = -1) -> tup
         :func:`stencil`); the stencil spans 2p + 1 points.
     axis : int, default -1
         Axis along which to differentiate.
+    curvature : bool, default True
+        False: the slope only (the curvature returned is None).
 
     Returns
     -------
@@ -168,26 +171,35 @@ def derivatives(z, dx: float, order: int = DEFAULT_ORDER, axis: int = -1) -> tup
     zz = np.asarray(z, dtype=np.float64)
     if zz.ndim == 0:
         raise ValueError("derivatives need an array of heights, got a scalar")
-    zz = np.moveaxis(zz, axis, -1)
-    n = zz.shape[-1]
+    axis = axis % zz.ndim
+    n = zz.shape[axis]
     if n < 2 * p + 1:
         raise ValueError(
             f"derivatives of order {2 * p} need at least {2 * p + 1} points along the "
             f"profile (the stencil width); got {n}"
         )
     m = n - 2 * p
-    centre = zz[..., p : p + m]
-    slope = np.zeros(zz.shape[:-1] + (m,))
-    curv = b[0] * centre
+
+    def along(start):  # the m points from `start` along `axis` (slices: no copy, contiguous blocks)
+        index = [slice(None)] * zz.ndim
+        index[axis] = slice(start, start + m)
+        return zz[tuple(index)]
+
+    centre = along(p)
+    # in place, with one scratch array: a map's derivatives are bound by memory traffic
+    slope = np.multiply(centre, 0.0)  # the slope's stencil skips the centre: NaN there all the same
+    curv = np.multiply(centre, b[0] / (h * h)) if curvature else None
+    tmp = np.empty(centre.shape)
     for jj in range(1, p + 1):  # loop over the stencil offsets, not over points
-        up = zz[..., p + jj : p + jj + m]
-        dn = zz[..., p - jj : p - jj + m]
-        slope += a[jj - 1] * (up - dn)
-        curv = curv + b[jj] * (up + dn)
-    slope += 0.0 * centre  # the slope's stencil skips the centre: undefined (NaN) there all the same
-    slope /= h
-    curv /= h * h
-    return np.moveaxis(slope, -1, axis), np.moveaxis(curv, -1, axis)
+        up, dn = along(p + jj), along(p - jj)
+        np.subtract(up, dn, out=tmp)
+        tmp *= a[jj - 1] / h
+        slope += tmp
+        if curvature:
+            np.add(up, dn, out=tmp)
+            tmp *= b[jj] / (h * h)
+            curv += tmp
+    return slope, curv
 
 
 # --------------------------------------------------------------------------
