@@ -106,9 +106,9 @@ def read_measurement(path, kind: str, unit: str | None = None, spacing: float | 
         try:
             found = _read_instrument(p, kind, unit, spacing, channel, key)
         except InputError as err:
-            if err.reason.startswith(("not a format", "cannot read")):
-                raise own from None  # the line asperity's reader could not take says most
-            raise  # SurfaceTopography read the file and found something missing: that says most
+            if "states no" in err.reason:
+                raise  # SurfaceTopography read the file, and the scene must add what it lacks
+            raise own from None  # the line asperity's reader could not take says most
         found.notes.insert(0, f"read by {found.reader}, which takes it as uniformly sampled "
                               f"(asperity's reader: {own})")
         return found
@@ -279,9 +279,16 @@ def _describe_own(p: Path) -> dict:
         a = np.load(p, mmap_mode="r", allow_pickle=False)
         return {"kind": KINDS.get(a.ndim), "unit": None, "points": tuple(a.shape), "spacing": None,
                 "channel": None, "reader": "asperity .npy"}
-    if suffix == ".nc":
-        z, dx, dy = read_map(p, spacing=1.0, length_unit="m")
-        return {"kind": "map", "unit": "m", "points": z.shape, "spacing": dx, "channel": None,
+    if suffix == ".nc":  # the unit and the spacing where the file states them, else None
+        unit = spacing = None
+        try:
+            z, dx, _ = read_map(p, spacing=None, length_unit=None)
+            unit, spacing = "m", dx
+        except InputError as err:
+            if "states no length unit" not in err.reason and "pass spacing" not in err.reason:
+                raise
+            z, dx, _ = read_map(p, spacing=1.0, length_unit="m")
+        return {"kind": "map", "unit": unit, "points": z.shape, "spacing": spacing, "channel": None,
                 "reader": "asperity netCDF"}
     try:  # a text table: one or two columns are a profile (z or x, z), more a map
         z, dx = read_profile(p, spacing=None, length_unit="m")

@@ -127,9 +127,9 @@ def surface_figure(surface: xr.Dataset, convergence: xr.Dataset | None = None,
             ax.legend(fontsize=7)
         elif name == "roughness":
             ax.plot(surface["position"].values / scale, surface["roughness_height"].values / scale, lw=0.6)
+            cutoffs = surface.attrs.get("filter", "none").partition("), ")[2] or "no filter"
             ax.set(xlabel=f"position [{length_unit}]", ylabel=f"height [{length_unit}]",
-                   title=f"roughness: rms {float(surface['rms_height']) / scale:.4g} {length_unit}"
-                         f" (filter: {surface.attrs.get('filter', 'none')})"[:90])
+                   title=f"roughness: rms {float(surface['rms_height']) / scale:.4g} {length_unit} ({cutoffs})")
         elif name == "estimators":
             _estimators(ax, surface)
         elif name == "convergence":
