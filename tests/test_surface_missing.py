@@ -190,3 +190,27 @@ def test_harmonic_fill_is_discrete_harmonic_and_agrees_with_surface_topography()
     profile = np.array([1.0, 2.0, 0.0, 0.0, 0.0, 6.0, 7.0, 0.0])
     mask = np.array([True, True, False, False, False, True, True, False])
     np.testing.assert_allclose(S.harmonic_fill(profile, mask), [1, 2, 3, 4, 5, 6, 7, 7], rtol=1e-12)
+
+
+def test_the_scene_limits_the_share_of_undefined_points_and_can_fill_them():
+    """Above surface.undefined.max_share the stage stops, naming the key; fill: harmonic fills
+    first (the statistics then see every point, the PSD no longer needs its own fill)."""
+    from asperity.stages.surface import surface_from_data
+
+    z = gaussian_map(64, seed=4) * 1e-6
+    defined = np.ones(z.shape, bool)
+    defined[:20] = False  # 31 % undefined
+    masked = np.where(defined, z, np.nan)
+    strict = {"map": {"file": "m.npy"}, "form": "tilt", "undefined": {"max_share": 0.25}}
+    with pytest.raises(ValueError, match=r"31.2 % of the points are undefined, more than the scene allows "
+                                         r"\(key surface.undefined.max_share = 0.25\)"):
+        surface_from_data(masked, (1e-6, 1e-6), strict, {"length": "um"}, defined=defined)
+    kept = surface_from_data(masked, (1e-6, 1e-6), {**strict, "undefined": {"max_share": 0.5}},
+                             {"length": "um"}, defined=defined)
+    assert float(kept["undefined_share"]) == pytest.approx(0.3125, rel=1e-12)
+    assert int(kept["points_defined"]) == 44 * 64 and int(kept["filled_points"]) == 0
+    assert "filled harmonically for the spectrum only" in kept.attrs["psd_note"]
+    filled = surface_from_data(masked, (1e-6, 1e-6), {**strict, "undefined": {"max_share": 0.5, "fill": "harmonic"}},
+                               {"length": "um"}, defined=defined)
+    assert int(filled["filled_points"]) == 20 * 64 and int(filled["points_defined"]) == 64 * 64
+    assert filled.attrs["undefined_fill"] == "harmonic" and "psd_note" not in filled.attrs
