@@ -65,9 +65,9 @@ class SurfaceScene:
             if "polynomial_degree" not in surface_cfg:
                 raise ValueError("key surface.polynomial_degree: form polynomial needs a degree")
             kwargs["polynomial_degree"] = int(surface_cfg["polynomial_degree"])
-        for key, name in (("lambda_c", "lambda_c"), ("lambda_s", "lambda_s")):
+        for key in ("lambda_c", "lambda_s"):
             if filt.get(key) is not None:
-                kwargs[name] = float(filt[key]) * length
+                kwargs[key] = float(filt[key]) * length
         if "max_share" in undefined:
             kwargs["max_undefined_share"] = float(undefined["max_share"])
         if "fill" in undefined:
