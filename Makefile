@@ -8,7 +8,7 @@ CORES ?= 2
 export OPENBLAS_NUM_THREADS = 1
 export OMP_NUM_THREADS = 1
 
-.PHONY: all reproduce test test-fast bench time-scenes time-jobs time-adhesion time-reference figures clean-results
+.PHONY: all reproduce test test-fast bench time-scenes time-jobs time-adhesion time-reference time-surface figures clean-results
 
 all: reproduce
 
@@ -59,6 +59,12 @@ time-adhesion: $(STAMP)
 # benchmarks/results/reference-draft.json.
 time-reference: $(STAMP)
 	$(BIN)/python benchmarks/reference_cost.py --accuracy draft --cores $(CORES)
+
+# Form removal, statistics and peaks of a 2048 x 2048 map with 10 % undefined points,
+# beside SurfaceTopography's rms height, gradient and curvature of the same map;
+# writes benchmarks/results/surface-speed.json.
+time-surface: $(STAMP)
+	$(BIN)/python benchmarks/surface_speed.py
 
 # The figures shown in the README, copied from a full run.
 README_FIGURES := profile_quasirandom/figures/surface.png expectation_unit/figures/expectation.png \

@@ -39,3 +39,54 @@ def test_show_var_prints_a_table(folder, capsys):
 def test_show_unknown_variable_names_the_file(folder):
     with pytest.raises(SystemExit, match="no variable 'nope'"):
         main(["show", str(folder / "interface.nc"), "--var", "nope"])
+
+
+# --------------------------------------------------------------------------
+# asperity new-scene FILE [NAME]
+# --------------------------------------------------------------------------
+
+DATA = __import__("pathlib").Path(__file__).resolve().parents[1] / "data" / "topographies"
+
+
+def validated(path):
+    """The scene through the workflow's own schema, defaults filled in (as Snakemake does)."""
+    import yaml
+    from snakemake.utils import validate
+
+    scene = yaml.safe_load(path.read_text())
+    config = {"scenes": [path.stem], "accuracy": "draft", "results": "results", "scene_dir": str(path.parent),
+              "scene_definitions": {path.stem: scene}}
+    validate(config, str(DATA.parents[1] / "config" / "schema.yaml"))
+    return scene
+
+
+def test_new_scene_for_a_map(tmp_path, capsys):
+    assert main(["new-scene", str(DATA / "di-3.di"), "--scene-dir", str(tmp_path)]) == 0
+    out = capsys.readouterr().out
+    assert f"wrote {tmp_path / 'di_3.yaml'}" in out
+    assert "snakemake --cores 2 --config 'scenes=[di_3]' studies=False" in out
+    text = (tmp_path / "di_3.yaml").read_text()
+    assert "EDIT" in text.split("material:")[1].splitlines()[0]  # the material is marked for the user
+    scene = validated(tmp_path / "di_3.yaml")
+    assert scene["surface"]["map"] == {"file": str(DATA / "di-3.di")}  # unit, spacing from the file
+    assert scene["surface"]["form"] == "tilt"
+    assert scene["population"]["density"] == "sampled"
+    assert scene["homogenization"]["rule"] == "peaks"
+    assert scene["asperity"]["model"] == "hertz"
+    assert "nm" in text  # says which unit the file's numbers are in
+
+
+def test_new_scene_for_a_profile_and_a_unitless_file(tmp_path, capsys):
+    assert main(["new-scene", str(DATA / "hfm-1.hfm"), "stylus", "--scene-dir", str(tmp_path)]) == 0
+    scene = validated(tmp_path / "stylus.yaml")
+    assert scene["population"]["density"] == "nayak" and scene["homogenization"]["rule"] == "gauss"
+    with pytest.raises(SystemExit, match=r"xy-4.txt: the file states no length unit; give the unit of its "
+                                         r"numbers with --unit"):
+        main(["new-scene", str(DATA / "xy-4.txt"), "--scene-dir", str(tmp_path)])
+    assert not (tmp_path / "xy_4.yaml").exists()
+    assert main(["new-scene", str(DATA / "xy-4.txt"), "--unit", "mm", "--scene-dir", str(tmp_path)]) == 0
+    assert validated(tmp_path / "xy_4.yaml")["surface"]["profile"]["unit"] == "mm"
+    with pytest.raises(SystemExit, match="exists; choose another NAME or pass --force"):
+        main(["new-scene", str(DATA / "hfm-1.hfm"), "stylus", "--scene-dir", str(tmp_path)])
+    with pytest.raises(SystemExit, match="no such file"):
+        main(["new-scene", str(tmp_path / "missing.plu"), "--scene-dir", str(tmp_path)])

@@ -15,11 +15,11 @@ STEEL = {"statistics": {"sigma": 4.91, "sigma_slope": 0.16, "sigma_curvature": 0
 
 def test_given_statistics_in_si():
     ds = surface_stage.surface_from_statistics(STEEL, UNITS)
-    assert float(ds["sigma"].sel({"method": "given"})) == pytest.approx(4.91e-6)
-    assert float(ds["sigma_curvature"].sel({"method": "given"})) == pytest.approx(0.0227e6)
-    assert float(ds["peak_density"].sel({"method": "given"})) == pytest.approx(508e6)
+    assert float(ds["sigma"].sel(estimator="given")) == pytest.approx(4.91e-6)
+    assert float(ds["sigma_curvature"].sel(estimator="given")) == pytest.approx(0.0227e6)
+    assert float(ds["peak_density"].sel(estimator="given")) == pytest.approx(508e6)
     # beta = sqrt(1.5) sigma_slope^2 / (sigma sigma_curvature) (2.4.1)
-    assert float(ds["beta"].sel({"method": "given"})) == pytest.approx(
+    assert float(ds["beta"].sel(estimator="given")) == pytest.approx(
         np.sqrt(1.5) * 0.16**2 / (4.91 * 0.0227), rel=1e-12)
 
 
@@ -53,7 +53,8 @@ def test_map_peak_density_matches_nayak():
     m4 = 12 sigma^2/l^4, so D_p = m4/(6 pi sqrt3 m2) = 1/(pi sqrt3 l^2) (2.3.1).
     ~490 peaks: the Poisson spread is 4.5 %; bound 10 %."""
     gen = {"points": 512, "spacing": 2.0, "sigma": 1.0, "correlation_length": 20.0, "seed": 7}
-    ds = surface_stage.surface_from_map(surface_stage.synthetic_map(gen), 2.0, 2.0, {})
+    ds = surface_stage.surface_from_data(surface_stage.synthetic_map(gen), (2.0, 2.0), {"map": {"generate": gen}},
+                                         {"length": "m"})
     expected = 1.0 / (np.pi * np.sqrt(3) * 20.0**2)
     assert float(ds["peak_density"]) == pytest.approx(expected, rel=0.10)
     # isotropic: 3 m22 = m40 = m04 (2.3.1), within the sampling spread of one map

@@ -1,8 +1,8 @@
 """Verification of asperity.surface against closed forms (report 2.3, 2.4.3, 2.6.1).
 
 Tolerances are stated next to each assert, with where they come from.
-Note: a Dataset dimension named ``method`` clashes with the ``method=``
-keyword of ``.sel``; select with a dict, ``ds.sel({"method": "counting"})``.
+The estimates are on the dimension ``estimator`` (``method`` would clash
+with the ``method=`` keyword of ``.sel``): ``ds.sel(estimator="counting")``.
 """
 
 from __future__ import annotations
@@ -20,8 +20,8 @@ SQRT2 = math.sqrt(2.0)
 PEAK = 1.0 / (6.0 * math.pi * math.sqrt(3.0))
 
 
-def value(ds, name, method):
-    return float(ds[name].sel({"method": method}))
+def value(ds, name, estimator):
+    return float(ds[name].sel(estimator=estimator))
 
 
 def rel(a, b):
@@ -154,7 +154,7 @@ def test_profile_cosine_on_the_reports_record_length():
     # (incomplete last wavelength) is not 1/2: 1.16e-3 in all.  So 0.1 % is
     # out of reach on this record for sigma; assert 1.5e-3.
     s = np.arange(0.0, 200.0 + 1e-9, DX_COS)
-    ds = S.profile_statistics(np.cos(K_COS * s), DX_COS, methods=("sampling", "counting"))
+    ds = S.profile_statistics(np.cos(K_COS * s), DX_COS, estimators=("sampling", "counting"))
     for m in ("sampling", "counting"):
         for name in ("sigma", "sigma_slope", "sigma_curvature", "beta"):
             assert rel(value(ds, name, m), EXACT_COS[name]) < 1.5e-3
@@ -177,7 +177,7 @@ def test_profile_cosine_means_are_bounded_by_the_record(cosine_stats):
 
 def test_profile_statistics_dataset_contract(cosine_stats):
     ds, _ = cosine_stats
-    assert list(ds["method"].values) == ["sampling", "counting", "spectral"]
+    assert list(ds["estimator"].values) == ["sampling", "counting", "spectral"]
     expected_units = {
         "mean_height": "m", "mean_slope": "1", "mean_curvature": "1/m", "sigma": "m",
         "sigma_slope": "1", "sigma_curvature": "1/m", "m0": "m^2", "m2": "1", "m4": "1/m^2",
@@ -190,7 +190,7 @@ def test_profile_statistics_dataset_contract(cosine_stats):
     assert int(ds["points"]) == 100001
     assert float(ds["spacing"]) == DX_COS
     # internal consistency: m2 = sigma_slope^2 and beta from the moments
-    for m in S.METHODS:
+    for m in S.ESTIMATORS:
         assert rel(value(ds, "m2", m), value(ds, "sigma_slope", m) ** 2) < 1e-14
         b = math.sqrt(1.5) * value(ds, "m2", m) / math.sqrt(value(ds, "m0", m) * value(ds, "m4", m))
         assert rel(value(ds, "beta", m), b) < 1e-14
@@ -245,7 +245,7 @@ def test_counting_any_cosine_within_a_tenth_of_a_percent(ppw, wavelengths, k, ph
     dx = 2 * math.pi / (k * ppw)
     n = int(wavelengths * ppw) + 1
     z = amplitude * np.cos(k * np.arange(n) * dx + phase) + offset * amplitude
-    ds = S.profile_statistics(z, dx, methods=("counting",))
+    ds = S.profile_statistics(z, dx, estimators=("counting",))
     assert rel(value(ds, "zero_density", "counting"), k / math.pi) < 1e-3
     assert rel(value(ds, "extremum_density", "counting"), k / math.pi) < 1e-3
     # sigma_slope / sigma = pi D_zero = k
@@ -256,7 +256,7 @@ def test_counting_handles_exact_zeros_and_touching():
     # a square-ish wave sampled with exact mean values on the crossings:
     # z = 1, 0, -1, 0, 1, ... crosses at every zero sample, positions exact
     z = np.tile([1.0, 0.0, -1.0, 0.0], 50)
-    ds = S.profile_statistics(z - z.mean(), 1.0, order=2, methods=("counting",))
+    ds = S.profile_statistics(z - z.mean(), 1.0, order=2, estimators=("counting",))
     # crossings every 2 samples: D_zero = 1/2 per unit length
     assert value(ds, "zero_density", "counting") == pytest.approx(0.5, rel=1e-12)
 
@@ -289,7 +289,7 @@ def test_spectral_moments_of_a_periodic_series_closed_form():
     periods, n_per = 20, 1250
     dx = 500.0 / n_per
     z = S.evaluate_series(np.arange(periods * n_per) * dx, C, k, e)
-    ds = S.profile_statistics(z, dx, methods=("spectral",))
+    ds = S.profile_statistics(z, dx, estimators=("spectral",))
     ex = S.series_statistics(C, k)
     dk = 2 * math.pi / (periods * 500.0)
     assert rel(value(ds, "m0", "spectral"), ex["m0"]) < 1e-9
@@ -348,7 +348,7 @@ def test_profile_quasirandom_sampling_converges_to_the_series():
     for n_per in (625, 1250, 2500):
         dx = 500.0 / n_per
         z = S.evaluate_series(np.arange(20 * n_per) * dx, C, k, e)
-        ds = S.profile_statistics(z, dx, methods=("sampling",))
+        ds = S.profile_statistics(z, dx, estimators=("sampling",))
         errors.append([rel(value(ds, q, "sampling"), ex[q]) for q in ("sigma_slope", "sigma_curvature")])
         # sigma over whole periods: only the (n-1) normalization, 1/(2N)
         assert rel(value(ds, "sigma", "sampling"), ex["sigma"]) < 1.0 / (20 * n_per)
@@ -375,13 +375,13 @@ def test_profile_statistics_errors_name_the_problem():
     with pytest.raises(ValueError, match=r"sampling method .* at least 10 points.*got 9"):
         S.profile_statistics(z[:9], 0.3)
     with pytest.raises(ValueError, match=r"counting method .* at least 6 points"):
-        S.profile_statistics(z[:5], 0.3, order=4, methods=("counting",))
+        S.profile_statistics(z[:5], 0.3, order=4, estimators=("counting",))
     with pytest.raises(ValueError, match=r"counting method needs at least 2 .*crossings"):
-        S.profile_statistics(z[:12], 0.3, methods=("counting",))  # 3.6 < half a wavelength
+        S.profile_statistics(z[:12], 0.3, estimators=("counting",))  # 3.6 < half a wavelength
     with pytest.raises(ValueError, match=r"spectral method needs at least 4 points; got 3"):
-        S.profile_statistics(z[:3], 0.3, methods=("spectral",))
-    with pytest.raises(ValueError, match="methods must be"):
-        S.profile_statistics(z, 0.3, methods=("fourier",))
+        S.profile_statistics(z[:3], 0.3, estimators=("spectral",))
+    with pytest.raises(ValueError, match="estimators must be"):
+        S.profile_statistics(z, 0.3, estimators=("fourier",))
     with pytest.raises(ValueError, match="spacing dx"):
         S.profile_statistics(z, 0.0)
     with pytest.raises(ValueError, match="1-D"):
@@ -509,7 +509,7 @@ def test_directional_moments_from_sampled_profiles():
     m0, m2, m4 = [], [], []
     for t in theta:  # one profile per direction
         kp = kx * math.cos(t) + ky * math.sin(t)
-        ds = S.profile_statistics(S.evaluate_series(s, C, kp, e), dx, methods=("sampling",))
+        ds = S.profile_statistics(S.evaluate_series(s, C, kp, e), dx, estimators=("sampling",))
         m0.append(float(ds.m0[0]))
         m2.append(float(ds.m2[0]))
         m4.append(float(ds.m4[0]))
@@ -665,3 +665,14 @@ def test_map_errors():
         S.map_peaks(z[:2], 0.1, 0.1)
     with pytest.raises(ValueError, match="spacing dy"):
         S.map_peaks(z, 0.1, -1.0)
+
+
+def test_estimates_are_selected_by_name():
+    """The dimension is `estimator`: sel by name picks one estimate (with a dimension named
+    `method`, ds.sigma.sel(method="sampling") silently returned all of them)."""
+    z = np.cos(np.arange(2000) * 0.4)
+    ds = S.profile_statistics(z, 0.2)
+    one = ds.sigma.sel(estimator="sampling")
+    assert one.ndim == 0 and str(one["estimator"].values) == "sampling"
+    assert float(one) == pytest.approx(np.std(z, ddof=1), rel=1e-14)
+    assert "method" not in ds.dims

@@ -82,19 +82,19 @@ def mean_absolute_slope(sigma_slope):
 def slope_deviation(surface: xr.Dataset) -> float:
     """The rms profile slope sigma_slope = sqrt(m2) of the surface (report 2.3).
 
-    The statistic of the method that feeds the population when the dataset
-    has a ``method`` dim; for a map or anisotropic profiles (no isotropic
+    The statistic of the estimator that feeds the population when the dataset
+    has an ``estimator`` dim; for a map or anisotropic profiles (no isotropic
     sigma_slope) the direction average sqrt((m20 + m02)/2) of the
     directional slope variance m(theta) = m20 cos^2 + 2 m11 cos sin + m02 sin^2.
     """
     if "sigma_slope" in surface and "direction" not in surface["sigma_slope"].dims:
         value = surface["sigma_slope"]
-        if "method" in value.dims:
-            method = surface.attrs.get("population_method")
-            if method in value["method"].values:
-                value = value.sel({"method": method})
+        if "estimator" in value.dims:
+            estimator = surface.attrs.get("population_estimator")
+            if estimator in value["estimator"].values:
+                value = value.sel(estimator=estimator)
             else:
-                value = value.isel({"method": 0})
+                value = value.isel(estimator=0)
         return float(value)
     if "m20" in surface and "m02" in surface:
         return math.sqrt(0.5 * (float(surface["m20"]) + float(surface["m02"])))

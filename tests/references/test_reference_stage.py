@@ -23,7 +23,7 @@ SCENE = {
 
 def test_route_scene_reads_the_reference_map_at_its_separations():
     derived = stage.route_scene("ref", SCENE, "fe", "results")
-    assert derived["surface"] == {"map": {"file": "results/ref/input/map.npy", "spacing": 1.25}}
+    assert derived["surface"] == {"map": {"file": "results/ref/input/map.npy", "spacing": 1.25, "unit": "um"}}
     assert derived["homogenization"] == {"rule": "gauss", "separations": SCENE["reference"]["separations"]}
     assert derived["asperity"] == {"model": "fe"} and derived["population"] == {"density": "nayak"}
     assert derived["material"] == SCENE["material"] and derived["units"] == SCENE["units"]
@@ -43,7 +43,7 @@ def test_hardness_given_or_tabor():
 
 
 def test_periodic_separations_must_be_positive():
-    surface = xr.Dataset({"sigma": ((), 1e-6)}, attrs={"population_method": "map"})
+    surface = xr.Dataset({"sigma": ((), 1e-6)}, attrs={"population_estimator": "map"})
     ref = {"separations": {"start": 0.0, "stop": 3.0, "count": 4, "unit": "sigma"}}
     with pytest.raises(ValueError, match="reference.separations"):
         stage.reference_separations(ref, surface, SCENE["units"])

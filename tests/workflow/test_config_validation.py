@@ -71,7 +71,7 @@ def test_bad_profile_file_fails_its_job_and_writes_nothing(workflow_copy, conten
     (data / "profile.csv").write_text(content)
 
     def change(scene):
-        scene["surface"]["profile"] = {"file": "data/profile.csv"}
+        scene["surface"]["profile"] = {"file": "data/profile.csv", "unit": "m"}
 
     _edit(workflow_copy, "profile_cosine", change)
     proc = snakemake(workflow_copy, "results/profile_cosine/surface.nc", check=False)

@@ -36,10 +36,10 @@ def test_profile_cosine_within_0p1_percent(run):
     ds = result(run, "profile_cosine", "surface.nc")
     exact = {"sigma": 1 / np.sqrt(2), "sigma_slope": 2 / np.sqrt(2),
              "sigma_curvature": 4 / np.sqrt(2), "beta": np.sqrt(1.5)}
-    for method in ("sampling", "counting"):
+    for estimator in ("sampling", "counting"):
         for name, value in exact.items():
-            got = float(ds[name].sel({"method": method}))
-            assert got == pytest.approx(value, rel=1e-3), (method, name, got)
+            got = float(ds[name].sel(estimator=estimator))
+            assert got == pytest.approx(value, rel=1e-3), (estimator, name, got)
 
 
 def test_profile_quasirandom_converges(run):
@@ -50,7 +50,7 @@ def test_profile_quasirandom_converges(run):
     # the report saw differences that "become smaller but do not vanish".
     conv = result(run, "profile_quasirandom", "convergence.nc")
     for name in ("sigma_slope", "sigma_curvature"):
-        err = conv[f"{name}_error"].sel({"method": "sampling"}).values
+        err = conv[f"{name}_error"].sel(estimator="sampling").values
         assert err[0] > 1e-2, (name, err)
         assert np.all(err[1:] < err[0]), (name, err)
         assert err[-1] < 0.05 * err[0], (name, err)

@@ -18,8 +18,6 @@ def interface_figure_inputs(wildcards):
 def surface_figure_inputs(wildcards):
     out = f"{RESULTS}/{wildcards.scene}"
     inputs = {"surface": f"{out}/surface.nc"}
-    if surface_kind(wildcards.scene) in ("profile", "map"):
-        inputs.update(surface_inputs(wildcards))
     gen = generated(wildcards.scene)
     if gen and gen.get("convergence_spacings"):
         inputs["convergence"] = f"{out}/convergence.nc"

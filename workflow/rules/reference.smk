@@ -27,8 +27,7 @@ rule reference:
         f"{RESULTS}/{{scene}}/reference.nc",
     params:
         scene=lambda w: w.scene,
-        spacing=lambda w: SCENES[w.scene]["surface"]["map"].get(
-            "spacing", SCENES[w.scene]["surface"]["map"].get("generate", {}).get("spacing")),
+        surface=scene_part("surface"),
         material=scene_part("material"),
         reference=scene_part("reference"),
         units=scene_part("units"),

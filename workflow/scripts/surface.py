@@ -2,43 +2,35 @@
 
 from pathlib import Path
 
-from asperity.stages import surface
-from asperity.io import inputs
-from asperity.io.netcdf import write_dataset
+from asperity.io.inputs import InputError
 from asperity.io.joblog import job_log
+from asperity.io.netcdf import write_dataset
+from asperity.io.topography import read_measurement
+from asperity.stages import surface
 
 with job_log(snakemake.log[0], "surface statistics") as log:
     cfg, units = snakemake.params.surface, snakemake.params.units
-    if "profile" in cfg:
+    if "profile" in cfg or "map" in cfg:
         path = snakemake.input.data
-        z, dx = inputs.read_profile(path, spacing=cfg["profile"].get("spacing"), length_unit=units["length"])
-        log.info("profile %s: %d points, spacing %g m", path, z.size, dx)
+        data = read_measurement(path, **surface.reading(cfg, units))
+        log.info("%s %s: %s points, spacing %g m, read by %s", data.kind, path, data.heights.shape,
+                 data.dx, data.reader)
         try:
-            ds = surface.surface_from_profile(z, dx, cfg)
+            ds = surface.surface_from_data(data.heights, data.spacing, cfg, units, defined=data.defined,
+                                           notes=data.notes)
         except ValueError as err:
-            raise inputs.InputError(path, str(err)) from err
+            raise InputError(path, str(err)) from err
     elif "profiles" in cfg:
-        src = cfg["profiles"]
-        if "generate" in src:
-            folder = Path(snakemake.input.data)
-            items = [(folder / surface.profile_file_name(d), d, None) for d in src["generate"]["directions"]]
-        else:
-            items = [(item["file"], item["direction"], item.get("spacing")) for item in src["files"]]
-        profiles = []
-        for path, direction, spacing in items:
-            z, dx = inputs.read_profile(path, spacing=spacing, length_unit=units["length"])
-            log.info("profile %s at %g deg: %d points, spacing %g m", path, direction, z.size, dx)
-            profiles.append((z, dx))
-        ds = surface.surface_from_profiles(profiles, [d for _, d, _ in items], cfg)
-    elif "map" in cfg:
-        path = snakemake.input.data
-        spacing = cfg["map"].get("spacing", cfg["map"].get("generate", {}).get("spacing"))
-        z, dx, dy = inputs.read_map(path, spacing=spacing, length_unit=units["length"])
-        log.info("map %s: %s points", path, z.shape)
-        try:
-            ds = surface.surface_from_map(z, dx, dy, cfg)
-        except ValueError as err:
-            raise inputs.InputError(path, str(err)) from err
+        folder = Path(snakemake.input.data) if "generate" in cfg["profiles"] else Path()
+        profiles, directions = [], []
+        for item in surface.profile_readings(cfg, units):
+            path = folder / item["file"]
+            data = read_measurement(path, "profile", unit=item["unit"], spacing=item["spacing"], key=item["key"])
+            log.info("profile %s at %g deg: %d points, spacing %g m", path, item["direction"],
+                     data.heights.size, data.dx)
+            profiles.append((data.heights, data.dx))
+            directions.append(item["direction"])
+        ds = surface.surface_from_profiles(profiles, directions, cfg, units)
     else:
         ds = surface.surface_from_statistics(cfg, units)
     write_dataset(ds, snakemake.output[0], scene=snakemake.params.scene,

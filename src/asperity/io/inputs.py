@@ -29,7 +29,7 @@ import numpy as np
 
 from asperity.units import LENGTH, length_scale
 
-__all__ = ["InputError", "read_profile", "read_map"]
+__all__ = ["InputError", "known_length_unit", "read_profile", "read_map"]
 
 # relative tolerance on the uniformity of the sampling steps
 STEP_TOLERANCE = 1e-6
@@ -69,7 +69,7 @@ class InputError(ValueError):
         super().__init__(f"{where}: {reason}")
 
 
-def _known_length_unit(unit) -> str | None:
+def known_length_unit(unit) -> str | None:
     if unit is None:
         return None
     u = str(unit).strip()
@@ -78,7 +78,9 @@ def _known_length_unit(unit) -> str | None:
     return _UNIT_ALIASES.get(u.lower(), _UNIT_ALIASES.get(u))
 
 
-def _scale(path, length_unit: str) -> float:
+def _scale(path, length_unit: str | None) -> float:
+    if length_unit is None:
+        raise InputError(path, "the file states no length unit")
     try:
         return length_scale(length_unit)
     except ValueError as exc:
@@ -306,7 +308,8 @@ def _check_map_size(p: Path, z: np.ndarray):
         raise InputError(p, f"a map needs at least 3 x 3 points; found shape {z.shape} (rows, columns)")
 
 
-def read_map(path, spacing=None, length_unit: str = "m") -> tuple[np.ndarray, float, float]:
+def read_map(path, spacing=None, length_unit: str | None = "m",
+             spacing_unit: str | None = None) -> tuple[np.ndarray, float, float]:
     """Read a height map z(x, y) on a uniform grid (input of report 2.4.3).
 
     Parameters
@@ -328,8 +331,11 @@ def read_map(path, spacing=None, length_unit: str = "m") -> tuple[np.ndarray, fl
         Grid spacing in ``length_unit``, one number or (dx, dy); required
         unless the file's coordinates give it.  If both are present they
         must agree.
-    length_unit : str
-        Unit of the numbers and of ``spacing`` when the file does not say.
+    length_unit : str or None
+        Unit of the numbers and of ``spacing`` when the file does not say;
+        None: the file must say (an error "states no length unit" otherwise).
+    spacing_unit : str, optional
+        Unit of ``spacing`` if not ``length_unit``.
 
     Returns
     -------
@@ -339,10 +345,10 @@ def read_map(path, spacing=None, length_unit: str = "m") -> tuple[np.ndarray, fl
         Spacings along x (axis 1) and y (axis 0), metres.
     """
     p = Path(path)
-    scale = _scale(p, length_unit)
     suffix = p.suffix.lower()
     if suffix == ".nc":
-        return _read_map_netcdf(p, spacing, length_unit)
+        return _read_map_netcdf(p, spacing, length_unit, spacing_unit)
+    scale = _scale(p, length_unit)
     if suffix == ".npy":
         z = _load_npy(p)
         if z.ndim != 2:
@@ -359,10 +365,11 @@ def read_map(path, spacing=None, length_unit: str = "m") -> tuple[np.ndarray, fl
         _check_finite(p, z, lines, "map")
     _check_map_size(p, z)
     dx, dy = _map_spacing(p, spacing)
-    return np.ascontiguousarray(z) * scale, dx * scale, dy * scale
+    step_scale = scale if spacing_unit is None else _scale(p, spacing_unit)
+    return np.ascontiguousarray(z) * scale, dx * step_scale, dy * step_scale
 
 
-def _read_map_netcdf(p: Path, spacing, length_unit: str):
+def _read_map_netcdf(p: Path, spacing, length_unit: str | None, spacing_unit: str | None = None):
     import xarray as xr
 
     try:
@@ -385,7 +392,7 @@ def _read_map_netcdf(p: Path, spacing, length_unit: str):
             raise InputError(p, f"variable {name!r} must be 2-D (y, x); found dims {var.dims}")
         z = np.asarray(var.values, dtype=np.float64)
         _check_finite(p, z, None, "map")  # before any flip: (row, column) as stored
-        z_unit = _known_length_unit(var.attrs.get("units"))
+        z_unit = known_length_unit(var.attrs.get("units"))
         zscale = length_scale(z_unit) if z_unit else _scale(p, length_unit)
         steps = []
         for axis, dim in enumerate(var.dims):
@@ -396,7 +403,7 @@ def _read_map_netcdf(p: Path, spacing, length_unit: str):
                 if coord.size >= 2 and coord[-1] < coord[0]:
                     coord = coord[::-1]
                     z = np.flip(z, axis=axis)
-                c_unit = _known_length_unit(ds[dim].attrs.get("units"))
+                c_unit = known_length_unit(ds[dim].attrs.get("units"))
                 cscale = length_scale(c_unit) if c_unit else _scale(p, length_unit)
                 step = _uniform_step(p, coord, None, f"coordinate {dim!r}") if coord.size >= 2 else None
                 steps.append(None if step is None else step * cscale)
@@ -404,16 +411,17 @@ def _read_map_netcdf(p: Path, spacing, length_unit: str):
                 steps.append(None)
     _check_map_size(p, z)
     dy_c, dx_c = steps
+    spacing_unit = spacing_unit or length_unit
     if dx_c is None or dy_c is None:
-        # missing coordinates: the spacing argument (in length_unit) fills in
+        # missing coordinates: the spacing argument (in spacing_unit) fills in
         dx_s, dy_s = _map_spacing(p, spacing)
-        unit = _scale(p, length_unit)
+        unit = _scale(p, spacing_unit)
         dx = dx_c if dx_c is not None else dx_s * unit
         dy = dy_c if dy_c is not None else dy_s * unit
     else:
         dx, dy = dx_c, dy_c
         if spacing is not None:
-            dx_s, dy_s = (x * _scale(p, length_unit) for x in _map_spacing(p, spacing))
+            dx_s, dy_s = (x * _scale(p, spacing_unit) for x in _map_spacing(p, spacing))
             if abs(dx_s - dx) > STEP_TOLERANCE * dx or abs(dy_s - dy) > STEP_TOLERANCE * dy:
                 raise InputError(
                     p,

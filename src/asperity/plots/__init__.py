@@ -9,3 +9,4 @@ import matplotlib
 matplotlib.use("Agg")
 
 from asperity.plots.figures import *  # noqa: E402,F401,F403
+from asperity.plots.surface import *  # noqa: E402,F401,F403

@@ -14,82 +14,12 @@ import xarray as xr
 from asperity import units
 from asperity.plots.validity import shade_invalid
 
-METHOD_STYLE = {
-    "sampling": dict(color="C0", marker="o"),
-    "counting": dict(color="C1", marker="s"),
-    "spectral": dict(color="C2", marker="^"),
-    "exact": dict(color="k", marker="*"),
-    "given": dict(color="k", marker="*"),
-}
-
 
 def finish(fig: plt.Figure, axes, fontsize: int = 8) -> plt.Figure:
     """Legend and major and minor grid on every panel, then a tight layout."""
     for ax in axes:
         ax.legend(fontsize=fontsize)
         ax.grid(True, which="both", alpha=0.3)
-    fig.tight_layout()
-    return fig
-
-
-def surface_figure(
-    surface: xr.Dataset,
-    profile: tuple[np.ndarray, np.ndarray] | None = None,
-    convergence: xr.Dataset | None = None,
-    length_unit: str = "m",
-) -> plt.Figure:
-    """Profile (report Figs. 2.11, 2.12a), statistics by method, convergence."""
-    scale = units.length_scale(length_unit)
-    panels = 1 + (profile is not None) + (convergence is not None)
-    fig, axes = plt.subplots(1, panels, figsize=(5.2 * panels, 4.0), squeeze=False)
-    axes = list(axes[0])
-    if profile is not None:
-        ax = axes.pop(0)
-        x, z = profile
-        n = min(x.size, 1000)
-        ax.plot(x[:n] / scale, z[:n] / scale, lw=0.8)
-        ax.set(xlabel=f"position [{length_unit}]", ylabel=f"height [{length_unit}]",
-               title=f"profile (first {n} of {x.size} points)")
-    ax = axes.pop(0)
-    names = ["sigma", "sigma_slope", "sigma_curvature", "beta", "peak_density"]
-    names = [n for n in names if n in surface]
-    if "method" in surface.dims:
-        reference = "exact" if "exact" in surface["method"].values else None
-        for method in surface["method"].values:
-            if method == reference:
-                continue
-            vals = np.array([float(surface[n].sel({"method": method})) for n in names])
-            if reference:
-                ref = np.array([float(surface[n].sel({"method": reference})) for n in names])
-                y = 100 * np.abs(vals / ref - 1)
-            else:
-                y = vals
-            ax.plot(range(len(names)), y, ls="none", label=str(method),
-                    **METHOD_STYLE.get(str(method), {}))
-        ax.set_xticks(range(len(names)), [n.replace("sigma_", "σ ") for n in names], rotation=30)
-        if reference:
-            ax.set_yscale("log")
-            ax.set_ylabel("error against exact [%]")
-            ax.axhline(0.1, color="r", lw=0.8, ls="--", label="0.1 %")
-        else:
-            ax.set_ylabel("value (SI)")
-        ax.legend(fontsize=8)
-        ax.set_title("statistics by method")
-    else:
-        text = "\n".join(f"{n} = {float(surface[n]):.6g} {surface[n].attrs['units']}"
-                         for n in surface.data_vars if surface[n].ndim == 0)
-        ax.text(0.05, 0.5, text, transform=ax.transAxes, va="center", family="monospace")
-        ax.set_axis_off()
-    if convergence is not None:
-        ax = axes.pop(0)
-        h = convergence["spacing"].values / scale
-        for name, color in (("sigma", "C0"), ("sigma_slope", "C1"), ("sigma_curvature", "C2")):
-            for method, ls in (("sampling", "-"), ("counting", "--")):
-                ax.loglog(h, convergence[f"{name}_error"].sel({"method": method}), ls=ls, color=color,
-                          marker="o", label=f"{name} ({method})")
-        ax.set(xlabel=f"sampling interval [{length_unit}]", ylabel="relative error against series",
-               title="convergence with the sampling interval")
-        ax.legend(fontsize=7)
     fig.tight_layout()
     return fig
 
@@ -238,69 +168,6 @@ def unloading_figure(unloading: xr.Dataset, length_unit: str = "m", count: int =
            xlim=(0, 1.05 * top / ls_))
     ax.legend(fontsize=8)
     ax.grid(True, alpha=0.3)
-    fig.tight_layout()
-    return fig
-
-
-def map_figure(z: np.ndarray, surface: xr.Dataset, length_unit: str = "m",
-               bins: tuple[int, int] = (20, 20)) -> plt.Figure:
-    """A height map with its eight-neighbour peaks (Fig. 2.8) and their sampled
-    joint density of height and curvature (Fig. 2.9)."""
-    scale = units.length_scale(length_unit)
-    dx, dy = float(surface["spacing_x"]), float(surface["spacing_y"])
-    fig, axes = plt.subplots(1, 2, figsize=(12, 4.8))
-    ny, nx = z.shape
-    im = axes[0].imshow(z / scale, origin="lower", cmap="terrain",
-                        extent=(0, nx * dx / scale, 0, ny * dy / scale))
-    fig.colorbar(im, ax=axes[0], label=f"height [{length_unit}]")
-    axes[0].plot(surface["x"] / scale, surface["y"] / scale, "r.", ms=3, label="peaks")
-    axes[0].set(xlabel=f"x [{length_unit}]", ylabel=f"y [{length_unit}]",
-                title=f"{surface.sizes['peak']} peaks, {float(surface['peak_density']) * scale**2:.3g} "
-                      f"per {length_unit}^2")
-    axes[0].legend(fontsize=8, loc="upper right")
-    h, k = surface["height"].values / scale, surface["curvature"].values * scale
-    counts, ze, ke, mesh = axes[1].hist2d(h, k, bins=bins, cmap="Blues", density=True)
-    fig.colorbar(mesh, ax=axes[1], label=f"sampled f(z_p, κ) [1/({length_unit}·1/{length_unit})]")
-    axes[1].plot(h, k, "k.", ms=2)
-    axes[1].set(xlabel=f"peak height z_p [{length_unit}]", ylabel=f"mean curvature κ [1/{length_unit}]",
-                title="sampled joint density of peaks (2.4.3)")
-    fig.tight_layout()
-    return fig
-
-
-def directional_figure(surface: xr.Dataset, length_unit: str = "m") -> plt.Figure:
-    """m2 and m4 of each profile versus direction, with the least-squares moments
-    (2.3.2) and, for a synthetic surface, the exact ones (eq. 2.4)."""
-    scale = units.length_scale(length_unit)
-    method = surface.attrs.get("population_method", "sampling")
-    t = np.linspace(0, np.pi, 181)
-    c, s = np.cos(t), np.sin(t)
-    fig, axes = plt.subplots(1, 2, figsize=(11, 4.2))
-
-    def m2(sfx=""):
-        g = lambda n: float(surface[f"{n}{sfx}"])  # noqa: E731
-        return g("m20") * c**2 + 2 * g("m11") * c * s + g("m02") * s**2
-
-    def m4(sfx=""):
-        g = lambda n: float(surface[f"{n}{sfx}"])  # noqa: E731
-        return (g("m40") * c**4 + 4 * g("m31") * c**3 * s + 6 * g("m22") * c**2 * s**2
-                + 4 * g("m13") * c * s**3 + g("m04") * s**4)
-
-    theta = np.degrees(surface["direction"].values)
-    per = surface.sel({"method": method})
-    axes[0].plot(theta, per["m2"], "o", label=f"profiles ({method})")
-    axes[0].plot(np.degrees(t), m2(), "-", label="least-squares m20, m11, m02")
-    if "m20_exact" in surface:
-        axes[0].plot(np.degrees(t), m2("_exact"), "k--", label="exact (eq. 2.4)")
-    axes[0].set(xlabel="profile direction [deg]", ylabel="m2 (slope variance) [1]")
-    if "m40" in surface:
-        axes[1].plot(theta, per["m4"] * scale**2, "o", label=f"profiles ({method})")
-        axes[1].plot(np.degrees(t), m4() * scale**2, "-", label="least-squares m40 ... m04")
-        if "m40_exact" in surface:
-            axes[1].plot(np.degrees(t), m4("_exact") * scale**2, "k--", label="exact (eq. 2.4)")
-    axes[1].set(xlabel="profile direction [deg]", ylabel=f"m4 (curvature variance) [1/{length_unit}^2]")
-    for ax in axes:
-        ax.legend(fontsize=8)
     fig.tight_layout()
     return fig
 

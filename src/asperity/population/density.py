@@ -17,14 +17,14 @@ Config = Mapping[str, Any]
 
 
 def default_density(surface_ds: xr.Dataset) -> str:
-    method = surface_ds.attrs.get("population_method")
-    return {"gaussian_heights": "fixed_curvature", "map": "sampled"}.get(method, "nayak")
+    estimator = surface_ds.attrs.get("population_estimator")
+    return {"gaussian_heights": "fixed_curvature", "map": "sampled"}.get(estimator, "nayak")
 
 
 def population_density(surface_ds: xr.Dataset, population: Config):
     """The peak density of a scene: Nayak/Francis, fixed curvature, or sampled."""
     kind = population.get("density") or default_density(surface_ds)
-    method = surface_ds.attrs.get("population_method")
+    estimator = surface_ds.attrs.get("population_estimator")
     if kind == "fixed_curvature":
         if "sigma_peak_height" not in surface_ds:
             raise ValueError("population.density fixed_curvature needs surface.gaussian_heights")
@@ -39,7 +39,7 @@ def population_density(surface_ds: xr.Dataset, population: Config):
         return peaks.SampledDensity.from_peaks(
             surface_ds["height"].values, surface_ds["curvature"].values, bins=bins
         )
-    stats = surface_ds.sel({"method": method}) if "method" in surface_ds.dims else surface_ds
+    stats = surface_ds.sel(estimator=estimator) if "estimator" in surface_ds.dims else surface_ds
     return peaks.JointDensity(
         sigma=float(stats["sigma"]),
         sigma_slope=float(stats["sigma_slope"]),
@@ -53,10 +53,10 @@ def peak_density(surface_ds: xr.Dataset) -> float:
 
 
 def population_stat(surface_ds: xr.Dataset, name: str) -> float:
-    """A statistic of the method that feeds the population."""
+    """A statistic of the estimator that feeds the population."""
     value = surface_ds[name]
-    if "method" in value.dims:
-        value = value.sel({"method": surface_ds.attrs["population_method"]})
+    if "estimator" in value.dims:
+        value = value.sel(estimator=surface_ds.attrs["population_estimator"])
     return float(value)
 
 

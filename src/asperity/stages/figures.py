@@ -12,30 +12,20 @@ import xarray as xr
 from asperity import plots
 from asperity.plots import adhesion as adhesion_plots
 from asperity.population.density import population_density
-from asperity.scene import length_factor
 
 Config = Mapping[str, Any]
 
 
-def surface_figure(kind: str, surface: xr.Dataset, units_cfg: Config, data=None,
+def surface_figure(kind: str, surface: xr.Dataset, units_cfg: Config,
                    convergence: xr.Dataset | None = None):
-    """The surface figure of a scene: `kind` is the scene's surface source (profile,
-    profiles, map, statistics); `data` the profile (z, dx) or map (z) it was read from."""
+    """The surface figure of a scene, from its surface.nc: `kind` is the scene's surface
+    source (profile, profiles, map, statistics, gaussian_heights)."""
     length_unit = units_cfg["length"]
     if kind == "profiles":
         return plots.directional_figure(surface, length_unit=length_unit)
     if kind == "map":
-        return plots.map_figure(data, surface, length_unit=length_unit)
-    profile = None
-    if kind == "profile":
-        z, dx = data
-        profile = (dx * np.arange(z.size), z)
-    return plots.surface_figure(surface, profile, convergence, length_unit=length_unit)
-
-
-def map_spacing(surface: xr.Dataset, units_cfg: Config) -> float:
-    """The map's spacing in the scene's length unit (to read the map file again)."""
-    return float(surface["spacing_x"]) / length_factor(units_cfg)
+        return plots.map_figure(surface, length_unit=length_unit)
+    return plots.surface_figure(surface, convergence, length_unit=length_unit)
 
 
 def density_on_grid(surface_ds: xr.Dataset, population: Config, rect, n: int = 200):

@@ -59,8 +59,10 @@ def route_scene(name: str, definition: Config, route: str, results: str) -> dict
     derived["title"] = f"{definition.get('title', name)}: route {route}"
     source = definition["surface"]["map"]
     if "generate" in source:
-        derived["surface"] = {"map": {"file": f"{results}/{name}/input/map.npy",
-                                      "spacing": source["generate"]["spacing"]}}
+        derived["surface"] = {**{k: v for k, v in definition["surface"].items() if k != "map"},
+                              "map": {"file": f"{results}/{name}/input/map.npy",
+                                      "spacing": source["generate"]["spacing"],
+                                      "unit": definition["units"]["length"]}}
     homogenization = derived.setdefault("homogenization", {})
     homogenization["separations"] = copy.deepcopy(definition["reference"]["separations"])
     return derived

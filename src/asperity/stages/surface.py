@@ -1,9 +1,31 @@
 """Stage `surface` (workflow/rules/surface.smk): surface.nc from a profile, profiles, a map,
-or statistics given in the scene (report 2.3, 2.4.3, 2.6.1); synthetic surfaces."""
+or statistics given in the scene (report 2.3, 2.4.3, 2.6.1); synthetic surfaces.
+
+A measured profile or map is prepared as ISO 16610 prescribes before any
+statistic is taken (report 2.3.1 assumes a stationary profile about its
+mean line):
+
+1. undefined points: their share is checked against the scene's limit, and
+   optionally filled (harmonic in-fill);
+2. form removal (least-squares mean, tilt or polynomial);
+3. the Gaussian filter (lambda_c, lambda_s), and the run-in and run-out of
+   lambda_c / 2 dropped;
+4. statistics of what is left (the roughness): the sampling, counting and
+   spectral estimates of a profile (2.3.1) or the statistics and peaks of a
+   map (2.4.3), skewness, kurtosis and bearing-area curve, the power
+   spectrum and autocorrelation.
+
+surface.nc records what was removed, the rms height before and after, the
+share of undefined points, whether the heights are Gaussian, the axis
+convention of maps, and a preview of the raw heights, the removed form and
+the roughness for the figure.
+"""
 
 from __future__ import annotations
 
 import logging
+import math
+from dataclasses import dataclass
 from typing import Any, Mapping
 
 import numpy as np
@@ -11,20 +33,53 @@ import xarray as xr
 
 from asperity import surface
 from asperity.scene import length_factor
+from asperity.scene.surface import SurfaceScene
 from asperity.units import attrs
 
 log = logging.getLogger("asperity")
 
 Config = Mapping[str, Any]
 
+#: the most points per axis kept in surface.nc's preview of the heights (for the figure)
+PREVIEW_PROFILE = 20000
+PREVIEW_MAP = 512
+#: the autocorrelation's decay that defines the correlation length (ISO 25178's Sal uses 0.2)
+CORRELATION_THRESHOLD = 0.2
+
+
+# --------------------------------------------------------------------------
+# synthetic surfaces (scene `generate` sections)
+# --------------------------------------------------------------------------
+
 
 def synthetic_profile(generate: Config) -> tuple[np.ndarray, np.ndarray]:
     """Positions and heights of a synthetic profile of report 2.6.1, scene units."""
-    x = np.arange(0.0, generate["length"] + 0.5 * generate["spacing"], generate["spacing"])
     if generate["kind"] == "cosine":
-        return x, generate["amplitude"] * np.cos(generate["wavenumber"] * x)
-    c, k, e = surface.quasirandom_series(n=generate["components"], seed=generate["seed"])
-    return x, surface.evaluate_series(x, c, k, e)
+        return surface.synthetic_profile("cosine", generate["spacing"], generate["length"],
+                                         amplitude=generate["amplitude"], wavenumber=generate["wavenumber"])
+    return surface.synthetic_profile("series", generate["spacing"], generate["length"],
+                                     components=generate["components"], seed=generate["seed"])
+
+
+def synthetic_map(generate: Config) -> np.ndarray:
+    """The Gaussian random height map of a scene (scene units), :func:`surface.gaussian_map`."""
+    return surface.gaussian_map(generate["points"], generate["spacing"], generate["sigma"],
+                                generate["correlation_length"], generate["seed"])
+
+
+def profile_file_name(direction_deg: float) -> str:
+    """File name of the synthetic profile along `direction_deg`."""
+    return f"profile_{direction_deg:g}deg.txt"
+
+
+def _anisotropic(generate: Config):
+    return surface.anisotropic_series(generate["components"], generate["seed"], generate["aspect"])
+
+
+def synthetic_directional_profiles(generate: Config) -> list[tuple[np.ndarray, np.ndarray]]:
+    """Profiles of a synthetic anisotropic surface along the scene's directions (2.3.2)."""
+    return surface.directional_profiles(generate["components"], generate["seed"], generate["aspect"],
+                                        generate["spacing"], generate["length"], generate["directions"])
 
 
 def _series_reference(generate: Config, length: float) -> dict[str, float] | None:
@@ -45,80 +100,6 @@ def _series_reference(generate: Config, length: float) -> dict[str, float] | Non
     }
 
 
-def surface_from_profile(z: np.ndarray, dx: float, surface_cfg: Config) -> xr.Dataset:
-    """Profile statistics by sampling, counting and spectrum (2.3.1), SI input.
-
-    For a synthetic profile the exact statistics are added as method
-    ``exact`` (cosine: closed form; series: eq. 2.4).
-    """
-    ds = surface.profile_statistics(z, dx)
-    generate = surface_cfg["profile"].get("generate")
-    if generate:
-        # the synthetic profile was written in scene units and read back in SI;
-        # its exact statistics scale with the same factor
-        length = dx / generate["spacing"]
-        exact = _series_reference(generate, length)
-        extra = xr.full_like(ds.isel(method=0), np.nan).expand_dims(method=["exact"])
-        for name, value in exact.items():
-            extra[name] = extra[name].copy(data=np.array([value]))
-        extra["m0"] = extra["sigma"] ** 2
-        extra["m2"] = extra["sigma_slope"] ** 2
-        extra["m4"] = extra["sigma_curvature"] ** 2
-        extra["peak_density"] = extra["m4"] / (6 * np.pi * np.sqrt(3) * extra["m2"])
-        merged = xr.concat([ds, extra], dim="method", data_vars="all", coords="minimal")
-        for name in ds.variables:
-            merged[name].attrs = ds[name].attrs
-        ds = merged
-    ds.attrs["population_method"] = surface_cfg.get("method", "sampling")
-    return ds
-
-
-def surface_from_map(z: np.ndarray, dx: float, dy: float, surface_cfg: Config) -> xr.Dataset:
-    """Statistics and peaks of a 2-D height map (2.4.3), SI input."""
-    ds = xr.merge([surface.map_statistics(z, dx, dy), surface.map_peaks(z, dx, dy)])
-    ds.attrs["population_method"] = "map"
-    return ds
-
-
-def surface_from_statistics(surface_cfg: Config, units_cfg: Config) -> xr.Dataset:
-    """Surface statistics given in the scene (report 2.6.2), as method ``given``."""
-    length = length_factor(units_cfg)
-    if "gaussian_heights" in surface_cfg:
-        gh = surface_cfg["gaussian_heights"]
-        ds = xr.Dataset(
-            {
-                "sigma_peak_height": ((), gh["sigma_peak_height"] * length,
-                                      attrs("m", "standard deviation of peak heights")),
-                "tip_curvature": ((), 1.0 / (gh["radius"] * length),
-                                  attrs("1/m", "curvature of every asperity tip (1/R)")),
-                "peak_density": ((), gh["peak_density"] / length**2,
-                                 attrs("1/m^2", "peaks per unit nominal area")),
-            }
-        )
-        ds.attrs["population_method"] = "gaussian_heights"
-        return ds
-    st = surface_cfg["statistics"]
-    values = {
-        "mean_height": (st.get("mean_height", 0.0) * length, "m", "mean height"),
-        "sigma": (st["sigma"] * length, "m", "standard deviation of height"),
-        "sigma_slope": (st["sigma_slope"], "1", "standard deviation of slope"),
-        "sigma_curvature": (st["sigma_curvature"] / length, "1/m", "standard deviation of curvature"),
-        "peak_density": (st["peak_density"] / length**2, "1/m^2", "peaks per unit nominal area"),
-    }
-    ds = xr.Dataset(
-        {name: ("method", [v], attrs(u, ln)) for name, (v, u, ln) in values.items()},
-        coords={"method": ("method", ["given"], attrs("1", "how the statistics were obtained"))},
-    )
-    ds["m0"] = (ds["sigma"] ** 2).assign_attrs(attrs("m^2", "spectral moment m0"))
-    ds["m2"] = (ds["sigma_slope"] ** 2).assign_attrs(attrs("1", "spectral moment m2"))
-    ds["m4"] = (ds["sigma_curvature"] ** 2).assign_attrs(attrs("1/m^2", "spectral moment m4"))
-    ds["beta"] = (np.sqrt(1.5) * ds["m2"] / np.sqrt(ds["m0"] * ds["m4"])).assign_attrs(
-        attrs("1", "wavelength spectrum parameter beta (2.4.1)")
-    )
-    ds.attrs["population_method"] = "given"
-    return ds
-
-
 def series_convergence(generate: Config, units_cfg: Config) -> xr.Dataset:
     """Sampled statistics of a synthetic profile versus spacing, against exact (2.6.1).
 
@@ -133,7 +114,7 @@ def series_convergence(generate: Config, units_cfg: Config) -> xr.Dataset:
     for spacing in spacings:  # a handful of spacings; each call is vectorized
         x, z = synthetic_profile({**generate, "spacing": spacing})
         stats = surface.profile_statistics(z * length, spacing * length)
-        rows.append(stats[names].sel({"method": ["sampling", "counting", "spectral"]}))
+        rows.append(stats[names].sel(estimator=["sampling", "counting", "spectral"]))
     ds = xr.concat(rows, dim="spacing")
     ds = ds.assign_coords(
         spacing=("spacing", spacings * length, attrs("m", "sampling interval of the profile"))
@@ -150,76 +131,433 @@ def series_convergence(generate: Config, units_cfg: Config) -> xr.Dataset:
     return ds
 
 
-def synthetic_map(generate: Config) -> np.ndarray:
-    """A Gaussian random height map (scene units) with a Gaussian autocorrelation.
+def reading(surface_cfg: Config, units_cfg: Config) -> dict[str, Any]:
+    """What the reader of the scene's profile or map file needs to know
+    (`asperity.io.topography.read_measurement`): kind, the file's unit and spacing as the
+    scene gives them (SI), the channel, and the scene key for its messages."""
+    scene = SurfaceScene.from_config(surface_cfg, units_cfg)
+    return {"kind": scene.source, "unit": scene.file_unit, "spacing": scene.spacing,
+            "channel": scene.section.get("channel"), "key": f"surface.{scene.source}"}
 
-    White noise filtered in Fourier space by exp(-k^2 l^2 / 8), which gives
-    the autocorrelation exp(-r^2 / l^2) (l: correlation length), scaled to
-    the standard deviation `sigma`.  Periodic, so the eight-neighbour peak
-    rule of 2.4.3 sees no edge effects.
+
+def profile_readings(surface_cfg: Config, units_cfg: Config) -> list[dict[str, Any]]:
+    """What the reader needs for each file of the scene's `profiles` (2.3.2), with its direction."""
+    scene = SurfaceScene.from_config(surface_cfg, units_cfg)
+    if scene.generated:
+        return [{"file": profile_file_name(d), "direction": d, "unit": scene.scene_unit, "spacing": None,
+                 "key": "surface.profiles.generate"} for d in scene.generated["directions"]]
+    return [{"file": item["file"], "direction": item["direction"], "unit": item.get("unit"),
+             "spacing": None if item.get("spacing") is None else item["spacing"] * scene.length,
+             "key": f"surface.profiles.files.{i}"} for i, item in enumerate(scene.section["files"])]
+
+
+# --------------------------------------------------------------------------
+# preparing a measured profile or map: undefined points, form, filter
+# --------------------------------------------------------------------------
+
+
+@dataclass
+class Prepared:
+    """A profile or map after form removal and filtering, and what was removed."""
+
+    raw: np.ndarray  # heights as read (m), NaN where undefined
+    form: np.ndarray  # the removed polynomial plus the lambda_c mean line (m)
+    roughness: np.ndarray  # what the statistics see, NaN where undefined or outside the region
+    defined: np.ndarray  # of the raw heights
+    region: tuple[slice, ...]  # the evaluation region (index slices, rows first for maps)
+    undefined_share: float
+    filled: int  # points filled by harmonic in-fill
+    spacing: Any  # dx or (dx, dy)
+
+    @property
+    def evaluated(self) -> np.ndarray:
+        """The roughness over the evaluation region."""
+        return self.roughness[self.region]
+
+    @property
+    def evaluated_defined(self) -> np.ndarray:
+        return np.isfinite(self.evaluated)
+
+
+def prepare(heights, spacing, scene: SurfaceScene, defined=None) -> Prepared:
+    """Undefined points, form removal and filtering of a measured profile or map (see module text).
+
+    ``heights`` are in metres (1-D profile, or 2-D map ``z[i, j] = z(x = j
+    dx, y = i dy)``), ``spacing`` dx or (dx, dy); ``defined`` False at
+    undefined points.  Raises ValueError naming the scene key when the share
+    of undefined points is above ``surface.undefined.max_share``, or when
+    too little is left after filtering.
     """
-    n, h = generate["points"], generate["spacing"]
-    rng = np.random.default_rng(generate["seed"])
-    noise = rng.standard_normal((n, n))
-    k = 2 * np.pi * np.fft.fftfreq(n, d=h)
-    k2 = k[:, None] ** 2 + k[None, :] ** 2
-    z = np.fft.ifft2(np.fft.fft2(noise) * np.exp(-k2 * generate["correlation_length"] ** 2 / 8)).real
-    z -= z.mean()
-    return z * (generate["sigma"] / z.std())
+    z = np.array(heights, dtype=np.float64)
+    mask = np.isfinite(z) if defined is None else (np.asarray(defined, bool) & np.isfinite(z))
+    if not mask.any():
+        raise ValueError(f"every point of the {'profile' if z.ndim == 1 else 'map'} is undefined")
+    share = 1.0 - float(np.count_nonzero(mask)) / mask.size
+    if share > scene.max_undefined_share:
+        raise ValueError(
+            f"{100 * share:.1f} % of the points are undefined, more than the scene allows "
+            f"(key surface.undefined.max_share = {scene.max_undefined_share:g}); raise it to accept the "
+            "measurement, or set surface.undefined.fill: harmonic to fill them"
+        )
+    z[~mask] = np.nan
+    raw = z.copy()
+    filled = 0
+    if scene.fill == "harmonic" and share > 0:
+        z = surface.harmonic_fill(np.where(mask, z, 0.0), mask)
+        filled = int(mask.size - np.count_nonzero(mask))
+        log.info("harmonic in-fill of %d undefined points (%.2f %%)", filled, 100 * share)
+    use = np.isfinite(z)
+    residual, form = surface.remove_form(z, scene.form, scene.polynomial_degree, use)
+    rough, waviness, region = surface.filter_heights(residual, spacing, scene.lambda_c, scene.lambda_s, use)
+    _check_length(rough, spacing, scene, region)
+    outside = np.ones(rough.shape, dtype=bool)
+    outside[region] = False
+    rough[outside] = np.nan
+    return Prepared(raw, form + waviness, rough, mask, region, share, filled, spacing)
 
 
-def profile_file_name(direction_deg: float) -> str:
-    """File name of the synthetic profile along `direction_deg`."""
-    return f"profile_{direction_deg:g}deg.txt"
+def prepared_roughness(heights, spacing, surface_cfg: Config, units_cfg: Config, defined=None) -> np.ndarray:
+    """The roughness the statistics of `surface_from_data` see (m): the heights after the
+    scene's in-fill, form removal and filter, NaN where undefined or outside the evaluation
+    region; for whatever else must work on the same surface (the boundary-element reference)."""
+    scene = SurfaceScene.from_config(surface_cfg, units_cfg)
+    return prepare(np.asarray(heights, dtype=np.float64), spacing, scene, defined).roughness
 
 
-def anisotropic_series(generate: Config):
-    """Amplitudes, wave vectors and phases of a synthetic anisotropic surface (eq. 2.3).
+def _check_length(rough: np.ndarray, spacing, scene: SurfaceScene, region):
+    """After filtering, at least one cut-off wavelength and a stencil's worth of points must remain."""
+    steps = np.atleast_1d(np.asarray(spacing, dtype=np.float64))
+    axis_steps = [float(steps[0])] if rough.ndim == 1 else [float(steps[-1]), float(steps[0])]
+    names = ["x"] if rough.ndim == 1 else ["y", "x"]
+    what = "profile" if rough.ndim == 1 else "map"
+    need_points = surface.DEFAULT_ORDER + 2
+    for sl, n, h, name in zip(region, rough.shape, axis_steps, names):
+        kept = max(0, sl.stop - sl.start)
+        widest = scene.lambda_c if scene.lambda_c is not None else scene.lambda_s
+        if widest is None:
+            continue
+        if kept * h < widest or kept < need_points:
+            raise ValueError(
+                f"{what} too short after filtering: {n} points ({n * h:.6g} m) along {name}; the filter "
+                f"(key surface.filter, cut-off {widest:.6g} m) drops {widest / 2:.6g} m at each end and "
+                f"leaves {kept} points ({kept * h:.6g} m), less than one cut-off wavelength or the "
+                f"{need_points} points the statistics need. Use a shorter cut-off or a longer record"
+            )
 
-    The 1-D quasi-random series of 2.6.1 with each wave vector turned to a
-    random direction and its x component stretched by `aspect`.
+
+# --------------------------------------------------------------------------
+# surface.nc
+# --------------------------------------------------------------------------
+
+
+def _scalar(value, units: str, long_name: str):
+    return ((), value, attrs(units, long_name))
+
+
+def _stride(n: int, most: int) -> int:
+    return max(1, int(math.ceil(n / most)))
+
+
+def _preview(prep: Prepared) -> dict:
+    """The raw heights, the removed form and the roughness, every k-th point (for the figure)."""
+    if prep.raw.ndim == 1:
+        dx = float(prep.spacing)
+        s = _stride(prep.raw.size, PREVIEW_PROFILE)
+        x = dx * np.arange(0, prep.raw.size, s)
+        dims = ("position",)
+        coords = {"position": ("position", x, attrs("m", f"position along the profile (every {s}. point)"))}
+        pick = (slice(None, None, s),)
+    else:
+        dx, dy = (float(v) for v in prep.spacing)
+        ny, nx = prep.raw.shape
+        s = max(_stride(nx, PREVIEW_MAP), _stride(ny, PREVIEW_MAP))
+        dims = ("map_y", "map_x")
+        coords = {"map_x": ("map_x", dx * np.arange(0, nx, s), attrs("m", f"x of the map (every {s}. column)")),
+                  "map_y": ("map_y", dy * np.arange(0, ny, s), attrs("m", f"y of the map (every {s}. row)"))}
+        pick = (slice(None, None, s), slice(None, None, s))
+    data = {
+        "raw_height": (dims, prep.raw[pick], attrs("m", "height as read from the file (NaN: undefined)")),
+        "form_height": (dims, prep.form[pick],
+                        attrs("m", "removed form: the least-squares polynomial plus the lambda_c mean line")),
+        "roughness_height": (dims, prep.roughness[pick],
+                             attrs("m", "roughness: what the statistics see (NaN: undefined, or dropped "
+                                        "at the ends by the filter)")),
+    }
+    return {"data": data, "coords": coords}
+
+
+def _removal(prep: Prepared, scene: SurfaceScene) -> dict:
+    """What was removed, and the rms height before and after."""
+    raw = prep.raw[np.isfinite(prep.raw)]
+    ev = prep.evaluated
+    rough = ev[np.isfinite(ev)]
+    removed = (prep.raw - prep.roughness)[prep.region]
+    removed = removed[np.isfinite(removed)]
+    return {
+        "rms_height_raw": _scalar(float(np.sqrt(np.mean((raw - raw.mean()) ** 2))), "m",
+                                  "rms height of the heights as read, only their mean removed"),
+        "rms_height": _scalar(float(np.sqrt(np.mean((rough - rough.mean()) ** 2))), "m",
+                              "rms height of the roughness (Rq / Sq), after form removal and filter"),
+        "rms_removed": _scalar(float(np.sqrt(np.mean((removed - removed.mean()) ** 2))) if removed.size else 0.0,
+                               "m", "rms of what form removal and the filter took away"),
+        "undefined_share": _scalar(prep.undefined_share, "1",
+                                   "share of the points of the file that are undefined"),
+        "filled_points": _scalar(np.int64(prep.filled), "1", "undefined points filled by harmonic in-fill"),
+    }
+
+
+def _removal_attrs(scene: SurfaceScene, prep: Prepared) -> dict:
+    return {"form_removed": scene.form_text, "filter": scene.filter_text,
+            "undefined_fill": scene.fill if prep.filled else "none",
+            "evaluation_region": ", ".join(f"{sl.start}:{sl.stop}" for sl in prep.region)}
+
+
+def _distribution(rough: np.ndarray, defined: np.ndarray, kind: str) -> tuple[dict, dict, dict]:
+    """Skewness, kurtosis, bearing-area curve, and the Gaussian verdict (variables, coords, attrs)."""
+    dist = surface.height_distribution(rough, defined)
+    gaussian, why = surface.gaussianity(dist["skewness"], dist["kurtosis"])
+    iso = ("Rsk", "Rku") if kind == "profile" else ("Ssk", "Sku")
+    data = {
+        "skewness": _scalar(dist["skewness"], "1", f"skewness of the heights ({iso[0]}; 0 for Gaussian heights)"),
+        "kurtosis": _scalar(dist["kurtosis"], "1", f"kurtosis of the heights ({iso[1]}; 3 for Gaussian heights)"),
+        "bearing_height": ("material_ratio", dist["bearing_height"],
+                           attrs("m", "bearing-area (Abbott-Firestone) curve: height above which that "
+                                      "share of the surface lies, about the mean")),
+    }
+    coords = {"material_ratio": ("material_ratio", dist["material_ratio"],
+                                 attrs("1", "material ratio: share of the points at or above the height"))}
+    lo, hi = surface.KURTOSIS_RANGE
+    out = {"gaussian": "yes" if gaussian else f"no: {why}",
+           "gaussian_limits": f"|skewness| <= {surface.SKEWNESS_LIMIT:g}, kurtosis {lo:g} ... {hi:g}"}
+    return data, coords, out
+
+
+def _correlation_length(r: np.ndarray, R: np.ndarray) -> float:
+    below = np.flatnonzero(R <= CORRELATION_THRESHOLD)
+    if below.size == 0:
+        return math.nan
+    i = int(below[0])
+    if i == 0:
+        return float(r[0])
+    r0, r1, R0, R1 = r[i - 1], r[i], R[i - 1], R[i]
+    return float(r0 + (R0 - CORRELATION_THRESHOLD) * (r1 - r0) / (R0 - R1))
+
+
+def _spectra(rough: np.ndarray, defined: np.ndarray, spacing, scene: SurfaceScene) -> tuple[dict, dict, dict]:
+    """Power spectrum (profile: windowed periodogram; map: radially averaged) and the autocorrelation."""
+    extra = {}
+    if rough.ndim == 1:
+        dx = float(spacing)
+        run = surface.longest_run(defined)
+        k, P = surface.power_spectrum(rough[run], dx, scene.window)
+        k, P = k[1:], P[1:]
+        psd_attrs = attrs("m^3", f"power spectral density of the profile ({scene.window} window), one-sided")
+    else:
+        dx, dy = (float(v) for v in spacing)
+        record = rough
+        if not defined.all():
+            record = surface.harmonic_fill(np.where(defined, rough, 0.0), defined)
+            extra["psd_note"] = (f"the periodogram needs a complete map: {int((~defined).sum())} undefined "
+                                 "points were filled harmonically for the spectrum only")
+        k, P = surface.radial_power_spectrum(record, dx, dy, scene.window)
+        psd_attrs = attrs("m^4", f"radially averaged two-dimensional power spectral density ({scene.window} "
+                                 "window)")
+    r, R, A = surface.autocorrelation(rough, spacing, defined)
+    data = {
+        "psd": ("wavenumber", P, psd_attrs),
+        "autocorrelation": ("lag", R, attrs("1", "autocorrelation of the heights over defined pairs, "
+                                                 "normalized (radially averaged on a map)")),
+        "height_difference_autocorrelation": (
+            "lag", A, attrs("m^2", "height-difference autocorrelation 1/2 <(z(x + r) - z(x))^2>")),
+    }
+    coords = {"wavenumber": ("wavenumber", k, attrs("rad/m", "angular wavenumber (2 pi / wavelength)")),
+              "lag": ("lag", r, attrs("m", "distance between the two points of a pair"))}
+    extra["correlation_length"] = _correlation_length(r, R)
+    extra["correlation_length_note"] = f"first lag where the autocorrelation falls to {CORRELATION_THRESHOLD:g}"
+    return data, coords, extra
+
+
+def _warn_gaussian(ds: xr.Dataset, kind: str):
+    if ds.attrs["gaussian"] == "yes":
+        return
+    if kind == "profile":
+        consequence = ("the Nayak/Francis peak density of a profile (2.4.1) assumes Gaussian heights; "
+                       "measure a map and use population.density: sampled (2.4.3) for this surface")
+    else:
+        consequence = ("population.density sampled (the default for a map) takes the map's own peaks "
+                       "(2.4.3); a Nayak or Greenwood-Williamson density would assume Gaussian heights")
+    message = f"the heights are not Gaussian ({ds.attrs['gaussian'][4:]}): {consequence}"
+    log.warning(message)
+    ds.attrs["warnings"] = message
+
+
+def _profile_dataset(prep: Prepared, scene: SurfaceScene) -> xr.Dataset:
+    dx = float(prep.spacing)
+    rough, defined = prep.evaluated, prep.evaluated_defined
+    ds = surface.profile_statistics(rough, dx, defined=None if defined.all() else defined,
+                                    window=scene.window)
+    ds.attrs["title"] = "profile statistics (report 2.3.1)"
+    return ds
+
+
+def _map_dataset(prep: Prepared) -> xr.Dataset:
+    dx, dy = (float(v) for v in prep.spacing)
+    rough, defined = prep.evaluated, prep.evaluated_defined
+    mask = None if defined.all() else defined
+    stats = surface.map_statistics(rough, dx, dy, defined=mask)
+    peaks = surface.map_peaks(rough, dx, dy, defined=mask)
+    i0, j0 = prep.region[0].start, prep.region[1].start
+    # peaks in the coordinates of the whole map (the evaluation region is inset by the filter)
+    for name, shift in (("row", i0), ("column", j0), ("x", j0 * dx), ("y", i0 * dy)):
+        peaks[name] = peaks[name].copy(data=peaks[name].values + shift)
+    ds = xr.merge([stats, peaks], combine_attrs="override")
+    ds.attrs["title"] = "height map statistics and peaks (report 2.4.3)"
+    ds.attrs["axes"] = surface.AXES
+    return ds
+
+
+def surface_from_data(heights, spacing, surface_cfg: Config, units_cfg: Config, defined=None,
+                      notes: list[str] | None = None) -> xr.Dataset:
+    """surface.nc of a measured or generated profile (1-D) or map (2-D), heights and spacing in SI.
+
+    The scene's surface section (``surface_cfg``) says how to prepare it
+    (:func:`prepare`); ``defined`` is False at undefined points; ``notes``
+    (where the unit and spacing came from) go to the log and the dataset.
     """
-    c, k, e = surface.quasirandom_series(n=generate["components"], seed=generate["seed"])
-    phi = np.random.default_rng(generate["seed"] + 1).uniform(0.0, np.pi, c.size)
-    return c, generate["aspect"] * k * np.cos(phi), k * np.sin(phi), e
+    scene = SurfaceScene.from_config(surface_cfg, units_cfg)
+    z = np.asarray(heights, dtype=np.float64)
+    kind = "profile" if z.ndim == 1 else "map"
+    for note in notes or []:
+        log.info("%s", note)
+    prep = prepare(z, spacing, scene, defined)
+    log.info("%s: %d points, %.2f %% undefined; form removed: %s; filter: %s", kind, z.size,
+             100 * prep.undefined_share, scene.form_text, scene.filter_text)
+    ds = _profile_dataset(prep, scene) if kind == "profile" else _map_dataset(prep)
+    rough, defined_ev = prep.evaluated, prep.evaluated_defined
+    more = _removal(prep, scene)
+    dist, dist_coords, dist_attrs = _distribution(rough, defined_ev, kind)
+    spec, spec_coords, spec_attrs = _spectra(rough, defined_ev, prep.spacing, scene)
+    preview = _preview(prep)
+    ds = ds.assign_coords({**dist_coords, **spec_coords, **preview["coords"]})
+    for name, value in {**more, **dist, **spec, **preview["data"]}.items():
+        ds[name] = value
+    ds.attrs.update(_removal_attrs(scene, prep))
+    ds.attrs.update(dist_attrs)
+    ds.attrs.update(spec_attrs)
+    ds.attrs["axes"] = surface.AXES if kind == "map" else "profile heights z(x) at x = i dx"
+    if notes:
+        ds.attrs["input"] = "; ".join(notes)
+    log.info("rms height %.6g m as read (mean removed), %.6g m after form removal and filter",
+             float(ds["rms_height_raw"]), float(ds["rms_height"]))
+    _warn_gaussian(ds, kind)
+    if kind == "profile":
+        ds = _with_exact(ds, scene, float(prep.spacing))
+        ds.attrs["population_estimator"] = scene.estimator
+    else:
+        ds.attrs["population_estimator"] = "map"
+    return ds
 
 
-def synthetic_directional_profiles(generate: Config) -> list[tuple[np.ndarray, np.ndarray]]:
-    """Profiles z(s) = sum C cos((kx cos t + ky sin t) s + e) along each direction t."""
-    c, kx, ky, e = anisotropic_series(generate)
-    s = np.arange(0.0, generate["length"] + 0.5 * generate["spacing"], generate["spacing"])
-    out = []
-    for deg in generate["directions"]:  # a handful of directions
-        t = np.radians(deg)
-        out.append((s, surface.evaluate_series(s, c, kx * np.cos(t) + ky * np.sin(t), e)))
+def _with_exact(ds: xr.Dataset, scene: SurfaceScene, dx: float) -> xr.Dataset:
+    """For a synthetic profile, its exact statistics as estimator ``exact`` (cosine: closed
+    form; series: eq. 2.4)."""
+    generate = scene.generated
+    if not generate:
+        return ds
+    # the synthetic profile was written in scene units and read back in SI;
+    # its exact statistics scale with the same factor
+    length = dx / generate["spacing"]
+    exact = _series_reference(generate, length)
+    per_estimator = [name for name in ds.data_vars if ds[name].dims == ("estimator",)]
+    extra = xr.full_like(ds[per_estimator].isel(estimator=0), np.nan).expand_dims(estimator=["exact"])
+    for name, value in exact.items():
+        extra[name] = extra[name].copy(data=np.array([value]))
+    extra["m0"] = extra["sigma"] ** 2
+    extra["m2"] = extra["sigma_slope"] ** 2
+    extra["m4"] = extra["sigma_curvature"] ** 2
+    extra["peak_density"] = extra["m4"] / (6 * np.pi * np.sqrt(3) * extra["m2"])
+    merged = xr.concat([ds[per_estimator], extra], dim="estimator", data_vars="all", coords="minimal")
+    out = ds.drop_vars(per_estimator).drop_dims("estimator")
+    out = out.assign_coords(estimator=merged["estimator"])
+    for name in per_estimator:
+        out[name] = merged[name].assign_attrs(ds[name].attrs)
+    out["estimator"].attrs = ds["estimator"].attrs
     return out
+
+
+def surface_from_statistics(surface_cfg: Config, units_cfg: Config) -> xr.Dataset:
+    """Surface statistics given in the scene (report 2.6.2), as estimator ``given``."""
+    length = length_factor(units_cfg)
+    if "gaussian_heights" in surface_cfg:
+        gh = surface_cfg["gaussian_heights"]
+        ds = xr.Dataset(
+            {
+                "sigma_peak_height": ((), gh["sigma_peak_height"] * length,
+                                      attrs("m", "standard deviation of peak heights")),
+                "tip_curvature": ((), 1.0 / (gh["radius"] * length),
+                                  attrs("1/m", "curvature of every asperity tip (1/R)")),
+                "peak_density": ((), gh["peak_density"] / length**2,
+                                 attrs("1/m^2", "peaks per unit nominal area")),
+            }
+        )
+        ds.attrs["population_estimator"] = "gaussian_heights"
+        return ds
+    st = surface_cfg["statistics"]
+    values = {
+        "mean_height": (st.get("mean_height", 0.0) * length, "m", "mean height"),
+        "sigma": (st["sigma"] * length, "m", "standard deviation of height"),
+        "sigma_slope": (st["sigma_slope"], "1", "standard deviation of slope"),
+        "sigma_curvature": (st["sigma_curvature"] / length, "1/m", "standard deviation of curvature"),
+        "peak_density": (st["peak_density"] / length**2, "1/m^2", "peaks per unit nominal area"),
+    }
+    ds = xr.Dataset(
+        {name: ("estimator", [v], attrs(u, ln)) for name, (v, u, ln) in values.items()},
+        coords={"estimator": ("estimator", ["given"], attrs("1", "how the statistics were obtained"))},
+    )
+    ds["m0"] = (ds["sigma"] ** 2).assign_attrs(attrs("m^2", "spectral moment m0"))
+    ds["m2"] = (ds["sigma_slope"] ** 2).assign_attrs(attrs("1", "spectral moment m2"))
+    ds["m4"] = (ds["sigma_curvature"] ** 2).assign_attrs(attrs("1/m^2", "spectral moment m4"))
+    ds["beta"] = (np.sqrt(1.5) * ds["m2"] / np.sqrt(ds["m0"] * ds["m4"])).assign_attrs(
+        attrs("1", "wavelength spectrum parameter beta (2.4.1)")
+    )
+    ds.attrs["population_estimator"] = "given"
+    return ds
 
 
 def surface_from_profiles(
     profiles: list[tuple[np.ndarray, float]], directions_deg: list[float], surface_cfg: Config,
+    units_cfg: Config,
 ) -> xr.Dataset:
     """Statistics of profiles along several directions and the surface moments (2.3.2).
 
-    Each profile gets the statistics of `profile_statistics` (dim
-    ``direction``); the moments m20, m11, m02 (3 directions or more) and the
-    fourth-order moments (5 or more) follow by least squares from the
-    chosen method's m0, m2, m4, with the invariants of 2.3.2.  For a
-    synthetic surface the exact moments of eq. (2.4) are added as
-    ``<moment>_exact``.
+    Each profile is prepared as a single profile is (:func:`prepare`: form
+    removal and filter of the scene) and gets the statistics of
+    `profile_statistics` (dim ``direction``); the moments m20, m11, m02 (3
+    directions or more) and the fourth-order moments (5 or more) follow by
+    least squares from the chosen estimator's m0, m2, m4, with the
+    invariants of 2.3.2.  For a synthetic surface the exact moments of eq.
+    (2.4) are added as ``<moment>_exact``.
     """
-    method = surface_cfg.get("method", "sampling")
-    stats = xr.concat([surface.profile_statistics(z, dx) for z, dx in profiles], dim="direction",
-                      data_vars="all", coords="minimal", compat="override")
+    scene = SurfaceScene.from_config(surface_cfg, units_cfg)
+    estimator = scene.estimator
+    rows = []
+    for z, dx in profiles:  # a handful of profiles, each vectorized
+        prep = prepare(z, dx, scene)
+        rough, defined = prep.evaluated, prep.evaluated_defined
+        rows.append(surface.profile_statistics(rough, dx, defined=None if defined.all() else defined,
+                                               window=scene.window))
+    stats = xr.concat(rows, dim="direction", data_vars="all", coords="minimal", compat="override")
     theta = np.radians(np.asarray(directions_deg, float))
     stats = stats.assign_coords(direction=("direction", theta, attrs("rad", "profile direction from the x axis")))
-    chosen = stats.sel({"method": method})
+    chosen = stats.sel(estimator=estimator)
     moments = surface.directional_moments(theta, chosen["m0"].values, chosen["m2"].values, chosen["m4"].values)
     ds = xr.merge([stats, moments], combine_attrs="drop_conflicts")
     ds.attrs.update(moments.attrs)
-    generate = surface_cfg["profiles"].get("generate")
+    ds.attrs.update(form_removed=scene.form_text, filter=scene.filter_text)
+    generate = scene.generated
     if generate:
         length = profiles[0][1] / generate["spacing"]
-        c, kx, ky, _ = anisotropic_series(generate)
+        c, kx, ky, _ = _anisotropic(generate)
         exact = surface.series_moments_2d(c, kx, ky)
         for name, value in exact.items():
             if name not in ds:
@@ -228,5 +566,5 @@ def surface_from_profiles(
             ds[f"{name}_exact"] = xr.DataArray(
                 value * length ** (2 - order),
                 attrs=attrs(ds[name].attrs["units"], f"{ds[name].attrs['long_name']}, exact (eq. 2.4)"))
-    ds.attrs["population_method"] = method
+    ds.attrs["population_estimator"] = estimator
     return ds
