@@ -31,9 +31,10 @@ include: "workflow/rules/sliding.smk"
 
 
 rule all:
+    default_target: True
     input:
         [target for name in config["scenes"] for target in scene_targets(name)],
         # the accuracy studies, unless `studies: false` (one scene alone, benchmarks/scenes.py)
         [f"{RESULTS}/accuracy/hertz.nc", f"{RESULTS}/accuracy/bodner_partom.nc"]
-        if config.get("studies", True) else [],
-    default_target: True
+        if config.get("studies", True)
+        else [],

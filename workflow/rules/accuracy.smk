@@ -5,12 +5,13 @@ rule accuracy_hertz:
     """Load and contact-radius error against wall time and dofs (report 6.1)."""
     output:
         data=f"{RESULTS}/accuracy/hertz.nc",
-        figure=report(f"{RESULTS}/accuracy/hertz.png", category="accuracy",
-                      caption="../report/accuracy.rst"),
-    params:
-        study=config.get("accuracy_study", {}),
+        figure=report(
+            f"{RESULTS}/accuracy/hertz.png", category="accuracy", caption="../report/accuracy.rst"
+        ),
     log:
         f"{RESULTS}/accuracy/logs/hertz.log",
+    params:
+        study=config.get("accuracy_study", {}),
     script:
         "../scripts/accuracy_hertz.py"
 
@@ -18,22 +19,28 @@ rule accuracy_hertz:
 def _accuracy_scene_runs():
     """(scene, preset) of every run the scene accuracy study compares."""
     study = config.get("accuracy_scenes", {})
-    return [(name, preset) for name in study.get("scenes", []) for preset in study.get("presets", [])]
+    return [
+        (name, preset) for name in study.get("scenes", []) for preset in study.get("presets", [])
+    ]
 
 
 rule accuracy_scenes:
     """Deviation of pressure and contact area from the finest preset against CPU time, per scene
-    (issue #6). Not in `rule all` (it runs the scenes at `fine`): snakemake --cores 2 accuracy_scenes"""
+    (issue #6). Not in `rule all` (it runs the scenes at `fine`): snakemake --cores 2 accuracy_scenes
+    """
     input:
         [f"{RESULTS}/{name}@{preset}/interface.nc" for name, preset in _accuracy_scene_runs()],
     output:
         data=f"{RESULTS}/accuracy/scenes.nc",
-        figure=report(f"{RESULTS}/accuracy/scenes.png", category="accuracy",
-                      caption="../report/accuracy_scenes.rst"),
+        figure=report(
+            f"{RESULTS}/accuracy/scenes.png",
+            category="accuracy",
+            caption="../report/accuracy_scenes.rst",
+        ),
+    log:
+        f"{RESULTS}/accuracy/logs/scenes.log",
     params:
         study=config.get("accuracy_scenes", {}),
         runs=_accuracy_scene_runs(),
-    log:
-        f"{RESULTS}/accuracy/logs/scenes.log",
     script:
         "../scripts/accuracy_scenes.py"

@@ -148,8 +148,11 @@ def scene_targets(name):
     if model(name) == "constant":
         targets += [f"{out}/expectation.nc", f"{out}/figures/expectation.png"]
     elif model(name) is not None:
-        targets += [f"{out}/interface.nc", f"{out}/figures/interface.png",
-                    f"{out}/figures/asperities.png"]
+        targets += [
+            f"{out}/interface.nc",
+            f"{out}/figures/interface.png",
+            f"{out}/figures/asperities.png",
+        ]
         if SCENES[name].get("verification"):
             targets.append(f"{out}/verification.nc")
         if "unloading" in SCENES[name].get("effects", []):

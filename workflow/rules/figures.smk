@@ -3,13 +3,18 @@
 
 def compared(wildcards, name):
     """The `name` result files of the scenes this scene compares with."""
-    return [f"{RESULTS}/{other}/{name}" for other in SCENES[wildcards.scene].get("compare_with", [])]
+    return [
+        f"{RESULTS}/{other}/{name}" for other in SCENES[wildcards.scene].get("compare_with", [])
+    ]
 
 
 def interface_figure_inputs(wildcards):
     out = f"{RESULTS}/{wildcards.scene}"
-    inputs = {"interface": f"{out}/interface.nc", "surface": f"{out}/surface.nc",
-              "others": compared(wildcards, "interface.nc")}
+    inputs = {
+        "interface": f"{out}/interface.nc",
+        "surface": f"{out}/surface.nc",
+        "others": compared(wildcards, "interface.nc"),
+    }
     if SCENES[wildcards.scene].get("verification"):
         inputs["verification"] = f"{out}/verification.nc"
     return inputs
@@ -35,11 +40,11 @@ rule surface_figure:
             category="{scene}",
             caption="../report/surface.rst",
         ),
+    log:
+        f"{RESULTS}/{{scene}}/logs/surface_figure.log",
     params:
         kind=lambda w: surface_kind(w.scene),
         units=scene_part("units"),
-    log:
-        f"{RESULTS}/{{scene}}/logs/surface_figure.log",
     script:
         "../scripts/surface_figure.py"
 
@@ -54,10 +59,10 @@ rule expectation_figure:
             category="{scene}",
             caption="../report/expectation.rst",
         ),
-    params:
-        population=scene_part("population", {}),
     log:
         f"{RESULTS}/{{scene}}/logs/expectation_figure.log",
+    params:
+        population=scene_part("population", {}),
     script:
         "../scripts/expectation_figure.py"
 
@@ -71,11 +76,11 @@ rule interface_figure:
             category="{scene}",
             caption="../report/interface.rst",
         ),
+    log:
+        f"{RESULTS}/{{scene}}/logs/interface_figure.log",
     params:
         units=scene_part("units"),
         compare_with=scene_part("compare_with", []),
-    log:
-        f"{RESULTS}/{{scene}}/logs/interface_figure.log",
     script:
         "../scripts/interface_figure.py"
 
@@ -92,11 +97,11 @@ rule adhesion_figure:
             category="{scene}",
             caption="../report/adhesion.rst",
         ),
+    log:
+        f"{RESULTS}/{{scene}}/logs/adhesion_figure.log",
     params:
         units=scene_part("units"),
         compare_with=scene_part("compare_with", []),
-    log:
-        f"{RESULTS}/{{scene}}/logs/adhesion_figure.log",
     script:
         "../scripts/adhesion_figure.py"
 
@@ -111,11 +116,11 @@ rule asperities_figure:
             category="{scene}",
             caption="../report/asperities.rst",
         ),
+    log:
+        f"{RESULTS}/{{scene}}/logs/asperities_figure.log",
     params:
         units=scene_part("units"),
         compare_with=scene_part("compare_with", []),
-    log:
-        f"{RESULTS}/{{scene}}/logs/asperities_figure.log",
     script:
         "../scripts/asperities_figure.py"
 
@@ -144,9 +149,9 @@ rule unloading_figure:
             category="{scene}",
             caption="../report/unloading.rst",
         ),
-    params:
-        units=scene_part("units"),
     log:
         f"{RESULTS}/{{scene}}/logs/unloading_figure.log",
+    params:
+        units=scene_part("units"),
     script:
         "../scripts/unloading_figure.py"

@@ -4,8 +4,11 @@
 
 def friction_compared(wildcards):
     """The compared scenes that have a friction section (their friction.nc is drawn)."""
-    return [other for other in SCENES[wildcards.scene].get("compare_with", [])
-            if "friction" in SCENES[other]]
+    return [
+        other
+        for other in SCENES[wildcards.scene].get("compare_with", [])
+        if "friction" in SCENES[other]
+    ]
 
 
 rule friction:
@@ -15,13 +18,13 @@ rule friction:
         surface=f"{RESULTS}/{{scene}}/surface.nc",
     output:
         f"{RESULTS}/{{scene}}/friction.nc",
+    log:
+        f"{RESULTS}/{{scene}}/logs/friction.log",
     params:
         scene=lambda w: w.scene,
         friction=scene_part("friction", {}),
         material=scene_part("material", {}),
         units=scene_part("units"),
-    log:
-        f"{RESULTS}/{{scene}}/logs/friction.log",
     script:
         "../scripts/friction.py"
 
@@ -32,12 +35,12 @@ rule laws:
         interface=f"{RESULTS}/{{scene}}/interface.nc",
     output:
         f"{RESULTS}/{{scene}}/laws.nc",
+    log:
+        f"{RESULTS}/{{scene}}/logs/laws.log",
     params:
         scene=lambda w: w.scene,
         laws=scene_part("laws", {}),
         units=scene_part("units"),
-    log:
-        f"{RESULTS}/{{scene}}/logs/laws.log",
     script:
         "../scripts/laws.py"
 
@@ -52,11 +55,11 @@ rule friction_figure:
             category="{scene}",
             caption="../report/friction.rst",
         ),
+    log:
+        f"{RESULTS}/{{scene}}/logs/friction_figure.log",
     params:
         units=scene_part("units"),
         compare_with=friction_compared,
-    log:
-        f"{RESULTS}/{{scene}}/logs/friction_figure.log",
     script:
         "../scripts/friction_figure.py"
 
@@ -70,9 +73,9 @@ rule laws_figure:
             category="{scene}",
             caption="../report/laws.rst",
         ),
-    params:
-        units=scene_part("units"),
     log:
         f"{RESULTS}/{{scene}}/logs/laws_figure.log",
+    params:
+        units=scene_part("units"),
     script:
         "../scripts/laws_figure.py"

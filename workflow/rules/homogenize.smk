@@ -7,14 +7,14 @@ rule expectation:
         surface=f"{RESULTS}/{{scene}}/surface.nc",
     output:
         f"{RESULTS}/{{scene}}/expectation.nc",
+    log:
+        f"{RESULTS}/{{scene}}/logs/expectation.log",
     params:
         scene=lambda w: w.scene,
         population=scene_part("population", {}),
         asperity=scene_part("asperity", {}),
         homogenization=scene_part("homogenization", {}),
         units=scene_part("units"),
-    log:
-        f"{RESULTS}/{{scene}}/logs/expectation.log",
     script:
         "../scripts/expectation.py"
 
@@ -29,18 +29,21 @@ rule unloading:
         asperities=f"{RESULTS}/{{scene}}/asperities.nc",
     output:
         f"{RESULTS}/{{scene}}/unloading.nc",
-    params:
-        scene=lambda w: w.scene,
     log:
         f"{RESULTS}/{{scene}}/logs/unloading.log",
+    params:
+        scene=lambda w: w.scene,
     script:
         "../scripts/unloading.py"
 
 
 def interface_inputs(wildcards):
     out = f"{RESULTS}/{wildcards.scene}"
-    inputs = {"surface": f"{out}/surface.nc", "plan": f"{out}/plan.nc",
-              "asperities": f"{out}/asperities.nc"}
+    inputs = {
+        "surface": f"{out}/surface.nc",
+        "plan": f"{out}/plan.nc",
+        "asperities": f"{out}/asperities.nc",
+    }
     if unloads(wildcards.scene):
         inputs["unloading"] = f"{out}/unloading.nc"
     return inputs
@@ -52,13 +55,13 @@ rule interface:
         unpack(interface_inputs),
     output:
         f"{RESULTS}/{{scene}}/interface.nc",
+    log:
+        f"{RESULTS}/{{scene}}/logs/interface.log",
     params:
         scene=lambda w: w.scene,
         population=scene_part("population", {}),
         homogenization=scene_part("homogenization", {}),
         units=scene_part("units"),
-    log:
-        f"{RESULTS}/{{scene}}/logs/interface.log",
     script:
         "../scripts/interface.py"
 
@@ -77,13 +80,13 @@ rule verification:
         unpack(verification_inputs),
     output:
         f"{RESULTS}/{{scene}}/verification.nc",
+    log:
+        f"{RESULTS}/{{scene}}/logs/verification.log",
     params:
         scene=lambda w: w.scene,
         verification=scene_part("verification"),
         single_asperity=scene_part("single_asperity"),
         material=scene_part("material", {}),
         units=scene_part("units"),
-    log:
-        f"{RESULTS}/{{scene}}/logs/verification.log",
     script:
         "../scripts/verification.py"

@@ -9,6 +9,8 @@ checkpoint plan:
         surface=f"{RESULTS}/{{scene}}/surface.nc",
     output:
         f"{RESULTS}/{{scene}}/plan.nc",
+    log:
+        f"{RESULTS}/{{scene}}/logs/plan.log",
     params:
         scene=lambda w: w.scene,
         population=scene_part("population", {}),
@@ -18,8 +20,6 @@ checkpoint plan:
         adhesion=scene_part("adhesion", {}),
         units=scene_part("units"),
         accuracy=accuracy_of,
-    log:
-        f"{RESULTS}/{{scene}}/logs/plan.log",
     script:
         "../scripts/plan.py"
 
@@ -53,8 +53,10 @@ def sample_spec(wildcards):
         for plan_file in sorted(Path(RESULTS).glob("*/plan.nc")):
             _register_specs(read_dataset(plan_file))
     if wildcards.key not in SAMPLE_SPECS:
-        raise WorkflowError(f"sample {wildcards.key}: in no plan under {RESULTS}/*/plan.nc; "
-                            "samples are made for a scene (build its plan first)")
+        raise WorkflowError(
+            f"sample {wildcards.key}: in no plan under {RESULTS}/*/plan.nc; "
+            "samples are made for a scene (build its plan first)"
+        )
     return SAMPLE_SPECS[wildcards.key]
 
 
@@ -62,6 +64,8 @@ rule sample:
     """One asperity sample: its response over the interference range of its spec."""
     output:
         f"{RESULTS}/samples/{{key}}.nc",
+    log:
+        f"{RESULTS}/samples/logs/{{key}}.log",
     # here, not as a global block: a global wildcard_constraints in an included file shifts
     # the source Snakemake records for this rule, and every edit of any rules file then
     # reran every FE sample ("code has changed")
@@ -70,8 +74,6 @@ rule sample:
     params:
         key=lambda w: w.key,
         spec=sample_spec,
-    log:
-        f"{RESULTS}/samples/logs/{{key}}.log",
     script:
         "../scripts/sample.py"
 
@@ -83,12 +85,12 @@ rule asperities:
         samples=sample_files,
     output:
         f"{RESULTS}/{{scene}}/asperities.nc",
+    log:
+        f"{RESULTS}/{{scene}}/logs/asperities.log",
     params:
         scene=lambda w: w.scene,
         asperity=scene_part("asperity", {}),
         material=scene_part("material", {}),
         units=scene_part("units"),
-    log:
-        f"{RESULTS}/{{scene}}/logs/asperities.log",
     script:
         "../scripts/asperities.py"

@@ -6,6 +6,8 @@ rule sliding:
     largest deformation sits (a scene's `sliding` section, at the global accuracy preset)."""
     output:
         f"{RESULTS}/{{scene}}/sliding.nc",
+    log:
+        f"{RESULTS}/{{scene}}/logs/sliding.log",
     params:
         scene=lambda w: w.scene,
         title=scene_part("title"),
@@ -13,8 +15,6 @@ rule sliding:
         units=scene_part("units"),
         sliding=scene_part("sliding"),
         accuracy=accuracy_of,
-    log:
-        f"{RESULTS}/{{scene}}/logs/sliding.log",
     script:
         "../scripts/sliding.py"
 
@@ -24,11 +24,14 @@ rule sliding_figure:
     input:
         sliding=f"{RESULTS}/{{scene}}/sliding.nc",
     output:
-        report(f"{RESULTS}/{{scene}}/figures/sliding.png", category="{scene}",
-               caption="../report/sliding.rst"),
-    params:
-        units=scene_part("units"),
+        report(
+            f"{RESULTS}/{{scene}}/figures/sliding.png",
+            category="{scene}",
+            caption="../report/sliding.rst",
+        ),
     log:
         f"{RESULTS}/{{scene}}/logs/sliding_figure.log",
+    params:
+        units=scene_part("units"),
     script:
         "../scripts/sliding_figure.py"

@@ -20,11 +20,11 @@ rule synthetic_profile:
     """A synthetic profile of the report's examples (2.6.1), written as a text file."""
     output:
         f"{RESULTS}/{{scene}}/input/profile.txt",
+    log:
+        f"{RESULTS}/{{scene}}/logs/synthetic_profile.log",
     params:
         generate=lambda w: SCENES[w.scene]["surface"]["profile"]["generate"],
         units=scene_part("units"),
-    log:
-        f"{RESULTS}/{{scene}}/logs/synthetic_profile.log",
     script:
         "../scripts/synthetic_profile.py"
 
@@ -33,11 +33,11 @@ rule synthetic_profiles:
     """Profiles of a synthetic anisotropic surface along the scene's directions (2.3.2)."""
     output:
         directory(f"{RESULTS}/{{scene}}/input/profiles"),
+    log:
+        f"{RESULTS}/{{scene}}/logs/synthetic_profiles.log",
     params:
         generate=lambda w: SCENES[w.scene]["surface"]["profiles"]["generate"],
         units=scene_part("units"),
-    log:
-        f"{RESULTS}/{{scene}}/logs/synthetic_profiles.log",
     script:
         "../scripts/synthetic_profiles.py"
 
@@ -46,10 +46,10 @@ rule synthetic_map:
     """A synthetic Gaussian random height map, written as .npy."""
     output:
         f"{RESULTS}/{{scene}}/input/map.npy",
-    params:
-        generate=lambda w: SCENES[w.scene]["surface"]["map"]["generate"],
     log:
         f"{RESULTS}/{{scene}}/logs/synthetic_map.log",
+    params:
+        generate=lambda w: SCENES[w.scene]["surface"]["map"]["generate"],
     script:
         "../scripts/synthetic_map.py"
 
@@ -60,12 +60,12 @@ rule surface:
         unpack(surface_inputs),
     output:
         f"{RESULTS}/{{scene}}/surface.nc",
+    log:
+        f"{RESULTS}/{{scene}}/logs/surface.log",
     params:
         scene=lambda w: w.scene,
         surface=scene_part("surface"),
         units=scene_part("units"),
-    log:
-        f"{RESULTS}/{{scene}}/logs/surface.log",
     script:
         "../scripts/surface.py"
 
@@ -74,11 +74,11 @@ rule convergence:
     """Sampled statistics of a synthetic series against its exact ones, versus spacing."""
     output:
         f"{RESULTS}/{{scene}}/convergence.nc",
+    log:
+        f"{RESULTS}/{{scene}}/logs/convergence.log",
     params:
         scene=lambda w: w.scene,
         generate=lambda w: SCENES[w.scene]["surface"]["profile"]["generate"],
         units=scene_part("units"),
-    log:
-        f"{RESULTS}/{{scene}}/logs/convergence.log",
     script:
         "../scripts/convergence.py"

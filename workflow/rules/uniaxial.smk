@@ -6,14 +6,14 @@ rule uniaxial:
     """The tests of a scene's `uniaxial` section: one material point each, on dims (test, step)."""
     output:
         f"{RESULTS}/{{scene}}/uniaxial.nc",
+    log:
+        f"{RESULTS}/{{scene}}/logs/uniaxial.log",
     params:
         scene=lambda w: w.scene,
         title=scene_part("title"),
         report=scene_part("report"),
         units=scene_part("units"),
         uniaxial=scene_part("uniaxial"),
-    log:
-        f"{RESULTS}/{{scene}}/logs/uniaxial.log",
     script:
         "../scripts/uniaxial.py"
 
@@ -38,11 +38,14 @@ rule accuracy_bodner_partom:
     """Implicit against explicit integration: steps, wall time and end error per tolerance."""
     output:
         data=f"{RESULTS}/accuracy/bodner_partom.nc",
-        figure=report(f"{RESULTS}/accuracy/bodner_partom.png", category="accuracy",
-                      caption="../report/accuracy_bodner_partom.rst"),
-    params:
-        study=config.get("accuracy_bodner_partom", {}),
+        figure=report(
+            f"{RESULTS}/accuracy/bodner_partom.png",
+            category="accuracy",
+            caption="../report/accuracy_bodner_partom.rst",
+        ),
     log:
         f"{RESULTS}/accuracy/logs/bodner_partom.log",
+    params:
+        study=config.get("accuracy_bodner_partom", {}),
     script:
         "../scripts/uniaxial_accuracy.py"
