@@ -1,0 +1,40 @@
+"""A scene's ``units`` section: the length and pressure units its values are written in."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any, Mapping
+
+from asperity import units
+
+
+@dataclass(frozen=True)
+class Units:
+    """The units a scene writes its values in (`asperity.units` gives their factors).
+
+    ``length`` is None for a section that has only pressures (the Bodner-Partom
+    accuracy study of config/config.yaml)."""
+
+    length: str | None
+    pressure: str
+
+    @classmethod
+    def from_section(cls, section: Mapping[str, Any]) -> "Units":
+        return cls(length=section.get("length"), pressure=section["pressure"])
+
+    @property
+    def length_factor(self) -> float:
+        """Metres per length unit."""
+        if self.length is None:
+            raise ValueError("units: no length unit given")
+        return units.length_scale(self.length)
+
+    @property
+    def pressure_factor(self) -> float:
+        """Pascals per pressure unit."""
+        return units.pressure_scale(self.pressure)
+
+
+def length_factor(section: Mapping[str, Any]) -> float:
+    """Metres per length unit of a scene's ``units`` section."""
+    return units.length_scale(section["length"])
