@@ -13,10 +13,12 @@ import pytest
 from benchmarks.workflow_copy import REPO, SNAKEMAKE, copy_workflow  # noqa: F401
 
 
-def snakemake(workdir: Path, *args: str, check: bool = True) -> subprocess.CompletedProcess:
+def snakemake(workdir: Path, *args: str, check: bool = True,
+              env: dict | None = None) -> subprocess.CompletedProcess:
+    """`snakemake --cores 2 *args` in `workdir` (`env`: its environment, default ours)."""
     proc = subprocess.run(
         [str(SNAKEMAKE), "--cores", "2", *args],
-        cwd=workdir, capture_output=True, text=True, timeout=900,
+        cwd=workdir, capture_output=True, text=True, timeout=900, env=env,
     )
     if check and proc.returncode != 0:
         raise AssertionError(f"snakemake {' '.join(args)} failed:\n{proc.stdout}\n{proc.stderr}")

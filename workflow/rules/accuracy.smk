@@ -6,22 +6,20 @@ rule accuracy_hertz:
     output:
         data=f"{RESULTS}/accuracy/hertz.nc",
         figure=report(
-            f"{RESULTS}/accuracy/hertz.png", category="accuracy", caption="../report/accuracy.rst"
+            f"{RESULTS}/accuracy/hertz.png",
+            category="accuracy",
+            caption="../report/accuracy.rst",
+            labels={"study": "Hertz problem", "figure": "accuracy against cost"},
         ),
     log:
         f"{RESULTS}/accuracy/logs/hertz.log",
+    conda:
+        ENV
     params:
-        study=config.get("accuracy_study", {}),
+        version=code_version("accuracy_hertz"),
+        study=config["accuracy_study"],
     script:
         "../scripts/accuracy_hertz.py"
-
-
-def _accuracy_scene_runs():
-    """(scene, preset) of every run the scene accuracy study compares."""
-    study = config.get("accuracy_scenes", {})
-    return [
-        (name, preset) for name in study.get("scenes", []) for preset in study.get("presets", [])
-    ]
 
 
 rule accuracy_scenes:
@@ -29,18 +27,22 @@ rule accuracy_scenes:
     (issue #6). Not in `rule all` (it runs the scenes at `fine`): snakemake --cores 2 accuracy_scenes
     """
     input:
-        [f"{RESULTS}/{name}@{preset}/interface.nc" for name, preset in _accuracy_scene_runs()],
+        [f"{RESULTS}/{name}@{preset}/interface.nc" for name, preset in accuracy_scene_runs()],
     output:
         data=f"{RESULTS}/accuracy/scenes.nc",
         figure=report(
             f"{RESULTS}/accuracy/scenes.png",
             category="accuracy",
             caption="../report/accuracy_scenes.rst",
+            labels={"study": "whole scenes", "figure": "accuracy against cost"},
         ),
     log:
         f"{RESULTS}/accuracy/logs/scenes.log",
+    conda:
+        ENV
     params:
-        study=config.get("accuracy_scenes", {}),
-        runs=_accuracy_scene_runs(),
+        version=code_version("accuracy_scenes"),
+        study=config["accuracy_scenes"],
+        runs=accuracy_scene_runs(),
     script:
         "../scripts/accuracy_scenes.py"

@@ -9,18 +9,17 @@ rule expectation:
         f"{RESULTS}/{{scene}}/expectation.nc",
     log:
         f"{RESULTS}/{{scene}}/logs/expectation.log",
+    conda:
+        ENV
     params:
+        version=code_version("expectation"),
         scene=lambda w: w.scene,
-        population=scene_part("population", {}),
-        asperity=scene_part("asperity", {}),
-        homogenization=scene_part("homogenization", {}),
+        population=scene_part("population"),
+        asperity=scene_part("asperity"),
+        homogenization=scene_part("homogenization"),
         units=scene_part("units"),
     script:
         "../scripts/expectation.py"
-
-
-def unloads(name):
-    return "unloading" in SCENES[name].get("effects", [])
 
 
 rule unloading:
@@ -31,22 +30,13 @@ rule unloading:
         f"{RESULTS}/{{scene}}/unloading.nc",
     log:
         f"{RESULTS}/{{scene}}/logs/unloading.log",
+    conda:
+        ENV
     params:
+        version=code_version("unloading"),
         scene=lambda w: w.scene,
     script:
         "../scripts/unloading.py"
-
-
-def interface_inputs(wildcards):
-    out = f"{RESULTS}/{wildcards.scene}"
-    inputs = {
-        "surface": f"{out}/surface.nc",
-        "plan": f"{out}/plan.nc",
-        "asperities": f"{out}/asperities.nc",
-    }
-    if unloads(wildcards.scene):
-        inputs["unloading"] = f"{out}/unloading.nc"
-    return inputs
 
 
 rule interface:
@@ -57,20 +47,16 @@ rule interface:
         f"{RESULTS}/{{scene}}/interface.nc",
     log:
         f"{RESULTS}/{{scene}}/logs/interface.log",
+    conda:
+        ENV
     params:
+        version=code_version("interface"),
         scene=lambda w: w.scene,
-        population=scene_part("population", {}),
-        homogenization=scene_part("homogenization", {}),
+        population=scene_part("population"),
+        homogenization=scene_part("homogenization"),
         units=scene_part("units"),
     script:
         "../scripts/interface.py"
-
-
-def verification_inputs(wildcards):
-    if "single_asperity" in SCENES[wildcards.scene]:
-        return {}  # one asperity against Hertz: nothing upstream
-    out = f"{RESULTS}/{wildcards.scene}"
-    return {"surface": f"{out}/surface.nc", "interface": f"{out}/interface.nc"}
 
 
 rule verification:
@@ -82,11 +68,14 @@ rule verification:
         f"{RESULTS}/{{scene}}/verification.nc",
     log:
         f"{RESULTS}/{{scene}}/logs/verification.log",
+    conda:
+        ENV
     params:
+        version=code_version("verification"),
         scene=lambda w: w.scene,
         verification=scene_part("verification"),
         single_asperity=scene_part("single_asperity"),
-        material=scene_part("material", {}),
+        material=scene_part("material"),
         units=scene_part("units"),
     script:
         "../scripts/verification.py"

@@ -8,7 +8,10 @@ rule sliding:
         f"{RESULTS}/{{scene}}/sliding.nc",
     log:
         f"{RESULTS}/{{scene}}/logs/sliding.log",
+    conda:
+        ENV
     params:
+        version=code_version("sliding"),
         scene=lambda w: w.scene,
         title=scene_part("title"),
         report=scene_part("report"),
@@ -28,10 +31,14 @@ rule sliding_figure:
             f"{RESULTS}/{{scene}}/figures/sliding.png",
             category="{scene}",
             caption="../report/sliding.rst",
+            labels={"scene": "{scene}", "figure": "pressed and slid"},
         ),
     log:
         f"{RESULTS}/{{scene}}/logs/sliding_figure.log",
+    conda:
+        ENV
     params:
+        version=code_version("sliding_figure"),
         units=scene_part("units"),
     script:
         "../scripts/sliding_figure.py"

@@ -1,28 +1,16 @@
 # Stage 1-2: profile or map statistics (report 2.3, 2.4.3) -> surface.nc
 
 
-def surface_inputs(wildcards):
-    kind = surface_kind(wildcards.scene)
-    source = SCENES[wildcards.scene]["surface"][kind]
-    if kind in ("profile", "map"):
-        if "generate" in source:
-            suffix = "txt" if kind == "profile" else "npy"
-            return {"data": f"{RESULTS}/{wildcards.scene}/input/{kind}.{suffix}"}
-        return {"data": source["file"]}
-    if kind == "profiles":
-        if "generate" in source:
-            return {"data": f"{RESULTS}/{wildcards.scene}/input/profiles"}
-        return {"data": [item["file"] for item in source["files"]]}
-    return {}
-
-
 rule synthetic_profile:
     """A synthetic profile of the report's examples (2.6.1), written as a text file."""
     output:
         f"{RESULTS}/{{scene}}/input/profile.txt",
     log:
         f"{RESULTS}/{{scene}}/logs/synthetic_profile.log",
+    conda:
+        ENV
     params:
+        version=code_version("synthetic_profile"),
         generate=lambda w: SCENES[w.scene]["surface"]["profile"]["generate"],
         units=scene_part("units"),
     script:
@@ -35,7 +23,10 @@ rule synthetic_profiles:
         directory(f"{RESULTS}/{{scene}}/input/profiles"),
     log:
         f"{RESULTS}/{{scene}}/logs/synthetic_profiles.log",
+    conda:
+        ENV
     params:
+        version=code_version("synthetic_profiles"),
         generate=lambda w: SCENES[w.scene]["surface"]["profiles"]["generate"],
         units=scene_part("units"),
     script:
@@ -48,7 +39,10 @@ rule synthetic_map:
         f"{RESULTS}/{{scene}}/input/map.npy",
     log:
         f"{RESULTS}/{{scene}}/logs/synthetic_map.log",
+    conda:
+        ENV
     params:
+        version=code_version("synthetic_map"),
         generate=lambda w: SCENES[w.scene]["surface"]["map"]["generate"],
     script:
         "../scripts/synthetic_map.py"
@@ -62,7 +56,10 @@ rule surface:
         f"{RESULTS}/{{scene}}/surface.nc",
     log:
         f"{RESULTS}/{{scene}}/logs/surface.log",
+    conda:
+        ENV
     params:
+        version=code_version("surface"),
         scene=lambda w: w.scene,
         surface=scene_part("surface"),
         units=scene_part("units"),
@@ -76,7 +73,10 @@ rule convergence:
         f"{RESULTS}/{{scene}}/convergence.nc",
     log:
         f"{RESULTS}/{{scene}}/logs/convergence.log",
+    conda:
+        ENV
     params:
+        version=code_version("convergence"),
         scene=lambda w: w.scene,
         generate=lambda w: SCENES[w.scene]["surface"]["profile"]["generate"],
         units=scene_part("units"),

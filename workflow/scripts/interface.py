@@ -11,4 +11,4 @@ with job_log(snakemake.log[0], "interface"):
                                   read_dataset(i.unloading) if "unloading" in i.keys() else None)
     write_dataset(ds, snakemake.output[0], scene=p.scene, title="homogenized interface",
                   config={"population": p.population, "homogenization": p.homogenization,
-                          "units": p.units})
+                          "units": p.units}, version=p.version)

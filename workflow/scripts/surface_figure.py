@@ -16,4 +16,5 @@ with job_log(snakemake.log[0], "surface figure"):
     elif p.kind == "profile":
         data = inputs.read_profile(i.data, spacing=None, length_unit=p.units["length"])
     conv = read_dataset(i.convergence) if "convergence" in i.keys() else None
-    save_figure(figures.surface_figure(p.kind, surface, p.units, data, conv), snakemake.output[0])
+    save_figure(figures.surface_figure(p.kind, surface, p.units, data, conv), snakemake.output[0],
+                version=p.version)
