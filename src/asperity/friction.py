@@ -28,8 +28,8 @@ mean absolute slope E|z'| of a Gaussian surface is smaller by sqrt(2/pi)::
 
 (z' ~ N(0, sigma_slope^2): the slope of a profile in the sliding direction,
 whose variance is m2 = sigma_slope^2, report 2.3).  A scene chooses with
-``interlocking``: ``mean_absolute_slope`` (the default, the issue's
-definition), ``rms_slope`` (what the report's 0.16 is), ``none``, or a number.
+``interlocking``: ``mean_absolute_slope`` (the default),
+``rms_slope`` (what the report's 0.16 is), ``none``, or a number.
 
 tau_s: the scene's ``junction_shear_strength``, else the bulk
 shear strength from the material's yield stress by von Mises,

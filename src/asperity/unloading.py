@@ -102,7 +102,7 @@ import numpy as np
 
 
 def _pchip(x, y, **options):
-    """scipy's PchipInterpolator, imported on first use (0.2 s: most jobs never need it)."""
+    """scipy's PchipInterpolator, imported on first use (most jobs never need it)."""
     from scipy.interpolate import PchipInterpolator
 
     return PchipInterpolator(x, y, **options)

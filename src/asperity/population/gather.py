@@ -26,9 +26,8 @@ def tail_slope(levels: np.ndarray, values: np.ndarray) -> float:
     """The slope that continues a curve beyond its last level: the median of the step
     slopes over the last `TAIL` of the range (at least the last step).  One step where
     an inelastic job's force jumps (a contact node snapping onto the flat) would
-    otherwise set the slope of everything beyond: on steel_glass_bead at standard it
-    was 6 times its neighbours'.  For a convex curve it stays a lower bound, like the
-    last tangent."""
+    otherwise set the slope of everything beyond.  For a convex curve it stays a lower
+    bound, like the last tangent."""
     steps = np.diff(values) / np.diff(levels)
     window = levels[:-1] >= levels[-1] - TAIL * (levels[-1] - levels[0])
     window[-1] = True
@@ -168,7 +167,7 @@ def samples_by_key(plan: xr.Dataset, samples: Mapping[str, xr.Dataset]) -> dict[
 
 
 def fe_cost(jobs) -> dict:
-    """What a set of FE jobs cost, for the gathered file's attributes (issue #6): their
+    """What a set of FE jobs cost, for the gathered file's attributes: their
     preset, count and total CPU time, and the largest Newton, step-cut, dof and time-step
     counts of any of them (each only where every job records it)."""
     out = dict(accuracy=str(jobs[0].attrs.get("accuracy", "")), fe_jobs=len(jobs),

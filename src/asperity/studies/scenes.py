@@ -1,4 +1,4 @@
-"""What accuracy costs for a whole scene (issue #6): results/accuracy/scenes.nc.
+"""What accuracy costs for a whole scene: results/accuracy/scenes.nc.
 
 A scene run at each accuracy preset (``results/<scene>@<preset>/interface.nc``)
 gives the homogenized interface (report 2.5: the nominal pressure
