@@ -29,9 +29,9 @@ from asperity.units import attrs
 log = logging.getLogger("asperity")
 
 
-def plan(surface_ds: xr.Dataset, population: Population, asperity: Asperity,
-         material: Material | None, effects: frozenset[str], accuracy: str,
-         adhesion: Adhesion | None = None) -> xr.Dataset:
+def scene_plan(surface_ds: xr.Dataset, population: Population, asperity: Asperity,
+               material: Material | None, effects: frozenset[str], accuracy: str,
+               adhesion: Adhesion | None = None) -> xr.Dataset:
     """The samples a scene needs (DESIGN.md: the plan): heights x curvatures (x the
     unloading levels of each), their keys and specs, which are derived, and the
     attributes the later stages need (``kind``, ``support``, ...); `adhesion` is used

@@ -30,7 +30,7 @@ def plan_dataset(
     used with the effect ``adhesion``."""
     units = scene.Units.from_section(units_cfg)
     effect_set = scene.effects(effects)
-    return population.plan(
+    return population.scene_plan(
         surface_ds, scene.Population.from_section(population_cfg, units),
         scene.Asperity.from_section(asperity, units),
         scene.Material.from_scene(material, units) if material else None, effect_set, accuracy,

@@ -47,6 +47,8 @@ class Kind:
     job: bool = True
 
     def check(self, asperity: Asperity, material: Material | None, effects: frozenset[str]) -> None:
+        """Raise ValueError, naming the scene's key, where its asperity, material and
+        effects do not make sense for the kind."""
         if "unloading" in effects:
             raise ValueError("effect `unloading` needs an FE asperity with effect `plasticity` "
                              "(an elastic asperity unloads along its loading curve)")
@@ -57,6 +59,7 @@ class Kind:
         return base
 
     def scalable(self, asperity: Asperity, material: Material | None, effects) -> bool:
+        """Whether the samples may form a self-similar family (one job, the others scaled)."""
         return False
 
     def unloads(self, effects: frozenset[str]) -> bool:
@@ -68,12 +71,17 @@ class Kind:
         raise NotImplementedError
 
     def spec(self, planning: Planning, height: float, curvature: float, level: float) -> dict:
+        """Exactly what the job of a sample (peak height, the job's tip curvature,
+        unloading level or NaN) depends on, as plain JSON values: its hash is the key."""
         raise NotImplementedError
 
     def solve(self, spec: Config, key: str) -> xr.Dataset:
+        """The response of sample `key` (dim ``step``) from its spec; `SampleFailed`
+        naming the sample and the step where the solver fails."""
         raise NotImplementedError
 
     def gather(self, plan: xr.Dataset, samples: Mapping[str, xr.Dataset]) -> xr.Dataset:
+        """Every sample of the plan on its (height, curvature, interference) grid."""
         raise NotImplementedError
 
     def plan_attrs(self, planning: Planning) -> dict[str, Any]:

@@ -22,9 +22,13 @@ class Hertz(Kind):
     name = "hertz"
     job = False
 
+    def check(self, asperity, material, effects):
+        super().check(asperity, material, effects)
+        if material is None:
+            raise ValueError("asperity.model hertz needs the scene's `material` section")
+
     def spec(self, planning, height, curvature, level):
-        material = planning.material.spec() if planning.material is not None else {}
-        return {"model": "hertz", "material": material, "curvature": curvature,
+        return {"model": "hertz", "material": planning.material.spec(), "curvature": curvature,
                 "interference": planning.grid}
 
     def solve(self, spec, key):
