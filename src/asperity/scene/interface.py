@@ -10,7 +10,7 @@ import numpy as np
 
 from asperity import units as units_
 from asperity.scene.population import curvature_range, length_range
-from asperity.scene.units import Units
+from asperity.scene.units import Units, parses
 
 Config = Mapping[str, Any]
 
@@ -37,6 +37,7 @@ class Homogenization:
     unloading_from: float | None
 
     @classmethod
+    @parses("homogenization")
     def from_section(cls, section: Config, units: Units) -> "Homogenization":
         sep = section["separations"]
         return cls(
@@ -94,6 +95,7 @@ class Friction:
     report: FrictionEstimate | None
 
     @classmethod
+    @parses("friction")
     def from_section(cls, section: Config, units: Units) -> "Friction":
         p = units.pressure_factor
 
@@ -161,6 +163,7 @@ class Laws:
     report: LawsReport | None
 
     @classmethod
+    @parses("laws")
     def from_section(cls, section: Config, units: Units) -> "Laws":
         window = section.get("pressure_range")
         gap = (section.get("oden_martins") or {}).get("gap")

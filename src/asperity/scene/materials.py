@@ -26,7 +26,7 @@ import math
 from dataclasses import dataclass, field
 from typing import Any, Iterable, Mapping
 
-from asperity.scene.units import Units
+from asperity.scene.units import Units, parses
 
 Config = Mapping[str, Any]
 
@@ -104,6 +104,7 @@ class Material:
             raise ValueError(f"unknown material.model {self.model!r}; known: {', '.join(MODELS)}")
 
     @classmethod
+    @parses("material")
     def from_scene(cls, section: Config, units: Units) -> "Material":
         """A scene's ``material`` section (its pressure unit) in SI."""
         p = units.pressure_factor

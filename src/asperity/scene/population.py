@@ -6,7 +6,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Any, Iterable, Mapping
 
-from asperity.scene.units import Units
+from asperity.scene.units import Units, parses
 
 Config = Mapping[str, Any]
 
@@ -45,6 +45,7 @@ class Population:
     interferences: int
 
     @classmethod
+    @parses("population")
     def from_section(cls, section: Config, units: Units) -> "Population":
         return cls(
             density=section.get("density"),
@@ -109,6 +110,7 @@ class Asperity:
     reference_curvature: float | None
 
     @classmethod
+    @parses("asperity")
     def from_section(cls, section: Config, units: Units) -> "Asperity":
         length = units.length_factor
         velocity = section.get("velocity")
@@ -149,6 +151,7 @@ class Adhesion:
     cutoff: float
 
     @classmethod
+    @parses("adhesion")
     def from_section(cls, section: Config) -> "Adhesion":
         return cls(dgamma=float(section["work_of_adhesion"]), d=float(section["spacing"]) * NM,
                    cutoff=float(section["cutoff"]))

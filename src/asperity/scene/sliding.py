@@ -8,7 +8,7 @@ from dataclasses import dataclass
 from typing import Any, Mapping
 
 from asperity.scene.materials import Material, build
-from asperity.scene.units import Units
+from asperity.scene.units import Units, parses
 
 Config = Mapping[str, Any]
 
@@ -47,6 +47,7 @@ class Sliding:
     mesh: Mapping[str, float]
 
     @classmethod
+    @parses("sliding")
     def from_section(cls, section: Config, units: Units) -> "Sliding":
         length, p = units.length_factor, units.pressure_factor
         a, mo, s = section["asperity"], section["motion"], section["shear_resistance"]

@@ -18,7 +18,7 @@ from typing import Any, Mapping
 
 from asperity.scene.materials import (BP_MECHANISMS, BP_PRESETS, CONSTANTS, DAMAGE_CONSTANTS,
                                       SOFTENING, Material, build, unit_scale)
-from asperity.scene.units import Units
+from asperity.scene.units import Units, parses
 
 Config = Mapping[str, Any]
 
@@ -59,6 +59,7 @@ class UniaxialTest:
     plot: str
 
     @classmethod
+    @parses("uniaxial")
     def from_section(cls, test: Config, units: Units) -> "UniaxialTest":
         name = test["name"]
         control = test["control"]
@@ -182,6 +183,7 @@ class IntegratorStudy:
     reference_method: str
 
     @classmethod
+    @parses("accuracy_bodner_partom")
     def from_section(cls, section: Config) -> "IntegratorStudy":
         if not section.get("tests"):
             raise ValueError("config/config.yaml: key accuracy_bodner_partom.tests: no tests given")

@@ -2,10 +2,30 @@
 
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass
 from typing import Any, Mapping
 
 from asperity import units
+
+
+def parses(section: str):
+    """Decorator of a section's parser: a key the section lacks raises ValueError naming
+    the section and the key (the workflow validates every section against
+    config/schema.yaml, which fills in the defaults, before the library sees it)."""
+
+    def wrap(parse):
+        @functools.wraps(parse)
+        def parse_section(*args, **kwargs):
+            try:
+                return parse(*args, **kwargs)
+            except KeyError as err:
+                raise ValueError(f"scene section `{section}`: no key {err.args[0]!r} (validate the "
+                                 "scene against config/schema.yaml: it gives every default)") from None
+
+        return parse_section
+
+    return wrap
 
 
 @dataclass(frozen=True)
@@ -19,6 +39,7 @@ class Units:
     pressure: str
 
     @classmethod
+    @parses("units")
     def from_section(cls, section: Mapping[str, Any]) -> "Units":
         return cls(length=section.get("length"), pressure=section["pressure"])
 
