@@ -9,9 +9,8 @@ from typing import Any, Mapping
 import numpy as np
 import xarray as xr
 
-from asperity import plots
+from asperity import plots, scene
 from asperity.plots import adhesion as adhesion_plots
-from asperity import scene
 from asperity.population.density import population_density
 
 Config = Mapping[str, Any]
