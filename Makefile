@@ -8,7 +8,7 @@ CORES ?= 2
 export OPENBLAS_NUM_THREADS = 1
 export OMP_NUM_THREADS = 1
 
-.PHONY: all reproduce test test-fast bench time-scenes time-jobs time-adhesion time-reference time-surface figures clean-results
+.PHONY: all reproduce test test-fast bench time-scenes time-jobs time-adhesion time-reference time-surface compare-results figures clean-results
 
 all: reproduce
 
@@ -65,6 +65,13 @@ time-reference: $(STAMP)
 # writes benchmarks/results/surface-speed.json.
 time-surface: $(STAMP)
 	$(BIN)/python benchmarks/surface_speed.py
+
+# results/ against another results tree REFERENCE, bit for bit, timings aside: what a
+# change that computes nothing new must leave alone, e.g. after an upgrade
+#   make compare-results REFERENCE=../asperity-before/results
+compare-results: $(STAMP)
+	@test -n "$(REFERENCE)" || { echo "make compare-results REFERENCE=<results folder>"; exit 2; }
+	$(BIN)/python benchmarks/compare_results.py results $(REFERENCE)
 
 # The figures shown in the README, copied from a full run.
 README_FIGURES := profile_quasirandom/figures/surface.png expectation_unit/figures/expectation.png \

@@ -2,11 +2,15 @@
 #
 #   snakemake --cores 2            every scene of config/config.yaml
 #   snakemake --cores 2 results/greenwood_williamson/interface.nc
+#   snakemake --report report.html every figure with its caption
 #
 # The task graph is that of DESIGN.md: surface.nc -> (checkpoint) plan.nc ->
 # one job per asperity sample -> asperities.nc -> interface.nc -> figures.
-# Rules live in workflow/rules/, one file per stage; scripts in
-# workflow/scripts/ read snakemake.input/params and call the library.
+# Rules live in workflow/rules/, one file per stage (their functions in
+# common.smk); scripts in workflow/scripts/ read snakemake.input/params and
+# call asperity.stages. Every rule runs in the environment of
+# workflow/envs/asperity.yaml (with --sdm conda); profiles/default/ holds the
+# settings of a local run, which Snakemake reads without being asked.
 
 import os
 
@@ -17,6 +21,9 @@ for _var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
 
 
 configfile: "config/config.yaml"
+
+
+report: "workflow/report/workflow.rst"
 
 
 include: "workflow/rules/common.smk"
@@ -32,9 +39,10 @@ include: "workflow/rules/reference.smk"
 
 
 rule all:
+    default_target: True
     input:
         [target for name in config["scenes"] for target in scene_targets(name)],
         # the accuracy studies, unless `studies: false` (one scene alone, benchmarks/scenes.py)
         [f"{RESULTS}/accuracy/hertz.nc", f"{RESULTS}/accuracy/bodner_partom.nc"]
-        if config.get("studies", True) else [],
-    default_target: True
+        if config["studies"]
+        else [],

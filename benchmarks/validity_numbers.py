@@ -37,7 +37,6 @@ import sys
 from pathlib import Path
 
 import numpy as np
-import yaml
 
 REPO = Path(__file__).resolve().parents[1]
 SCENES = ("steel_glass_bead", "rough_aluminum", "asperity_shape")
@@ -47,6 +46,16 @@ def _loading(ds):
     if "branch" in ds.dims:
         return ds.sel(branch=ds["branch"].values[0])
     return ds
+
+
+def run_config(results: Path, scene: str) -> dict:
+    """The scene's sections as the run used them (the schema's defaults filled in), from
+    the files' own `config` attributes: the plan's and the interface's."""
+    from asperity.io.netcdf import read_dataset, scene_config
+
+    cfg = scene_config(read_dataset(results / scene / "plan.nc"))
+    cfg.update(scene_config(read_dataset(results / scene / "interface.nc")))
+    return cfg
 
 
 def shares(results: Path, scene: str) -> list[dict]:
@@ -73,7 +82,7 @@ def beyond_height(results: Path, scene: str, fractions=(0.5, 0.75, 1.0)) -> dict
     from asperity.io.netcdf import read_dataset
     from asperity.stages.homogenize import interface_dataset
 
-    cfg = yaml.safe_load((REPO / "config" / "scenes" / f"{scene}.yaml").read_text())
+    cfg = run_config(results, scene)
     d = results / scene
     asperities, surface, plan = (read_dataset(d / f) for f in ("asperities.nc", "surface.nc", "plan.nc"))
     ratio = cfg["asperity"].get("width_to_height", plan.attrs.get("width_to_height"))
@@ -84,8 +93,8 @@ def beyond_height(results: Path, scene: str, fractions=(0.5, 0.75, 1.0)) -> dict
         part = asperities[["force", "contact_area"]].copy()
         beyond = asperities["interference"] > f * height
         part["force"] = part["force"].where(beyond, 0.0).assign_attrs(asperities["force"].attrs)
-        q = interface_dataset(part, surface, plan, cfg.get("population", {}),
-                              cfg.get("homogenization", {}), cfg["units"])["nominal_pressure"]
+        q = interface_dataset(part, surface, plan, cfg["population"],
+                              cfg["homogenization"], cfg["units"])["nominal_pressure"]
         share = q.values / interface["nominal_pressure"].sel(separation=q["separation"]).values
         out[f"load_share_beyond_{f:g}_of_the_hill_height"] = [float(np.nanmin(share)), float(np.nanmax(share))]
     return out
@@ -104,9 +113,9 @@ def friction_split(results: Path, scene: str = "rough_aluminum") -> dict:
     from asperity.io.netcdf import read_dataset
     from asperity.stages.homogenize import interface_dataset
     from asperity.uniaxial.point import uniaxial_flow_stress
-    from asperity.scene import materials
+    from asperity.scene import materials, units
 
-    cfg = yaml.safe_load((REPO / "config" / "scenes" / f"{scene}.yaml").read_text())
+    cfg = run_config(results, scene)
     d = results / scene
     interface = _loading(read_dataset(d / "interface.nc"))
     friction = read_dataset(d / "friction.nc")
@@ -116,8 +125,8 @@ def friction_split(results: Path, scene: str = "rough_aluminum") -> dict:
     a = interface["contact_area_ratio"].values
     parts = {}
     for name, inside in (("inside", True), ("beyond", False)):
-        part = interface_dataset(_part(asperities, inside), surface, plan, cfg.get("population", {}),
-                                 cfg.get("homogenization", {}), cfg["units"])
+        part = interface_dataset(_part(asperities, inside), surface, plan, cfg["population"],
+                                 cfg["homogenization"], cfg["units"])
         parts[name] = (part["nominal_pressure"].values, part["contact_area_ratio"].values)
     # the computed asperity (one job: a self-similar family) and its mean pressure F / A
     job = str(plan["key"].values[plan["job"].values.astype(bool)][0])
@@ -125,7 +134,8 @@ def friction_split(results: Path, scene: str = "rough_aluminum") -> dict:
     loading = sample["branch"].values.astype(str) == "loading" if "branch" in sample else True
     touch = (sample["contact_area"].values > 0) & loading
     mean_pressure = sample["force"].values[touch] / sample["contact_area"].values[touch]
-    body = materials.build(materials.material_si(cfg["material"], cfg["units"]), ["plasticity"])
+    body = materials.build(materials.Material.from_scene(cfg["material"], units.Units.from_section(cfg["units"])),
+                           ["plasticity"])
     flow0 = uniaxial_flow_stress(body, 1e-3)
     flow_sat = uniaxial_flow_stress(body, 1e-3, body.Z1)
     hardness = float(interface["hardness"])

@@ -14,11 +14,13 @@ SNAKEMAKE = Path(sys.executable).with_name("snakemake")
 
 
 def copy_workflow(dest: Path) -> Path:
-    """Snakefile, config/, workflow/ and data/ copied to `dest` (results go there too)."""
+    """Snakefile, config/, workflow/, profiles/ and data/ copied to `dest` (results go
+    there too); Snakemake finds the default profile there (profiles/default)."""
     dest = Path(dest)
     shutil.copy(REPO / "Snakefile", dest / "Snakefile")
     shutil.copytree(REPO / "config", dest / "config")
     shutil.copytree(REPO / "workflow", dest / "workflow")
+    shutil.copytree(REPO / "profiles", dest / "profiles")
     if (REPO / "data").exists():
         shutil.copytree(REPO / "data", dest / "data")
     return dest

@@ -25,10 +25,12 @@ from asperity.population import density as population_density
 from asperity.stages import homogenize as homogenize_stage
 from asperity.stages import population as population_stage
 from asperity.stages import surface as surface_stage
-from asperity.population import adhesive as adhesive_interface
+from asperity.population.kinds import adhesive as adhesive_interface
 from asperity.fe.adhesion import LennardJones, derjaguin_force
 from asperity.peaks import JointDensity
 from asperity.population.plan import interference_grid as contact_grid
+from asperity.scene import Adhesion, Population, Units
+from tests.scene_defaults import filled
 
 UNITS = {"length": "um", "pressure": "MPa"}
 SMOOTH = {"statistics": {"sigma": 0.013, "sigma_slope": 0.013, "sigma_curvature": 0.018,
@@ -39,9 +41,10 @@ ADHESION = {"work_of_adhesion": 1.0, "spacing": 0.5, "cutoff": 16.0}
 LAW = LennardJones(1.0, 0.5e-9, 16.0)
 D = LAW.d
 REACH = LAW.range - D
-ASPERITY = {"model": "fe", "geometry": "paraboloid"}
-HOMOGENIZATION = {"rule": "gauss", "cells": [60, 40],
-                  "separations": {"start": 1.0, "stop": 6.0, "count": 11}}
+ASPERITY = filled("asperity", {"model": "fe", "geometry": "paraboloid"})
+HOMOGENIZATION = filled("homogenization", {"rule": "gauss", "cells": [60, 40],
+                                           "separations": {"start": 1.0, "stop": 6.0, "count": 11}})
+POPULATION = filled("population", {})
 
 
 # --- synthetic samples -----------------------------------------------------------------------
@@ -123,9 +126,10 @@ def surface():
 
 
 def make_plan(surface, curvatures=41, adhesion=ADHESION):
-    population = {"samples": {"height": 41, "curvature": curvatures, "interference": 241}}
-    return population_stage.plan_dataset(surface, population, ASPERITY, MATERIAL, ["adhesion"], UNITS,
-                               "draft", adhesion)
+    population = filled("population", {"samples": {"height": 41, "curvature": curvatures,
+                                                   "interference": 241}})
+    return population_stage.plan_dataset(surface, population, ASPERITY, filled("material", MATERIAL),
+                                         ["adhesion"], UNITS, "draft", filled("adhesion", adhesion))
 
 
 def gathered(plan, kind):
@@ -133,7 +137,7 @@ def gathered(plan, kind):
     for key, spec in zip(plan["key"].values, plan["spec"].values):
         if str(key) not in samples:
             samples[str(key)] = fake_sample(json.loads(str(spec)), str(key), kind)
-    return population_stage.asperities_dataset(plan, ASPERITY, MATERIAL, UNITS, samples)
+    return population_stage.asperities_dataset(plan, samples)
 
 
 @pytest.fixture(scope="module")
@@ -154,9 +158,9 @@ def jkr(plan):
 # --- grid ------------------------------------------------------------------------------------
 @pytest.mark.parametrize("cutoff", [4.0, 16.0])
 def test_grid_starts_where_the_attraction_starts_and_is_fine_near_contact(cutoff):
-    si = adhesive_interface.law_si({"spacing": 0.3, "cutoff": cutoff})
+    si = Adhesion.from_section(filled("adhesion", {"spacing": 0.3, "cutoff": cutoff}))
     d = 0.3e-9
-    assert si == {"dgamma": 1.0, "d": d, "cutoff": cutoff}
+    assert si.spec() == {"dgamma": 1.0, "d": d, "cutoff": cutoff}
     grid = adhesive_interface.interference_grid(80e-9, 241, si)
     gaps = grid[grid < 0]
     assert gaps[0] == -(cutoff - 1) * d == -adhesive_interface.reach(si)
@@ -188,14 +192,16 @@ def test_plan_runs_one_adhesive_job_per_curvature_with_the_law_in_its_key(surfac
     other = make_plan(surface, 3, {**ADHESION, "spacing": 0.3})
     again = make_plan(surface, 3)
     assert not set(other["key"].values) & set(again["key"].values)
-    without = population_stage.plan_dataset(surface, {"samples": {"height": 41, "curvature": 3}},
-                                  ASPERITY, MATERIAL, [], UNITS, "draft", ADHESION)
+    without = population_stage.plan_dataset(
+        surface, filled("population", {"samples": {"height": 41, "curvature": 3}}), ASPERITY,
+        filled("material", MATERIAL), [], UNITS, "draft", filled("adhesion", ADHESION))
     assert "adhesion" not in json.loads(str(without["spec"].values[0]))
     assert without["interference"].values[0] == 0.0 and "reach" not in without.attrs
     with pytest.raises(ValueError, match="elastic"):
-        population_stage.plan_dataset(surface, {"samples": {"curvature": 2}}, ASPERITY,
-                            {**MATERIAL, "model": "j2", "yield_stress": 320.0},
-                            ["adhesion", "plasticity"], UNITS, "draft", ADHESION)
+        population_stage.plan_dataset(
+            surface, filled("population", {"samples": {"curvature": 2}}), ASPERITY,
+            filled("material", {**MATERIAL, "model": "j2", "yield_stress": 320.0}),
+            ["adhesion", "plasticity"], UNITS, "draft", filled("adhesion", ADHESION))
 
 
 # --- gather ------------------------------------------------------------------------------------
@@ -247,7 +253,8 @@ def _gl(lo, hi, n):
 
 
 def support(surface, plan):
-    density = population_density.population_density(surface, {})
+    density = population_density.population_density(
+        surface, Population.from_section(POPULATION, Units.from_section(UNITS)))
     return density, density.support(float(plan.attrs["support_threshold"]))
 
 
@@ -287,7 +294,7 @@ def direct(surface, plan, h, kind, branch="approach", h_turn=None):
 
 @pytest.fixture(scope="module")
 def dmt_interface(surface, plan, dmt):
-    return homogenize_stage.interface_dataset(dmt, surface, plan, {}, HOMOGENIZATION, UNITS)
+    return homogenize_stage.interface_dataset(dmt, surface, plan, POPULATION, HOMOGENIZATION, UNITS)
 
 
 def test_homogenized_attraction_against_direct_quadrature(surface, plan, dmt_interface):
@@ -315,7 +322,7 @@ def test_retract_branch_hangs_on_against_direct_quadrature(surface, plan, jkr):
     """Jumps in the table: within 2 % of the gross pressure and 2 % in the contact count
     below the highest peak (measured 1.0 % and 1.3 % on approach, 1.5 % and 1.2 % on
     retraction: a jump between two grid levels d / 8 apart is integrated as a ramp)."""
-    out = homogenize_stage.interface_dataset(jkr, surface, plan, {}, HOMOGENIZATION, UNITS)
+    out = homogenize_stage.interface_dataset(jkr, surface, plan, POPULATION, HOMOGENIZATION, UNITS)
     h = out["separation"].values
     below = h < support(surface, plan)[1][1]
     for branch in ("approach", "retract"):
@@ -347,7 +354,7 @@ def test_integrator_refuses_a_table_that_does_not_reach(dmt):
 def test_adhesion_figure_draws_both_branches_and_the_samples(surface, plan, jkr, dmt_interface):
     from asperity.plots import adhesion as plots_adhesion
 
-    out = homogenize_stage.interface_dataset(jkr, surface, plan, {}, HOMOGENIZATION, UNITS)
+    out = homogenize_stage.interface_dataset(jkr, surface, plan, POPULATION, HOMOGENIZATION, UNITS)
     fig = plots_adhesion.adhesion_figure(out, jkr.isel(curvature=[0, 20, 40]),
                                          {"no adhesion": dmt_interface.sel(branch="approach")},
                                          length_unit="um", pressure_unit="MPa")

@@ -90,3 +90,38 @@ def test_new_scene_for_a_profile_and_a_unitless_file(tmp_path, capsys):
         main(["new-scene", str(DATA / "hfm-1.hfm"), "stylus", "--scene-dir", str(tmp_path)])
     with pytest.raises(SystemExit, match="no such file"):
         main(["new-scene", str(tmp_path / "missing.plu"), "--scene-dir", str(tmp_path)])
+
+
+def test_show_flags_files_written_by_another_version_of_their_stage(tmp_path, capsys):
+    """A file records the code version of its stage (asperity.versions); `show` flags one
+    written by another version, or by a version of asperity that recorded none, with
+    '!', and leaves the current ones alone. Figures carry the version in their PNG text."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from asperity import versions
+    from asperity.io.figures import figure_version, save_figure
+
+    ds = xr.Dataset({"x": ("i", np.arange(2.0), {"units": "1", "long_name": "x"})},
+                    coords={"i": ("i", np.arange(2), {"units": "1", "long_name": "i"})})
+    current = versions.code_version("interface")
+    older = f"friction {versions.VERSIONS['friction'] - 1}"
+    write_dataset(ds, tmp_path / "interface.nc", scene="s", title="t", version=current)
+    write_dataset(ds, tmp_path / "friction.nc", scene="s", title="t", version=older)
+    write_dataset(ds, tmp_path / "laws.nc", scene="s", title="t")  # no version recorded
+    save_figure(plt.figure(), tmp_path / "figures" / "laws.png", version="laws_figure 0")
+    save_figure(plt.figure(), tmp_path / "figures" / "interface.png",
+                version=versions.code_version("interface_figure"))
+    assert figure_version(tmp_path / "figures" / "laws.png") == "laws_figure 0"
+    assert main(["show", str(tmp_path)]) == 0
+    out = capsys.readouterr().out
+    flagged = [line for line in out.splitlines() if line.lstrip().startswith("!")]
+    assert len(flagged) == 3, out
+    expected = versions.VERSIONS["friction"]
+    assert any(f"written by friction version {expected - 1}; this code computes version {expected}"
+               in line for line in flagged)
+    assert any("before asperity recorded the version" in line for line in flagged)
+    assert any("laws.png" in line and "laws_figure version 0" in line for line in flagged)
+    assert not any("interface" in line for line in flagged)

@@ -12,8 +12,16 @@ from asperity.stages import surface as surface_stage
 from asperity.references import greenwood_williamson
 from asperity.references.hertz import plane_strain_modulus
 from asperity.io.netcdf import missing_attributes, read_dataset, write_dataset
+from asperity.scene import Friction, Material, Units
+from tests.scene_defaults import filled
 
 UNITS = {"length": "um", "pressure": "MPa"}
+
+
+def friction_of(section: dict) -> Friction:
+    """A scene's friction section (in UNITS, with the schema's defaults) as the stage reads it."""
+    return Friction.from_section(filled("friction", section), Units.from_section(UNITS))
+
 # the Greenwood-Williamson surface of report 7.1, SI
 R, SIGMA_P, N = 0.1414e-3, 7.07106e-7, 300e6
 E, NU = 321.7335 * 9.80665e6, 0.3
@@ -46,7 +54,7 @@ def test_mu_shear_against_greenwood_williamson_closed_form():
     h = np.linspace(-1.0, 4.0, 11) * SIGMA_P
     tau = 150.0  # MPa
     ds = friction.friction_dataset(_gw_interface(h), _gw_surface(),
-                                   {"junction_shear_strength": tau, "interlocking": "none"}, {}, UNITS)
+                                   friction_of({"junction_shear_strength": tau, "interlocking": "none"}), None)
     estar = float(plane_strain_modulus(E, NU))
     t = h / SIGMA_P
     closed = np.array([0.75 * math.pi * math.sqrt(R / SIGMA_P) * _gw_integral_by_quadrature(1.0, x)
@@ -83,12 +91,14 @@ def test_slope_of_a_map_is_the_direction_average():
 
 def test_junction_shear_strength_from_the_material_or_the_scene():
     y = 289.58e6  # 42 ksi, report 8.1.1
-    tau, how = friction.junction_shear_strength({}, {"yield_stress": y}, UNITS)
+    yielding = Material(model="elastic", youngs_modulus=2e11, poisson=0.3, yield_stress=y)
+    tau, how = friction.junction_shear_strength(friction_of({}), yielding)
     assert tau == pytest.approx(y / math.sqrt(3), rel=1e-15) and "sqrt(3)" in how
-    tau, how = friction.junction_shear_strength({"junction_shear_strength": 100.0}, {"yield_stress": y}, UNITS)
+    tau, how = friction.junction_shear_strength(friction_of({"junction_shear_strength": 100.0}), yielding)
     assert tau == pytest.approx(100e6, rel=1e-15) and how == "given in the scene"
     with pytest.raises(ValueError, match="junction_shear_strength"):
-        friction.junction_shear_strength({}, {"youngs_modulus": 2e11, "poisson": 0.3}, UNITS)
+        friction.junction_shear_strength(friction_of({}), Material(model="elastic", youngs_modulus=2e11,
+                                                                   poisson=0.3))
 
 
 def test_measured_values_pressure_lookup_and_report_side_by_side(tmp_path):
@@ -104,7 +114,7 @@ def test_measured_values_pressure_lookup_and_report_side_by_side(tmp_path):
            "report": {"shear": 0.093, "interlocking": 0.16, "total": 0.253, "nominal_pressure": 2.1947,
                       "source": "9.1, Fig. 9.3"}}
     surface = surface_stage.surface_from_statistics(STEEL, UNITS)
-    ds = friction.friction_dataset(gw, surface, cfg, {}, UNITS)
+    ds = friction.friction_dataset(gw, surface, friction_of(cfg), None)
     at = ds["mu_at_measurement"].values
     assert at[0] == pytest.approx(float(ds["mu"][5]), rel=1e-12)
     assert np.isnan(at[1]) and np.isnan(at[2])
@@ -130,5 +140,5 @@ def test_no_load_and_adhesive_tension_give_nan_and_loading_branch_is_used():
          "contact_area_ratio": (("branch", "separation"), np.stack([area, area]))},
         coords={"separation": sep, "branch": ["loading", "unloading"]})
     ds = friction.friction_dataset(two, surface_stage.surface_from_statistics(STEEL, UNITS),
-                                   {"junction_shear_strength": 100.0}, {}, UNITS)
+                                   friction_of({"junction_shear_strength": 100.0}), None)
     np.testing.assert_allclose(ds["mu_shear"].values[2:], mu[2:], rtol=1e-15)

@@ -9,6 +9,13 @@ import pytest
 from asperity import laws
 from asperity.references import greenwood_williamson
 from asperity.io.netcdf import missing_attributes, read_dataset, write_dataset
+from asperity.scene import Laws, Units
+from tests.scene_defaults import filled
+
+
+def laws_of(section: dict, units: dict) -> Laws:
+    """A scene's laws section (with the schema's defaults) as the stage reads it."""
+    return Laws.from_section(filled("laws", section), Units.from_section(filled("units", units)))
 
 UM = 1e-6
 A = np.linspace(0.5, 6.0, 40) * UM  # approaches of the fits below
@@ -100,7 +107,7 @@ def test_laws_dataset_window_report_values_and_contract(tmp_path):
     cfg = {"residual": "log", "pressure_range": [lo, hi],
            "report": {"units": {"length": "um", "pressure": "N/cm^2"}, "source": "10, Fig. 10.1",
                       "oden_martins": {"c": 15.2, "g": 0.0, "m": 2.25}}}
-    ds = laws.laws_dataset(gw, cfg, units)
+    ds = laws.laws_dataset(gw, laws_of(cfg, units))
     window = ds["in_window"].values
     assert window.sum() == 21
     # report values in SI: 15.2 N/cm^2 = 1.52e5 Pa
@@ -130,16 +137,16 @@ def test_fixed_gap_origin_by_pressure_and_clear_errors():
     p = gw["nominal_pressure"].values
     units = {"length": "um", "pressure": "MPa"}
     q = float(p[20]) / 1e6
-    ds = laws.laws_dataset(gw, {"approach_origin": {"pressure": q}, "laws": ["oden_martins"],
-                                "oden_martins": {"gap": -5.0}}, units)
+    ds = laws.laws_dataset(gw, laws_of({"approach_origin": {"pressure": q}, "laws": ["oden_martins"],
+                                        "oden_martins": {"gap": -5.0}}, units))
     assert float(ds["approach"][20]) == pytest.approx(0.0, abs=1e-12 * SIGMA_P)
     assert float(ds["estimate"].sel(law="oden_martins", parameter="g")) == pytest.approx(-5e-6)
     assert bool(ds["fixed"].sel(law="oden_martins", parameter="g"))
     with pytest.raises(ValueError, match="not below every approach"):
-        laws.laws_dataset(gw, {"oden_martins": {"gap": 1.0}}, units)
+        laws.laws_dataset(gw, laws_of({"oden_martins": {"gap": 1.0}}, units))
     with pytest.raises(ValueError, match="widen the fit window"):
-        laws.laws_dataset(gw, {"pressure_range": [q, q * 1.0001]}, units)
+        laws.laws_dataset(gw, laws_of({"pressure_range": [q, q * 1.0001]}, units))
     with pytest.raises(ValueError, match="outside the computed pressures"):
-        laws.laws_dataset(gw, {"approach_origin": {"pressure": 1e9}}, units)
+        laws.laws_dataset(gw, laws_of({"approach_origin": {"pressure": 1e9}}, units))
     with pytest.raises(ValueError, match="unknown law"):
         laws.fit_law("logarithmic", np.arange(5.0), np.arange(1.0, 6.0))

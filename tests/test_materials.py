@@ -1,4 +1,5 @@
-"""A scene's material section: SI conversion and the body the effects ask for."""
+"""A scene's material section: SI conversion and the body the effects ask for
+(asperity.scene.materials: `Material` and the one builder `build`)."""
 
 from __future__ import annotations
 
@@ -6,24 +7,32 @@ import math
 
 import pytest
 
-from asperity.scene import materials
+from tests.scene_defaults import filled
+
+from asperity.scene import Material, Units, build
 from asperity.fe.bodner_partom import BodnerPartom
 from asperity.fe.j2 import J2Plasticity
 from asperity.fe.material import LinearElastic
 
-UNITS = {"length": "um", "pressure": "MPa"}
+UNITS = Units("um", "MPa")
+
+
+def material_si(section: dict, units: Units):
+    """A scene's material section (the schema's defaults filled, as the workflow's
+    validation does) in SI."""
+    return Material.from_scene(filled("material", section), units)
 
 
 def test_bodner_partom_constants_convert_by_kind():
     mat = {"youngs_modulus": 209000.0, "poisson": 0.3, "model": "bodner_partom",
            "bodner_partom": {"preset": "sae_1020", "Z0": 600.0, "m1": 0.05, "D0": 1.0e4, "n": 2.28}}
-    si = materials.material_si(mat, UNITS)
-    bp = si["bodner_partom"]
-    assert si["youngs_modulus"] == pytest.approx(209e9, rel=1e-15)
+    si = material_si(mat, UNITS)
+    bp = si.spec()["bodner_partom"]
+    assert si.youngs_modulus == pytest.approx(209e9, rel=1e-15)
     assert bp["Z0"] == pytest.approx(600e6, rel=1e-15)      # stress: x 1e6
     assert bp["m1"] == pytest.approx(0.05e-6, rel=1e-15)    # compliance: / 1e6
     assert bp["D0"] == 1.0e4 and bp["n"] == 2.28            # rate, exponent: as given
-    body = materials.build(si, ["plasticity"])
+    body = build(si, ["plasticity"])
     assert isinstance(body, BodnerPartom)
     # the scene's values equal the report's set of 8.2.1 (BodnerPartom.sae_1020)
     ref = BodnerPartom.sae_1020()
@@ -33,27 +42,27 @@ def test_bodner_partom_constants_convert_by_kind():
 
 
 def test_effects_choose_the_body():
-    si = materials.material_si({"youngs_modulus": 65000.0, "poisson": 0.33, "model": "j2",
+    si = material_si({"youngs_modulus": 65000.0, "poisson": 0.33, "model": "j2",
                                 "yield_stress": 320.0}, UNITS)
-    elastic = materials.build(si, [])
+    elastic = build(si, [])
     assert isinstance(elastic, LinearElastic) and elastic.yield_stress == pytest.approx(320e6)
-    plastic = materials.build(si, ["plasticity"])
+    plastic = build(si, ["plasticity"])
     assert isinstance(plastic, J2Plasticity) and plastic.H == 0.0
-    assert materials.rate_independent(si, ["plasticity"])
-    bp = materials.material_si({"youngs_modulus": 65000.0, "poisson": 0.33, "model": "bodner_partom",
+    assert si.rate_independent(["plasticity"])
+    bp = material_si({"youngs_modulus": 65000.0, "poisson": 0.33, "model": "bodner_partom",
                                 "bodner_partom": {"preset": "aluminum_6061_t4"}}, UNITS)
-    assert not materials.rate_independent(bp, ["plasticity"])
-    assert materials.rate_independent(bp, [])  # without the effect the body is elastic
+    assert not bp.rate_independent(["plasticity"])
+    assert bp.rate_independent([])  # without the effect the body is elastic
 
 
 def test_mechanisms_and_damage_follow_the_scene():
-    si = materials.material_si({"youngs_modulus": 132000.0, "poisson": 0.0805, "model": "bodner_partom",
+    si = material_si({"youngs_modulus": 132000.0, "poisson": 0.0805, "model": "bodner_partom",
                                 "bodner_partom": {"preset": "b1900_hf_871C", "mechanisms": ["isotropic_hardening"]},
                                 "damage": {"H": 2000.0}}, UNITS)
-    body = materials.build(si, ["plasticity", "damage"])
+    body = build(si, ["plasticity", "damage"])
     assert body.isotropic_hardening and not body.recovery and not body.directional_hardening
     assert body.damage and body.damage_H == pytest.approx(2e9)
-    assert not materials.build(si, ["plasticity"]).damage
+    assert not build(si, ["plasticity"]).damage
 
 
 @pytest.mark.parametrize("material, effects, message", [
@@ -65,9 +74,9 @@ def test_mechanisms_and_damage_follow_the_scene():
 ])
 def test_inconsistent_material_and_effects_are_clear_errors(material, effects, message):
     with pytest.raises(ValueError, match=message):
-        materials.build(materials.material_si(material, UNITS), effects)
+        build(material_si(material, UNITS), effects)
 
 
 def test_no_yield_stress_means_never_yields():
-    body = materials.build(materials.material_si({"youngs_modulus": 1.0, "poisson": 0.3}, UNITS))
+    body = build(material_si({"youngs_modulus": 1.0, "poisson": 0.3}, UNITS))
     assert math.isinf(body.yield_stress)

@@ -1,4 +1,5 @@
-"""Asperity models: representative hills, FE levels, and the gather onto the plan's grid."""
+"""How a sample becomes a response: representative hills, FE levels, and the gather onto
+the plan's grid (asperity.population.geometry, .gather, .kinds)."""
 
 import math
 
@@ -6,9 +7,19 @@ import numpy as np
 import pytest
 import xarray as xr
 
-from asperity.references import hertz
-from asperity.population import models
+from asperity.population import gather as gathering
+from asperity.population import geometry
+from asperity.population import samples as population
+from asperity.population.kinds import KINDS, Planning, SampleFailed
 from asperity.population.plan import interference_grid, make_plan
+from asperity.references import hertz
+from asperity.scene import Asperity, Material, Units
+from tests.scene_defaults import filled
+
+
+def asperity(**section) -> Asperity:
+    """The scene's asperity section with the schema's defaults, as the workflow reads it."""
+    return Asperity.from_section(filled("asperity", section), Units("m", "Pa"))
 
 
 def BY_CURVATURE(height, curvature, level):
@@ -18,8 +29,8 @@ def BY_CURVATURE(height, curvature, level):
 
 def test_representative_hill_has_the_surface_rms_slope_and_the_sample_curvature():
     """8.2: width/height = pi/(sqrt2 sigma_slope); 2.5.1: kappa = C k^2."""
-    ratio = models.representative_width_to_height(0.13)
-    hill = models.fe_geometry({"geometry": "cosine"}, 0.018e6, ratio)
+    ratio = geometry.representative_width_to_height(0.13)
+    hill = geometry.fe_geometry("cosine", False, 0.018e6, ratio)
     assert hill.tip_curvature == pytest.approx(0.018e6, rel=1e-12)
     # rms slope of C cos(k s) is k C / sqrt2
     assert hill.wavenumber * hill.amplitude / math.sqrt(2) == pytest.approx(0.13, rel=1e-12)
@@ -45,7 +56,7 @@ def test_gather_reproduces_a_power_law_between_and_below_levels():
     keys = dict(zip(plan["sample_curvature"].values, plan["key"].values))
     levels = np.geomspace(grid[5], 0.5e-6, 40)  # FE range ends at half the grid
     samples = {k: _fake_sample(k, c, levels) for c, k in keys.items()}
-    gathered = models.gather(plan, samples)
+    gathered = gathering.gather(plan, samples)
     exact = hertz.hertz_asperities([0.0, 1e-6], [1e5, 2e5], grid, 2e11, 0.3)
     inside = grid <= levels[-1]
     # log-log monotone cubic on 40 levels per 3.7 decades; power law below: 1e-10
@@ -69,7 +80,7 @@ def test_gather_names_missing_samples():
     plan = make_plan([0.0], [1e5, 2e5], grid, model="fe", job_spec=BY_CURVATURE,
                      shift_invariant=True, analytic=False)
     with pytest.raises(ValueError, match="2 samples missing"):
-        models.gather(plan, {})
+        gathering.gather(plan, {})
 
 
 def test_fe_failure_names_sample_and_step(monkeypatch):
@@ -81,11 +92,13 @@ def test_fe_failure_names_sample_and_step(monkeypatch):
         raise fe.ConvergenceError(step=7, interference=3e-7, reached=1e-7, cuts=8)
 
     monkeypatch.setattr(fe, "solve_asperity", fail)
-    spec = models.job_spec({"model": "fe", "geometry": "sphere"},
-                           {"youngs_modulus": 2e11, "poisson": 0.3}, [], "draft",
-                           curvature=1e5, grid=interference_grid(1e-6, 20))
-    with pytest.raises(models.SampleFailed, match=r"sample abc \(curvature 100000 1/m\).*step 7"):
-        models.solve_job(spec, "abc")
+    planning = Planning(asperity=asperity(model="fe", geometry="sphere"),
+                        material=Material(model="elastic", youngs_modulus=2e11, poisson=0.3),
+                        effects=frozenset(), accuracy="draft", adhesion=None,
+                        grid=interference_grid(1e-6, 20), family=None, width_to_height=None)
+    spec = KINDS["elastic"].spec(planning, None, 1e5, math.nan)
+    with pytest.raises(SampleFailed, match=r"sample abc \(curvature 100000 1/m\).*step 7"):
+        population.solve(spec, "abc")
 
 
 def test_fe_range_stops_short_of_the_foot_of_sphere_and_paraboloid():
@@ -93,10 +106,11 @@ def test_fe_range_stops_short_of_the_foot_of_sphere_and_paraboloid():
     interference is `max_radius_fraction` R, capped at 0.9 of that height."""
     from asperity import fe
 
-    assert models.max_interference(fe.Sphere(2.0), {}) == pytest.approx(0.5, rel=1e-15)
-    assert models.max_interference(fe.Sphere(2.0), {"max_radius_fraction": 0.5}) == \
+    sphere = asperity(model="fe", geometry="sphere")
+    assert geometry.max_interference(fe.Sphere(2.0), sphere) == pytest.approx(0.5, rel=1e-15)
+    assert geometry.max_interference(fe.Sphere(2.0), asperity(model="fe", max_radius_fraction=0.5)) == \
         pytest.approx(0.9 * 2.0 * (1 - 2**-0.5), rel=1e-12)
-    assert models.max_interference(fe.Paraboloid(2.0), {}) == pytest.approx(0.9 * 0.25, rel=1e-12)
+    assert geometry.max_interference(fe.Paraboloid(2.0), sphere) == pytest.approx(0.9 * 0.25, rel=1e-12)
 
 
 def test_tail_slope_ignores_one_jumping_step():
@@ -106,10 +120,10 @@ def test_tail_slope_ignores_one_jumping_step():
     slope is kept exactly."""
     w = np.linspace(1.0, 2.0, 41)
     line = 3.0 + 0.5 * w
-    assert models.tail_slope(w, line) == pytest.approx(0.5, rel=1e-12)
+    assert gathering.tail_slope(w, line) == pytest.approx(0.5, rel=1e-12)
     jumped = line.copy()
     jumped[-2:] += 0.4  # a jump between the third- and second-to-last level
-    assert models.tail_slope(w, jumped) == pytest.approx(0.5, rel=1e-12)
+    assert gathering.tail_slope(w, jumped) == pytest.approx(0.5, rel=1e-12)
     # a geometric elastic sequence: only the last step lies in the window (its last tangent)
     g = np.geomspace(1e-3, 1.0, 40)
-    assert models.tail_slope(g, g**1.5) == pytest.approx((1 - g[-2] ** 1.5) / (1 - g[-2]), rel=1e-12)
+    assert gathering.tail_slope(g, g**1.5) == pytest.approx((1 - g[-2] ** 1.5) / (1 - g[-2]), rel=1e-12)

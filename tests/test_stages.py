@@ -7,6 +7,7 @@ import pytest
 from asperity.stages import population as population_stage
 from asperity.stages import surface as surface_stage
 from asperity.references import hertz
+from tests.scene_defaults import filled
 
 UNITS = {"length": "um", "pressure": "MPa"}
 STEEL = {"statistics": {"sigma": 4.91, "sigma_slope": 0.16, "sigma_curvature": 0.0227,
@@ -26,10 +27,11 @@ def test_given_statistics_in_si():
 def test_plan_and_per_sample_response_agree_with_gathered():
     surface = surface_stage.surface_from_statistics(STEEL, UNITS)
     mat = {"youngs_modulus": 209000.0, "poisson": 0.3}
-    plan = population_stage.plan_dataset(surface, {"samples": {"height": 3, "curvature": 4, "interference": 20}},
-                               {"model": "hertz"}, mat, [], UNITS, "standard")
+    plan = population_stage.plan_dataset(
+        surface, filled("population", {"samples": {"height": 3, "curvature": 4, "interference": 20}}),
+        filled("asperity", {"model": "hertz"}), filled("material", mat), [], UNITS, "standard")
     assert plan.sizes["sample"] == 12
-    asperities = population_stage.asperities_dataset(plan, {"model": "hertz"}, mat, UNITS)
+    asperities = population_stage.asperities_dataset(plan)
     key = str(plan["key"].values[5])
     one = population_stage.sample_dataset(json.loads(str(plan["spec"].values[5])), key)
     k = one.attrs["curvature"]
@@ -62,14 +64,15 @@ def test_map_peak_density_matches_nayak():
     assert 3 * float(ds["m22"]) == pytest.approx(float(ds["m40"]), rel=0.10)
 
 
-FE_SPHERE = {"model": "fe", "geometry": "sphere", "scaling": "none"}
+FE_SPHERE = filled("asperity", {"model": "fe", "geometry": "sphere", "scaling": "none"})
 STEEL_E = {"youngs_modulus": 209000.0, "poisson": 0.3}
 
 
 def _fe_plan(population=None, material=STEEL_E, accuracy="draft"):
     surface = surface_stage.surface_from_statistics(STEEL, UNITS)
     population = population or {"samples": {"height": 3, "curvature": 4, "interference": 20}}
-    return population_stage.plan_dataset(surface, population, FE_SPHERE, material, [], UNITS, accuracy)
+    return population_stage.plan_dataset(surface, filled("population", population), FE_SPHERE,
+                                         filled("material", material), [], UNITS, accuracy)
 
 
 def test_keys_hash_what_the_job_depends_on_only():
@@ -93,7 +96,7 @@ def test_a_failed_sample_is_recorded_and_the_gather_names_it(monkeypatch):
     """A job that fails leaves a record naming sample and step; the gather refuses
     to homogenize over the hole and names it."""
     from asperity import fe
-    from asperity.population import models
+    from asperity.population.gather import gather
 
     plan = _fe_plan()
     keys = [str(k) for k in np.unique(plan["key"].values)]
@@ -103,8 +106,8 @@ def test_a_failed_sample_is_recorded_and_the_gather_names_it(monkeypatch):
         raise fe.ConvergenceError(step=3, interference=1e-7, reached=5e-8, cuts=8)
 
     monkeypatch.setattr(fe, "solve_asperity", fail)
-    record = population_stage.sample_or_failure(specs[keys[0]], keys[0])
+    record = population_stage.sample_dataset(specs[keys[0]], keys[0])
     assert record.attrs["status"] == "failed" and "step 3" in record.attrs["error"]
     assert keys[0] in record.attrs["error"]
     with pytest.raises(ValueError, match=rf"4 of 4 samples missing.*{keys[0]}.*step 3"):
-        models.gather(plan, {keys[0]: record})
+        gather(plan, {keys[0]: record})

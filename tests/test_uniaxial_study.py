@@ -19,13 +19,10 @@ from scipy.integrate import solve_ivp
 from asperity.fe.bodner_partom import BodnerPartom
 from asperity.io.netcdf import missing_attributes, read_dataset, write_dataset
 from asperity.uniaxial.point import uniaxial_flow_stress
-from asperity.uniaxial.scene import (
-    accuracy_study,
-    history_from_test,
-    material_from_test,
-    run_uniaxial_scene,
-    uniaxial_reference,
-)
+from asperity.scene import Units
+from asperity.scene.uniaxial import IntegratorStudy, UniaxialTest
+from asperity.uniaxial.scene import accuracy_study, run_uniaxial_scene, uniaxial_reference
+from tests.scene_defaults import filled, filled_config
 
 from .test_uniaxial import _creep_ode
 
@@ -39,9 +36,35 @@ MPA = 1e6
 CHEAP = [t for t in SCENE["uniaxial"]["tests"] if t["name"] != "b1900_cyclic"]
 
 
+def uniaxial_test(test: dict, units: dict) -> UniaxialTest:
+    """A test as the stage reads it, with the schema's defaults (a test without a
+    material or effects gets SAE 1020 without mechanisms); its constants are left
+    to the library to check."""
+    given = {k: test[k] for k in ("constants", "damage") if k in test}
+    complete = {"material": "sae_1020", "effects": [],
+                **{k: v for k, v in test.items() if k not in given}}
+    complete = {**filled("uniaxial", {"tests": [complete]})["tests"][0], **given}
+    return UniaxialTest.from_section(complete, Units(units.get("length"), units["pressure"]))
+
+
+def material_from_test(test: dict, units: dict):
+    """The test's `BodnerPartom` material point."""
+    return uniaxial_test(test, units).body()
+
+
+def history_from_test(test: dict, units: dict):
+    """The test's history [(time, value SI)] and its control."""
+    t = uniaxial_test(test, units)
+    return list(t.history), t.control
+
+
+def run_scene(tests: list[dict], units: dict):
+    return run_uniaxial_scene([uniaxial_test(t, units) for t in tests])
+
+
 @pytest.fixture(scope="module")
 def scene_run():
-    return run_uniaxial_scene({"tests": CHEAP}, UNITS)
+    return run_scene(CHEAP, UNITS)
 
 
 # ------------------------------------------------------------ the dataset
@@ -115,13 +138,13 @@ def test_explicit_integrator_from_the_scene():
     """A test may ask for the explicit reference: `outputs` intervals, each
     sub-stepped to its tolerance; same plateau as the closed form (1e-4)."""
     t = dict(TESTS["sae1020_steady_flow"], integrator="explicit", tolerance=1e-4, outputs=10)
-    ds = run_uniaxial_scene({"tests": [t]}, UNITS)
+    ds = run_scene([t], UNITS)
     assert str(ds.integrator.values[0]) == "explicit" and int(ds.records[0]) == 11
     assert int(ds.steps[0]) > 10                     # sub-steps are counted
     exact = uniaxial_flow_stress(BodnerPartom.sae_1020(), 1e-3)
     assert float(ds.stress[0, -1]) == pytest.approx(exact, rel=1e-4)
     with pytest.raises(ValueError, match="names must be unique"):
-        run_uniaxial_scene({"tests": [t, t]}, UNITS)
+        run_scene([t, t], UNITS)
 
 
 # ------------------------------------------------------------ closed forms
@@ -222,9 +245,8 @@ def test_implicit_reaches_1_percent_with_20x_fewer_steps():
     times the implicit steps; measured 1.1-1.7), but takes more than 20
     times the steps on the stiff aluminum and steel sets (measured 38-39)."""
     cfg = CONFIG["accuracy_bodner_partom"]
-    ds = accuracy_study(cfg["tests"], cfg["units"], pairing=cfg["pairing"],
-                        tolerances={"implicit": [1e-3], "explicit": [1e-3, 1e-6]},
-                        target=0.01)
+    ds = accuracy_study(IntegratorStudy.from_section(filled_config("accuracy_bodner_partom", {
+        **cfg, "tolerances": {"implicit": [1e-3], "explicit": [1e-3, 1e-6]}, "target": 0.01})))
     assert missing_attributes(ds) == []
     imp = ds.sel(integrator="implicit", indicator_tolerance=1e-3)
     ref = ds.sel(integrator="explicit", indicator_tolerance=1e-6)

@@ -23,7 +23,7 @@ def exact_path(w_max, n=60):
 
 
 def gathered(levels, check=None):
-    """What asperity.population.models.gather writes: loading curves and computed paths."""
+    """What asperity.population.gather.gather writes: loading curves and computed paths."""
     grid = interference_grid(1e-6, 241)
     all_levels = sorted(list(levels) + ([check] if check else []))
     n = 60

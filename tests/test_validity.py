@@ -14,10 +14,11 @@ from asperity.homogenize import validity
 from asperity.io.netcdf import read_dataset, write_dataset
 from asperity.peaks import FixedCurvatureDensity
 from asperity.plots.validity import invalid_spans
-from asperity.population import models
+from asperity.population.gather import gather
 from asperity.population.plan import interference_grid, make_plan
 from asperity.references.greenwood_williamson import gw_integral
 from asperity.references.hertz import hertz_asperities, plane_strain_modulus
+from asperity.scene import Material
 
 SIGMA_P = 1e-6  # m
 CURVATURE = 1e4  # 1/m: R = 100 um
@@ -53,13 +54,17 @@ def _yielded_share(h):
     return gw_integral(0.0, t + W_H / SIGMA_P) / gw_integral(0.0, t)
 
 
+def elastic(**given) -> Material:
+    return Material("elastic", youngs_modulus=E, poisson=NU, **given)
+
+
 @pytest.mark.parametrize("material, hardness, rule", [
-    ({"youngs_modulus": E, "poisson": NU}, HARDNESS, "above the hardness"),
+    (elastic(hardness=HARDNESS), HARDNESS, "above the hardness"),
     # a yield stress whose Hertz first yield p0 = 1.5 F/A = 1.6 Y is at the same mean pressure
-    ({"youngs_modulus": E, "poisson": NU, "yield_stress": 1.5 / 1.6 * HARDNESS}, None, "p0 = 1.5 F/A"),
+    (elastic(yield_stress=1.5 / 1.6 * HARDNESS), None, "p0 = 1.5 F/A"),
 ])
 def test_hertz_interface_yields_where_the_mean_pressure_crosses_the_limit(material, hardness, rule):
-    plasticity = validity.plasticity_of(material, [], hardness)
+    plasticity = validity.plasticity_of(material, [])
     assert rule in plasticity.yield_rule
     h = np.linspace(-2.0, 3.0, 51) * SIGMA_P
     out = _hertz_interface(plasticity, h)
@@ -72,21 +77,21 @@ def test_hertz_interface_yields_where_the_mean_pressure_crosses_the_limit(materi
     assert all(str(w).startswith("yielded_fraction") for w in out["validity"].values[h < crossing])
     assert set(out["validity"].values[h > crossing + 0.02 * SIGMA_P]) == {""}
     # psi = (E'/H) sqrt(sigma_p / R) with H = the hardness given, or 2.8 Y
-    h_used = hardness if hardness is not None else validity.HARDNESS_OVER_YIELD * material["yield_stress"]
+    h_used = hardness if hardness is not None else validity.HARDNESS_OVER_YIELD * material.yield_stress
     psi = plane_strain_modulus(E, NU) / h_used * math.sqrt(SIGMA_P * CURVATURE)
     assert float(out["plasticity_index"]) == pytest.approx(psi, rel=1e-6)
     assert float(out["hardness"]) == pytest.approx(h_used, rel=1e-12)
 
 
 def test_plasticity_index_limit_fails_every_separation_of_an_elastic_scene():
-    plasticity = validity.plasticity_of({"youngs_modulus": E, "poisson": NU}, [], HARDNESS)
+    plasticity = validity.plasticity_of(elastic(hardness=HARDNESS), [])
     psi = plane_strain_modulus(E, NU) / HARDNESS * math.sqrt(SIGMA_P * CURVATURE)
     h = np.linspace(2.0, 3.0, 5) * SIGMA_P
     out = _hertz_interface(plasticity, h, {**LIMITS, "plasticity_index": 0.5 * psi})
     assert not out["valid"].values.any()
     assert all(str(w).startswith("plasticity_index") for w in out["validity"].values)
     # an inelastic body is limited by neither (its yield is modelled), only records them
-    inelastic = validity.plasticity_of({"youngs_modulus": E, "poisson": NU}, ["plasticity"], HARDNESS)
+    inelastic = validity.plasticity_of(elastic(hardness=HARDNESS), ["plasticity"])
     strict = {**LIMITS, "plasticity_index": 0.5 * psi, "yielded_fraction": 0.1}
     out = _hertz_interface(inelastic, h, strict)
     assert out["valid"].values.all()
@@ -111,7 +116,7 @@ def test_fe_job_capped_on_purpose_extrapolates_a_known_share_of_the_load():
     plan = make_plan([0.0], [CURVATURE], grid, model="fe", job_spec=lambda h, k, lv: {"curvature": k},
                      shift_invariant=True, analytic=False)
     key = str(plan["key"].values[0])
-    gathered = models.gather(plan, {key: _linear_sample(key, CURVATURE, np.geomspace(grid[1], cap, 40))})
+    gathered = gather(plan, {key: _linear_sample(key, CURVATURE, np.geomspace(grid[1], cap, 40))})
     assert gathered["extrapolated"].values[..., grid > cap * (1 + 1e-12)].all()
     h = np.linspace(-2.0, 3.0, 51) * SIGMA_P
     out = validity.assess(_homogenized(validity.with_indicators(gathered, None), h), None,
@@ -131,7 +136,7 @@ def test_fe_job_capped_on_purpose_extrapolates_a_known_share_of_the_load():
 def test_interaction_is_twice_the_mean_contact_radius_over_the_spacing():
     """GW: a_mean = sqrt(R sigma_p) E(sqrt(s - t)) = sqrt(R sigma_p) F_1/2(t) / F_0(t)."""
     h = np.linspace(-1.0, 2.0, 7) * SIGMA_P
-    out = _hertz_interface(validity.plasticity_of({"youngs_modulus": E, "poisson": NU}, []), h)
+    out = _hertz_interface(validity.plasticity_of(elastic(), []), h)
     t = h / SIGMA_P
     count = N_PEAKS * gw_integral(0.0, t)
     radius = math.sqrt(SIGMA_P / CURVATURE) * gw_integral(0.5, t) / gw_integral(0.0, t)
@@ -186,13 +191,14 @@ def test_adhesive_branches_are_judged_each_on_its_own_and_survive_netcdf(tmp_pat
 
 
 def test_hardness_rules():
-    assert validity.hardness_of({"yield_stress": 3e8})[0] == pytest.approx(8.4e8, rel=1e-12)
-    assert validity.hardness_of({"yield_stress": 3e8}, 1e9) == (1e9, "given in the scene (material.hardness)")
-    assert math.isnan(validity.hardness_of({})[0])
+    assert validity.hardness_of(elastic(yield_stress=3e8))[0] == pytest.approx(8.4e8, rel=1e-12)
+    assert validity.hardness_of(elastic(yield_stress=3e8, hardness=1e9)) == (
+        1e9, "given in the scene (material.hardness)")
+    assert math.isnan(validity.hardness_of(elastic())[0])
     # Bodner-Partom SAE 1020 (8.2.1): Z1 = 1050 MPa, n = 2.28, D0 = 1e4 1/s, at 1e-3 1/s
     sigma = 1050e6 * (2 * math.log(2 / math.sqrt(3) * 1e4 / 1e-3)) ** (-0.5 / 2.28)
-    h, rule = validity.hardness_of({"youngs_modulus": 2.09e11, "poisson": 0.3, "model": "bodner_partom",
-                                    "bodner_partom": {"preset": "sae_1020"}})
+    h, rule = validity.hardness_of(Material("bodner_partom", youngs_modulus=2.09e11, poisson=0.3,
+                                            preset="sae_1020"))
     assert h == pytest.approx(2.8 * sigma, rel=1e-12)
     assert "saturated Bodner-Partom flow stress" in rule
 
@@ -227,7 +233,7 @@ def test_interface_figure_shades_the_invalid_separations():
     from asperity.plots import interface_figure
 
     h = np.linspace(-1.0, 2.0, 7) * SIGMA_P
-    out = _hertz_interface(validity.plasticity_of({"youngs_modulus": E, "poisson": NU}, [], HARDNESS), h)
+    out = _hertz_interface(validity.plasticity_of(elastic(hardness=HARDNESS), []), h)
     fig = interface_figure(out)
     spans = [p for p in fig.axes[0].patches]
     bad = h[~out["valid"].values]

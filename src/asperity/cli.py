@@ -5,6 +5,9 @@
                                                          one variable as a table
     asperity new-scene data/topographies/mi-1.mi [NAME]  config/scenes/NAME.yaml for the file,
                                                          and the command that runs it
+
+A file (or figure) written by another version of a stage's code than this one
+(`asperity.versions`) is flagged with ``!``: `snakemake` computes it again.
 """
 
 from __future__ import annotations
@@ -17,6 +20,8 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
+from asperity import versions
+from asperity.io.figures import figure_version
 from asperity.homogenize.validity import valid_ranges
 from asperity.io.netcdf import read_dataset
 
@@ -38,11 +43,24 @@ def _headline(var: xr.DataArray) -> str:
     return f"{finite.min():.4g} .. {finite.max():.4g} {units}".strip()
 
 
+def version_note(written: str | None) -> str | None:
+    """Why a file whose code version is `written` (None: it records none) is out of date,
+    or None if it is not (`asperity.versions.stale`)."""
+    if written is None:
+        return "written before asperity recorded the version of its code: computed again by snakemake"
+    stale = versions.stale(written)
+    return None if stale is None else f"{stale}: computed again by snakemake"
+
+
 def describe(path: Path) -> str:
-    """Variables, dimensions and headline numbers of one result file."""
+    """Variables, dimensions and headline numbers of one result file, and a note if
+    another version of its stage's code wrote it."""
     ds = read_dataset(path)
     dims = ", ".join(f"{k}={v}" for k, v in ds.sizes.items()) or "scalars"
     lines = [f"{path}  [{dims}]  {ds.attrs.get('title', '')}"]
+    note = version_note(ds.attrs.get(versions.ATTRIBUTE))
+    if note and str(ds.attrs.get("source", "")).startswith("asperity"):
+        lines.append(f"  ! {note}")
     numbers = {k: v for k, v in ds.attrs.items()
                if isinstance(v, (int, float, np.number)) and not isinstance(v, bool)}
     if numbers:  # the file's headline numbers (FE cost, errors against closed forms, ...)
@@ -208,12 +226,21 @@ def main(argv: list[str] | None = None) -> int:
     if not files:
         parser.error(f"{path}: no .nc files")
     print("\n\n".join(describe(f) for f in files))
+    for figure in sorted(path.glob("figures/*.png")) if path.is_dir() else []:
+        note = version_note(figure_version(figure))
+        if note:
+            print(f"! {figure}: {note}")
     plan = path / "plan.nc"
     if path.is_dir() and plan.exists():  # the scene's FE jobs, in the folder shared by all scenes
         ds = read_dataset(plan)
         keys = set(ds["key"].values[ds["job"].values.astype(bool)])
-        done = [k for k in keys if (path.parent / "samples" / f"{k}.nc").exists()]
+        done = [path.parent / "samples" / f"{k}.nc" for k in keys]
+        done = [f for f in done if f.exists()]
         print(f"\n{len(done)} of {len(keys)} sample files of this scene in {path.parent / 'samples'}")
+        for f in done:
+            note = version_note(read_dataset(f).attrs.get(versions.ATTRIBUTE))
+            if note:
+                print(f"! {f}: {note}")
     return 0
 
 

@@ -28,10 +28,10 @@ mean absolute slope E|z'| of a Gaussian surface is smaller by sqrt(2/pi)::
 
 (z' ~ N(0, sigma_slope^2): the slope of a profile in the sliding direction,
 whose variance is m2 = sigma_slope^2, report 2.3).  A scene chooses with
-``interlocking``: ``mean_absolute_slope`` (the default, the issue's
-definition), ``rms_slope`` (what the report's 0.16 is), ``none``, or a number.
+``interlocking``: ``mean_absolute_slope`` (the default),
+``rms_slope`` (what the report's 0.16 is), ``none``, or a number.
 
-tau_s: the scene's ``junction_shear_strength`` (pressure unit), else the bulk
+tau_s: the scene's ``junction_shear_strength``, else the bulk
 shear strength from the material's yield stress by von Mises,
 tau_s = yield_stress / sqrt(3).  Neither given is an error (a Bodner-Partom
 material has no yield stress of its own: give tau_s).
@@ -47,18 +47,16 @@ adhesive tension: the coefficient is undefined there).  Plot
 from __future__ import annotations
 
 import math
-from typing import Any, Mapping
+from typing import Any
 
 import numpy as np
 import xarray as xr
 
-from asperity import units
+from asperity.scene import Friction, Material
 from asperity.units import attrs
 
 __all__ = ["mean_absolute_slope", "slope_deviation", "junction_shear_strength",
            "mu_shear", "interlocking", "friction_dataset", "at_pressure", "loading_branch"]
-
-Config = Mapping[str, Any]
 
 SQRT_2_OVER_PI = math.sqrt(2.0 / math.pi)
 INTERLOCKING = ("mean_absolute_slope", "rms_slope", "none")
@@ -102,7 +100,7 @@ def slope_deviation(surface: xr.Dataset) -> float:
                      "give friction.interlocking as a number or `none`")
 
 
-def interlocking(surface: xr.Dataset, choice: Any = "mean_absolute_slope") -> tuple[float, str]:
+def interlocking(surface: xr.Dataset, choice: Any) -> tuple[float, str]:
     """mu_interlocking and how it was obtained (report 9.1, refs. [32, 89])."""
     if isinstance(choice, (int, float)) and not isinstance(choice, bool):
         if choice < 0:
@@ -118,13 +116,11 @@ def interlocking(surface: xr.Dataset, choice: Any = "mean_absolute_slope") -> tu
     raise ValueError(f"friction.interlocking {choice!r}: one of {', '.join(INTERLOCKING)} or a number")
 
 
-def junction_shear_strength(friction_cfg: Config, material_si: Mapping[str, Any],
-                            units_cfg: Config) -> tuple[float, str]:
+def junction_shear_strength(friction: Friction, material: Material | None) -> tuple[float, str]:
     """tau_s [Pa] and its origin: the scene's value, or yield_stress / sqrt(3)."""
-    if friction_cfg.get("junction_shear_strength") is not None:
-        scale = units.pressure_scale(units_cfg.get("pressure", "Pa"))
-        return float(friction_cfg["junction_shear_strength"]) * scale, "given in the scene"
-    y = material_si.get("yield_stress") if material_si else None
+    if friction.junction_shear_strength is not None:
+        return friction.junction_shear_strength, "given in the scene"
+    y = material.yield_stress if material is not None else None
     if y is not None and math.isfinite(float(y)):
         return float(y) / math.sqrt(3.0), "bulk shear strength yield_stress / sqrt(3) (von Mises)"
     raise ValueError(
@@ -157,26 +153,21 @@ def at_pressure(pressure: np.ndarray, values: np.ndarray, target) -> np.ndarray:
     return np.where(np.isfinite(lt) & (lt >= lp[0]) & (lt <= lp[-1]), out, np.nan)
 
 
-def friction_dataset(interface: xr.Dataset, surface: xr.Dataset, friction_cfg: Config,
-                     material_si: Mapping[str, Any], units_cfg: Config) -> xr.Dataset:
+def friction_dataset(interface: xr.Dataset, surface: xr.Dataset, friction: Friction,
+                     material: Material | None) -> xr.Dataset:
     """mu_shear, mu_interlocking and mu of the loading branch (report 9.1, Figs. 9.1-9.3).
 
     Parameters
     ----------
     interface : interface.nc (dim ``separation``; ``branch`` selected to loading)
     surface : surface.nc (the slope statistic)
-    friction_cfg : the scene's ``friction`` section (scene units):
-        ``junction_shear_strength``, ``interlocking``, ``measured`` (list of
-        label, value, uncertainty, nominal_pressure, source), ``report``
-        (the report's own estimate: shear, interlocking, total,
-        nominal_pressure, source; for comparison only)
-    material_si : the scene's material in SI (``yield_stress`` used if tau_s is not given)
-    units_cfg : the scene's units (pressure unit of tau_s and of the pressures)
+    friction : the scene's ``friction`` section: junction shear strength, interlocking,
+        measured coefficients, the report's own estimate (for comparison only)
+    material : the scene's material (its ``yield_stress`` if tau_s is not given), or None
     """
     interface = loading_branch(interface)
-    pscale = units.pressure_scale(units_cfg.get("pressure", "Pa"))
-    tau_s, tau_origin = junction_shear_strength(friction_cfg, material_si, units_cfg)
-    mu_i, mu_i_origin = interlocking(surface, friction_cfg.get("interlocking", "mean_absolute_slope"))
+    tau_s, tau_origin = junction_shear_strength(friction, material)
+    mu_i, mu_i_origin = interlocking(surface, friction.interlocking)
     p = interface["nominal_pressure"].values
     shear = mu_shear(interface["contact_area_ratio"].values, p, tau_s)
     sep = interface["separation"]
@@ -200,12 +191,12 @@ def friction_dataset(interface: xr.Dataset, surface: xr.Dataset, friction_cfg: C
     ds["mean_absolute_slope"] = ((), float(mean_absolute_slope(s)),
                                  attrs("1", "mean absolute slope sqrt(2/pi) sigma_slope (Gaussian surface)"))
 
-    measured = list(friction_cfg.get("measured", []) or [])
+    measured = friction.measured
     if measured:
-        labels = [str(m["label"]) for m in measured]
-        get = lambda key, scale=1.0: np.array(  # noqa: E731
-            [float(m[key]) * scale if m.get(key) is not None else np.nan for m in measured])
-        mp = get("nominal_pressure", pscale)
+        labels = [m.label for m in measured]
+        get = lambda key: np.array(  # noqa: E731
+            [np.nan if getattr(m, key) is None else getattr(m, key) for m in measured])
+        mp = get("nominal_pressure")
         ds = ds.assign_coords(measurement=("measurement", labels, attrs("1", "friction test")))
         ds["measured_mu"] = ("measurement", get("value"), attrs("1", "measured static coefficient of friction"))
         ds["measured_mu_uncertainty"] = ("measurement", get("uncertainty"),
@@ -215,19 +206,19 @@ def friction_dataset(interface: xr.Dataset, surface: xr.Dataset, friction_cfg: C
             "1", "computed mu_shear at the test's nominal pressure (NaN outside the computed range)"))
         ds["mu_at_measurement"] = ("measurement", at_pressure(p, shear + mu_i, mp), attrs(
             "1", "computed mu at the test's nominal pressure (NaN outside the computed range)"))
-        ds["measured_source"] = ("measurement", [str(m.get("source", "")) for m in measured],
+        ds["measured_source"] = ("measurement", [m.source for m in measured],
                                  attrs("1", "where the measurement is reported"))
-    report = dict(friction_cfg.get("report", {}) or {})
-    if report:
+    report = friction.report
+    if report is not None:
         names = {"shear": "mu_shear", "interlocking": "mu_interlocking", "total": "mu"}
         for key, name in names.items():
-            if report.get(key) is not None:
-                ds[f"report_{name}"] = ((), float(report[key]), attrs(
+            if getattr(report, key) is not None:
+                ds[f"report_{name}"] = ((), getattr(report, key), attrs(
                     "1", f"the report's {name} (for comparison, not computed here)"))
-        if report.get("nominal_pressure") is not None:
-            ds["report_nominal_pressure"] = ((), float(report["nominal_pressure"]) * pscale,
+        if report.nominal_pressure is not None:
+            ds["report_nominal_pressure"] = ((), report.nominal_pressure,
                                              attrs("Pa", "nominal pressure of the report's estimate"))
-        ds.attrs["report_source"] = str(report.get("source", ""))
+        ds.attrs["report_source"] = report.source
     if "valid" in interface:  # where the interface holds (asperity.homogenize.validity)
         from asperity.homogenize.validity import warn_invalid
 

@@ -41,23 +41,21 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
-from typing import Any, Callable, Mapping
+from typing import Callable
 
 import numpy as np
 import xarray as xr
 from scipy import optimize
 
-from asperity import units
-from asperity.units import attrs
 from asperity.friction import loading_branch
+from asperity.scene import Laws
+from asperity.scene.interface import LAWS, ApproachOrigin
+from asperity.units import attrs
 
 __all__ = ["A0", "LAWS", "PARAMETERS", "LawFit", "oden_martins", "exponential",
            "fit_oden_martins", "fit_exponential", "fit_law", "approach", "laws_dataset"]
 
-Config = Mapping[str, Any]
-
 A0 = 1e-6  # m: the report's dimensionality factor a0 = 1 um (10.42)
-LAWS = ("oden_martins", "exponential")
 PARAMETERS = ("c", "g", "m", "decay_length")
 PARAMETER_UNITS = {"c": "Pa", "g": "m", "m": "1", "decay_length": "m"}
 RESIDUALS = ("absolute", "log")
@@ -288,76 +286,58 @@ def fit_law(law: str, a, p, residual: str = "absolute", gap: float | None = None
     raise ValueError(f"unknown law {law!r}; known: {', '.join(LAWS)}")
 
 
-def approach(separation: np.ndarray, pressure: np.ndarray, origin: Any,
-             units_cfg: Config) -> tuple[np.ndarray, float, str]:
+def approach(separation: np.ndarray, pressure: np.ndarray, origin: ApproachOrigin | None
+             ) -> tuple[np.ndarray, float, str]:
     """a = h0 - h, h0 from the scene's ``approach_origin`` (see the module docstring).
 
-    origin None: the largest separation; ``{separation: x}``: x (length
-    unit); ``{pressure: q}``: where the loading curve reaches q (pressure
-    unit), linear in log pressure between the points that bracket it.
+    origin None: the largest separation; a separation: there; a pressure: where the
+    loading curve reaches it, linear in log pressure between the points that bracket it.
     """
     h = np.asarray(separation, dtype=float)
     if origin is None:
         h0 = float(h.max())
         how = "the largest separation of the data"
-    elif "separation" in origin:
-        h0 = float(origin["separation"]) * units.length_scale(units_cfg["length"])
-        how = f"separation {origin['separation']} {units_cfg['length']}"
-    elif "pressure" in origin:
-        q = float(origin["pressure"]) * units.pressure_scale(units_cfg.get("pressure", "Pa"))
+    elif origin.separation is not None:
+        h0 = origin.separation
+        how = origin.described
+    else:
+        q = origin.pressure
         p = np.asarray(pressure, dtype=float)
         ok = p > 0
         order = np.argsort(p[ok])
         lp, hs = np.log(p[ok][order]), h[ok][order]
         if not (lp[0] <= math.log(q) <= lp[-1]):
-            raise ValueError(f"laws.approach_origin.pressure {origin['pressure']}: outside the "
+            raise ValueError(f"laws.approach_origin.pressure {origin.given}: outside the "
                              f"computed pressures [{p[ok].min():.6g}, {p[ok].max():.6g}] Pa")
         h0 = float(np.interp(math.log(q), lp, hs))
-        how = f"where the pressure reaches {origin['pressure']} {units_cfg.get('pressure', 'Pa')}"
-    else:
-        raise ValueError("laws.approach_origin: {separation: x} or {pressure: p}")
+        how = origin.described
     return h0 - h, h0, how
 
 
-def _report_values(report: Config) -> dict[str, dict[str, float]]:
-    """The report's fitted parameters in SI, from values in its own units."""
-    ru = report.get("units", {})
-    ps = units.pressure_scale(ru.get("pressure", "Pa"))
-    ls = units.length_scale(ru.get("length", "m"))
-    scale = {"c": ps, "g": ls, "m": 1.0, "decay_length": ls}
-    return {law: {k: float(v) * scale[k] for k, v in report[law].items() if k in scale}
-            for law in LAWS if law in report}
-
-
-def laws_dataset(interface: xr.Dataset, laws_cfg: Config, units_cfg: Config) -> xr.Dataset:
+def laws_dataset(interface: xr.Dataset, laws: Laws) -> xr.Dataset:
     """Fitted laws of the loading curve, with uncertainties, residuals and the report's fits.
 
-    laws_cfg (scene units): ``laws`` (which, default both), ``residual``
-    (absolute | log, default absolute: 10.43), ``pressure_range`` (fit
-    window), ``approach_origin``, ``oden_martins: {gap: <length> | null}``,
-    and ``report`` (the report's fits for comparison, in its own
-    ``units``; never used in the fit).
+    `laws`: which laws, the residual (absolute: 10.43, or log), the fit window, the
+    approach origin, the gap g of 10.42 if fixed, and the report's fits (for
+    comparison; never used in the fit).
     """
     interface = loading_branch(interface)
-    pscale = units.pressure_scale(units_cfg.get("pressure", "Pa"))
-    lscale = units.length_scale(units_cfg["length"])
-    residual = laws_cfg.get("residual", "absolute")
-    which = list(laws_cfg.get("laws", LAWS))
+    residual = laws.residual
+    which = list(laws.laws)
     h = interface["separation"].values
     p = interface["nominal_pressure"].values
-    a, h0, origin_how = approach(h, p, laws_cfg.get("approach_origin"), units_cfg)
-    lo, hi = (np.asarray(laws_cfg.get("pressure_range", (0.0, np.inf)), float) * pscale)
+    a, h0, origin_how = approach(h, p, laws.approach_origin)
+    lo, hi = laws.pressure_range if laws.pressure_range is not None else (0.0, np.inf)
     window = np.isfinite(p) & (p > 0) & (p >= lo) & (p <= hi)
     if window.sum() <= 3:
         raise ValueError(
             f"laws: {int(window.sum())} points with positive pressure in the window [{lo:.6g}, {hi:.6g}] Pa "
             f"(the data span [{np.nanmin(p):.6g}, {np.nanmax(p):.6g}] Pa); widen the fit window "
             "(laws.pressure_range) or the separations")
-    gap_cfg = (laws_cfg.get("oden_martins") or {}).get("gap")
-    gap = None if gap_cfg is None else float(gap_cfg) * lscale
+    gap = laws.gap
 
     fits = {law: fit_law(law, a[window], p[window], residual=residual, gap=gap) for law in which}
-    report = _report_values(laws_cfg.get("report") or {})
+    report = laws.report.values if laws.report is not None else {}
     nl, npar = len(which), len(PARAMETERS)
     est = np.full((nl, npar), np.nan)
     se = np.full((nl, npar), np.nan)
@@ -435,14 +415,7 @@ def laws_dataset(interface: xr.Dataset, laws_cfg: Config, units_cfg: Config) -> 
         pressure_window=f"[{lo:.6g}, {hi:.6g}] Pa",
         gap="fitted" if gap is None else f"fixed at {gap:.6g} m",
     )
-    rcfg = laws_cfg.get("report") or {}
-    if rcfg:
-        ru = rcfg.get("units", {})
-        unit_of = {"c": ru.get("pressure", "Pa"), "g": ru.get("length", "m"), "m": "",
-                   "decay_length": ru.get("length", "m")}
-        printed = [f"{law}: " + ", ".join(f"{k} = {v} {unit_of.get(k, '')}".rstrip()
-                                          for k, v in rcfg[law].items())
-                   for law in LAWS if law in rcfg]
-        ds.attrs["report_as_printed"] = "; ".join(printed)
-        ds.attrs["report_source"] = str(rcfg.get("source", ""))
+    if laws.report is not None:
+        ds.attrs["report_as_printed"] = laws.report.printed
+        ds.attrs["report_source"] = laws.report.source
     return ds

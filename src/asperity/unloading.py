@@ -102,7 +102,7 @@ import numpy as np
 
 
 def _pchip(x, y, **options):
-    """scipy's PchipInterpolator, imported on first use (0.2 s: most jobs never need it)."""
+    """scipy's PchipInterpolator, imported on first use (most jobs never need it)."""
     from scipy.interpolate import PchipInterpolator
 
     return PchipInterpolator(x, y, **options)
@@ -406,7 +406,7 @@ def _rowwise_interp(x: np.ndarray, y: np.ndarray, targets: np.ndarray | None,
 def family_table(asperities, n_t: int = 201):
     """The blended unloading family of every curvature, for every maximum interference (8.3).
 
-    From the computed paths of ``asperities.nc`` (`asperity.population.models.gather`:
+    From the computed paths of ``asperities.nc`` (`asperity.population.gather.gather`:
     ``unloading_interference``/``_force``/``_contact_area`` on (curvature,
     unloading_level, point)) and its loading curves: for every maximum
     interference w_max of the grid, the unloading path as points

@@ -6,25 +6,33 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from asperity.population import models
+from asperity.population import samples as population
+from asperity.population.gather import gather
+from asperity.population.kinds import Planning, kind_of
 from asperity.population.plan import interference_grid, make_plan
+from asperity.scene import Asperity, Material, Units
+from tests.scene_defaults import filled
 
-ASPERITY = {"model": "fe", "geometry": "cosine", "width_to_height": 17.0, "levels": 24}
-ELASTIC = {"youngs_modulus": 65e9, "poisson": 0.3}
-J2 = {**ELASTIC, "model": "j2", "yield_stress": 320e6}
+ASPERITY = Asperity.from_section(
+    filled("asperity", {"model": "fe", "geometry": "cosine", "width_to_height": 17.0, "levels": 24}),
+    Units("m", "Pa"))
+ELASTIC = Material(model="elastic", youngs_modulus=65e9, poisson=0.3)
+J2 = Material(model="j2", youngs_modulus=65e9, poisson=0.3, yield_stress=320e6)
 
 
 def responses(material, effects, curvatures, reference, accuracy):
     grid = interference_grid(4e-6, 121)
     family = np.asarray(curvatures) if reference is not None else None
+    planning = Planning(asperity=ASPERITY, material=material, effects=frozenset(effects),
+                        accuracy=accuracy, adhesion=None, grid=grid, family=family,
+                        width_to_height=None)
+    kind = kind_of("fe", effects)
     plan = make_plan([0.0], curvatures, grid, model="fe",
                      shift_invariant=True, analytic=False, reference_curvature=reference,
-                     job_spec=lambda h, k, level: models.job_spec(
-                         ASPERITY, material, effects, accuracy, curvature=k, grid=grid,
-                         family=family))
+                     job_spec=lambda h, k, level: kind.spec(planning, h, k, level))
     keys = [str(k) for k in np.unique(plan["key"].values)]
-    samples = {k: models.solve_sample(plan, k) for k in keys}
-    return models.gather(plan, samples), len(keys)
+    samples = {k: population.solve_planned(plan, k) for k in keys}
+    return gather(plan, samples), len(keys)
 
 
 # The two runs differ only by their meshes, adapted to different interference

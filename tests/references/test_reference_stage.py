@@ -8,6 +8,7 @@ import pytest
 import xarray as xr
 
 from asperity.stages import reference as stage
+from tests.scene_defaults import filled, filled_scene
 
 SCENE = {
     "title": "t", "report": "r", "units": {"length": "um", "pressure": "MPa"},
@@ -37,14 +38,20 @@ def test_route_scene_reads_the_reference_map_at_its_separations():
 
 def test_hardness_given_or_tabor():
     units = SCENE["units"]
-    assert stage.reference_hardness(SCENE["material"], {"hardness": 900.0}, units) == pytest.approx(9.0e8)
-    assert stage.reference_hardness(SCENE["material"], {}, units) == pytest.approx(2.8 * 280e6)
-    assert stage.reference_hardness({"youngs_modulus": 1.0, "poisson": 0.3}, {}, units) is None
+    scene = filled_scene({k: v for k, v in SCENE.items() if k != "compare_with"})
+    material, reference = scene["material"], scene["reference"]
+    given = {**reference, "hardness": 900.0}
+    assert stage.reference_hardness(material, given, units) == pytest.approx(9.0e8)
+    assert stage.reference_hardness(material, reference, units) == pytest.approx(2.8 * 280e6)
+    bare = filled("material", {"youngs_modulus": 1.0, "poisson": 0.3})
+    assert stage.reference_hardness(bare, reference, units) is None
 
 
 def test_periodic_separations_must_be_positive():
     surface = xr.Dataset({"sigma": ((), 1e-6)}, attrs={"population_estimator": "map"})
-    ref = {"separations": {"start": 0.0, "stop": 3.0, "count": 4, "unit": "sigma"}}
+    scene = filled_scene({**{k: v for k, v in SCENE.items() if k != "compare_with"},
+                          "reference": {"separations": {"start": 0.0, "stop": 3.0, "count": 4, "unit": "sigma"}}})
+    ref = scene["reference"]
     with pytest.raises(ValueError, match="reference.separations"):
         stage.reference_separations(ref, surface, SCENE["units"])
     free = {**ref, "boundary": "free"}

@@ -2,21 +2,23 @@
 
 from __future__ import annotations
 
-import glob
 import re
 import subprocess
 from pathlib import Path
 
 import pytest
 
-# one copy helper for the tests and benchmarks/scenes.py
+# one copy helper for the tests and benchmarks/scenes.py, one comparison of results trees
+from benchmarks.compare_results import differences, nc_files  # noqa: F401
 from benchmarks.workflow_copy import REPO, SNAKEMAKE, copy_workflow  # noqa: F401
 
 
-def snakemake(workdir: Path, *args: str, check: bool = True) -> subprocess.CompletedProcess:
+def snakemake(workdir: Path, *args: str, check: bool = True,
+              env: dict | None = None) -> subprocess.CompletedProcess:
+    """`snakemake --cores 2 *args` in `workdir` (`env`: its environment, default ours)."""
     proc = subprocess.run(
         [str(SNAKEMAKE), "--cores", "2", *args],
-        cwd=workdir, capture_output=True, text=True, timeout=900,
+        cwd=workdir, capture_output=True, text=True, timeout=900, env=env,
     )
     if check and proc.returncode != 0:
         raise AssertionError(f"snakemake {' '.join(args)} failed:\n{proc.stdout}\n{proc.stderr}")
@@ -58,49 +60,13 @@ def result(run: Path, scene: str, name: str):
     return read_dataset(run / "results" / scene / name)
 
 
-#: what differs between two runs of the same jobs by nature
-TIMING = re.compile(r"(^|_)(wall|cpu)_time$")
-
-
-def nc_files(root: Path) -> list[str]:
-    """The netCDF files under `root`, relative to it."""
-    return sorted(str(Path(f).relative_to(root)) for f in glob.glob(f"{root}/**/*.nc", recursive=True))
-
-
-def _equal(a, b, rtol: float) -> bool:
-    import numpy as np
-
-    a, b = np.asarray(a), np.asarray(b)
-    if a.shape != b.shape:
-        return False
-    if a.dtype.kind in "fc":
-        return bool(np.allclose(a, b, rtol=rtol, atol=0.0, equal_nan=True))
-    return bool(np.array_equal(a, b))
-
-
 def assert_same_results(got: Path, reference: Path, names: list[str], rtol: float = 1e-12) -> int:
     """Every file of `names` holds the same variables, dimensions, attributes and values
-    (floats to `rtol` relative) in both trees, timings and the write date aside;
-    returns the number of values compared."""
-    import xarray as xr
-
+    (floats to `rtol` relative) in both trees, timings and the write date aside
+    (`benchmarks.compare_results.differences`); returns the number of values compared."""
     compared = 0
     for name in names:
-        with xr.open_dataset(got / name, decode_times=False) as a, \
-                xr.open_dataset(reference / name, decode_times=False) as b:
-            assert set(a.variables) == set(b.variables), name
-            for var in a.variables:
-                assert a[var].dims == b[var].dims, (name, var)
-                assert set(a[var].attrs) == set(b[var].attrs), (name, var)
-                for key in a[var].attrs:
-                    assert _equal(a[var].attrs[key], b[var].attrs[key], rtol), (name, var, key)
-                if TIMING.search(var):
-                    continue
-                assert _equal(a[var].values, b[var].values, rtol), (name, var)
-                compared += a[var].size
-            assert set(a.attrs) == set(b.attrs), name
-            for key in a.attrs:
-                if key == "history" or TIMING.search(key):
-                    continue
-                assert _equal(a.attrs[key], b.attrs[key], rtol), (name, key)
+        data, attrs, count = differences(got / name, reference / name, rtol, attributes=True)
+        assert not data and not attrs, (name, data, attrs)
+        compared += count
     return compared

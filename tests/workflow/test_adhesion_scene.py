@@ -11,6 +11,8 @@ import yaml
 from asperity import homogenize
 from asperity.population import density as population_density
 from asperity.fe.adhesion import LennardJones, derjaguin_force
+from asperity.scene import Population, Units
+from tests.scene_defaults import filled
 from asperity.io.netcdf import missing_attributes
 
 from .conftest import copy_workflow, result, snakemake
@@ -98,7 +100,9 @@ def test_interface_attracts_before_contact(run):
                       np.broadcast_to(np.where(w < 0, rigid, 0.0), table["force"].shape).copy(),
                       table["force"].attrs)
     ref = homogenize.interface_response(
-        table, population_density.population_density(surface, {}), h[far], bounds=interface.attrs["bounds"],
+        table, population_density.population_density(
+            surface, Population.from_section(filled("population", {}), Units("um", "MPa"))),
+        h[far], bounds=interface.attrs["bounds"],
         cells=(60, 40), rule="gauss", peak_density=population_density.peak_density(surface), reach=reach,
         contact="in_contact")
     np.testing.assert_allclose(p[far], ref["nominal_pressure"].values, rtol=0.03)

@@ -31,6 +31,8 @@ from .conftest import REPO, copy_workflow, snakemake
 
 RULES = REPO / "workflow" / "rules"
 CAPTIONS = REPO / "workflow" / "report"
+#: the workflow's description page (the Snakefile's `report:`), no caption
+DESCRIPTION = CAPTIONS / "workflow.rst"
 #: figures per chapter in the report's list of figures (Figure 2.1 ... 2.13, 3.1 ... 3.9, ...)
 REPORT_FIGURES = {2: 13, 3: 9, 4: 3, 5: 4, 6: 23, 7: 14, 8: 28, 9: 5, 10: 2}
 NUMBER = r"\d+\.\d+"
@@ -72,10 +74,12 @@ def report_calls() -> list[dict]:
             body = text[m.end():_closing_paren(text, m.end() - 1)]
             path = re.match(r"\s*f?[\"']([^\"']+)[\"']", body)
             caption = re.search(r"caption\s*=\s*[\"']([^\"']+)[\"']", body)
+            labels = re.search(r"labels\s*=\s*(\{.*\})", body, flags=re.S)
             calls.append({
                 "where": f"{smk.name}:{text.count(chr(10), 0, m.start()) + 1}",
                 "figure": path.group(1) if path else None,
                 "caption": (smk.parent / caption.group(1)).resolve() if caption else None,
+                "labels": labels.group(1) if labels else None,
             })
     return calls
 
@@ -115,7 +119,8 @@ def test_every_report_figure_has_a_caption_file_and_every_caption_a_figure():
         assert call["caption"] is not None, f"{call['where']}: report() without caption="
         assert call["caption"].parent == CAPTIONS, f"{call['where']}: caption outside {CAPTIONS}"
         assert call["caption"].exists(), f"{call['where']}: no caption file {call['caption']}"
-    unused = {p.name for p in CAPTIONS.glob("*.rst")} - {c["caption"].name for c in CALLS}
+    unused = ({p.name for p in CAPTIONS.glob("*.rst")} - {c["caption"].name for c in CALLS}
+              - {DESCRIPTION.name})
     assert not unused, f"caption files no rule uses: {sorted(unused)}"
 
 
@@ -153,8 +158,10 @@ REPORT_RUN = ("--config", "scenes=[profile_cosine,expectation_unit,greenwood_wil
 def test_html_report_contains_every_caption_figure_reference(tmp_path):
     """Three analytic scenes at draft (surface, expectation, interface and
     asperities figures, 4 of the caption files), then `snakemake --report`:
-    the file exists, and for every figure of the run the report holds each
-    figure reference and the 'Look at' sentence of its rendered caption."""
+    the file exists, it opens with the workflow's description
+    (workflow/report/workflow.rst), every figure's labels are in it, and for every
+    figure of the run the report holds each figure reference and the 'Look at'
+    sentence of its rendered caption."""
     workdir = copy_workflow(tmp_path)
     snakemake(workdir, *REPORT_RUN)
     snakemake(workdir, "--report", "report.html", *REPORT_RUN)
@@ -167,6 +174,12 @@ def test_html_report_contains_every_caption_figure_reference(tmp_path):
     shown = sorted((workdir / "results").glob("*/figures/*.png"))
     assert {p.name for p in shown} >= {"surface.png", "expectation.png", "interface.png",
                                        "asperities.png"}, shown
+    description = " ".join(DESCRIPTION.read_text().split())
+    assert description[:60] in page, "the workflow description is not in report.html"
+    labels = {c["figure"].rsplit("/", 1)[-1]: re.search(r'"figure": "([^"]+)"', c["labels"]).group(1)
+              for c in CALLS if per_scene(c)}
+    for png in shown:
+        assert f'"{labels[png.name]}"' in page or labels[png.name] in page, png.name
     for png in shown:
         scene = png.parent.parent.name
         text = render(by_name[png.name]["caption"], scene, scenes)

@@ -1,6 +1,6 @@
-"""Incremental reruns of the real workflow (issue #6): shared sample keys, what a
-changed setting reruns, a run killed with SIGKILL and started again, and one
-failing sample under --keep-going.
+"""Incremental reruns of the real workflow (issues 6, 13): shared sample keys, what a
+changed setting reruns, what an upgrade of the code reruns (asperity.versions), a run
+killed with SIGKILL and started again, and one failing sample under --keep-going.
 
 Small variants of the report's scenes at `draft`, written into a copy of the
 workflow:
@@ -155,6 +155,64 @@ def test_editing_a_rules_file_reruns_no_fe_job(base):
             path.write_text(text)
 
 
+# ------------------------------------------------------------------ upgrades
+
+
+def upgraded(root: Path, *stages: str) -> dict:
+    """The environment of a run with an upgraded asperity: a copy of the package whose
+    `asperity.versions.VERSIONS` has each of `stages` one version higher, first on the
+    Python path (the code itself is the same: only what the upgrade declares changes)."""
+    package = root / "upgraded"
+    shutil.rmtree(package, ignore_errors=True)
+    shutil.copytree(REPO / "src" / "asperity", package / "asperity",
+                    ignore=shutil.ignore_patterns("__pycache__"))
+    path = package / "asperity" / "versions.py"
+    text = path.read_text()
+    for stage in stages:
+        text, n = re.subn(rf'^(\s*"{re.escape(stage)}": )(\d+),$',
+                          lambda m: f"{m.group(1)}{int(m.group(2)) + 1},", text, flags=re.M)
+        assert n == 1, stage
+    path.write_text(text)
+    return {**os.environ, "PYTHONPATH": str(package)}
+
+
+@pytest.mark.parametrize("stages, expected", [
+    # a non-FE stage: it and what reads its files, no plan, no sample
+    (("friction",), {"friction": 2}),
+    (("interface",), {"interface": 3, "friction": 2}),
+    # the plan: every plan, then the gathers (a dry run cannot see past the checkpoint: the
+    # samples of the new plans have the keys of the old, tests/test_plan_keys.py)
+    (("plan",), {"plan": 3, "asperities": 3, "interface": 3, "friction": 2}),
+    # one asperity kind: exactly its samples (all elastic here: the sphere shared by the
+    # two sphere scenes, and the hill's five), and what reads them
+    (("sample:elastic",), {"sample": 1 + HILL_CURVATURES, "asperities": 3, "interface": 3,
+                           "friction": 2}),
+    # a kind no scene of the run uses: nothing
+    (("sample:inelastic", "sample:adhesive", "unloading"), {}),
+], ids=["friction", "interface", "plan", "elastic-samples", "unused-kinds"])
+def test_an_upgrade_reruns_exactly_the_stages_whose_version_changed(base, tmp_path, stages,
+                                                                     expected):
+    """A dry run with the package of an upgrade that bumps the versions of `stages`
+    schedules those stages and what reads their files, nothing else."""
+    env = upgraded(tmp_path, *stages)
+    jobs = planned_jobs(snakemake(base.workdir, "-n", *TARGETS.values(), *CONFIG, env=env))
+    assert jobs == expected, jobs
+
+
+def test_a_changed_non_fe_script_reruns_no_sample(base):
+    """A new version of a stage's script (the homogenization's) reruns that stage and
+    what reads its file, never an FE sample."""
+    w = base.workdir
+    script = w / "workflow" / "scripts" / "interface.py"
+    before = script.stat()
+    try:
+        os.utime(script, ns=(before.st_atime_ns, time.time_ns()))
+        jobs = planned_jobs(snakemake(w, "-n", *TARGETS.values(), *CONFIG))
+        assert jobs == {"interface": 3, "friction": 2}, jobs
+    finally:
+        os.utime(script, ns=(before.st_atime_ns, before.st_mtime_ns))
+
+
 def test_homogenization_change_reruns_no_fe_job_and_changes_the_interface(base):
     """cells 200 -> 40 (Gauss cells over the heights): interface and friction rerun,
     no plan, no sample, no gather; the sample files are not touched; the pressure changes."""
@@ -274,7 +332,7 @@ def test_sigkill_mid_run_then_restart_gives_the_uninterrupted_results(base, tmp_
     locked = snakemake(w, TARGETS["rr_hill"], *config, check=False)
     assert locked.returncode != 0 and "--unlock" in locked.stdout + locked.stderr
     snakemake(w, "--unlock", *config)
-    resumed = snakemake(w, "--profile", "workflow/profiles/default", TARGETS["rr_hill"], *config)
+    resumed = snakemake(w, TARGETS["rr_hill"], *config)  # the default profile, found by Snakemake
     # samples Snakemake had registered as finished are kept; one it had not (killed between
     # the file's rename and Snakemake's bookkeeping) is complete too, but is rerun: --rerun-incomplete
     assert HILL_CURVATURES - len(done) <= executed_jobs(resumed)["sample"] <= HILL_CURVATURES - len(kept)

@@ -1,4 +1,4 @@
-"""The SLURM profile (workflow/profiles/slurm) on a real, one-node SLURM cluster
+"""The SLURM profile (profiles/slurm) on a real, one-node SLURM cluster
 on localhost, against a local run; and what the profile declares."""
 
 from __future__ import annotations
@@ -19,7 +19,7 @@ import yaml
 
 from tests.workflow.conftest import REPO, SNAKEMAKE, assert_same_results, copy_workflow, nc_files
 
-PROFILE = REPO / "workflow" / "profiles" / "slurm"
+PROFILE = REPO / "profiles" / "slurm"
 CLUSTER = PROFILE / "localhost-cluster.sh"
 SCENE = "greenwood_williamson_fe"  # statistics -> plan -> one FE sample -> interface, verification
 TARGETS = [f"results/{SCENE}/{name}" for name in ("surface.nc", "interface.nc", "verification.nc")]
@@ -119,7 +119,7 @@ def test_slurm_profile_runs_a_scene_like_a_local_run(cluster, tmp_path):
         stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
     try:
         proc = subprocess.run(
-            [str(SNAKEMAKE), "--profile", "workflow/profiles/slurm", *TARGETS,
+            [str(SNAKEMAKE), "--workflow-profile", "slurm", *TARGETS,
              # the localhost cluster: 2 CPUs, no accounting database (squeue
              # reports job states), jobs of seconds (ask every 10 s, not 40)
              "--cores", "1", "--slurm-status-command", "squeue",

@@ -1,29 +1,6 @@
 # Figures drawn from the netCDF files only (asperity.plots).
 
 
-def compared(wildcards, name):
-    """The `name` result files of the scenes this scene compares with."""
-    return [f"{RESULTS}/{other}/{name}" for other in SCENES[wildcards.scene].get("compare_with", [])]
-
-
-def interface_figure_inputs(wildcards):
-    out = f"{RESULTS}/{wildcards.scene}"
-    inputs = {"interface": f"{out}/interface.nc", "surface": f"{out}/surface.nc",
-              "others": compared(wildcards, "interface.nc")}
-    if SCENES[wildcards.scene].get("verification"):
-        inputs["verification"] = f"{out}/verification.nc"
-    return inputs
-
-
-def surface_figure_inputs(wildcards):
-    out = f"{RESULTS}/{wildcards.scene}"
-    inputs = {"surface": f"{out}/surface.nc"}
-    gen = generated(wildcards.scene)
-    if gen and gen.get("convergence_spacings"):
-        inputs["convergence"] = f"{out}/convergence.nc"
-    return inputs
-
-
 rule surface_figure:
     input:
         unpack(surface_figure_inputs),
@@ -32,12 +9,16 @@ rule surface_figure:
             f"{RESULTS}/{{scene}}/figures/surface.png",
             category="{scene}",
             caption="../report/surface.rst",
+            labels={"scene": "{scene}", "figure": "surface statistics"},
         ),
-    params:
-        kind=lambda w: surface_kind(w.scene),
-        units=scene_part("units"),
     log:
         f"{RESULTS}/{{scene}}/logs/surface_figure.log",
+    conda:
+        ENV
+    params:
+        version=code_version("surface_figure"),
+        kind=lambda w: surface_kind(w.scene),
+        units=scene_part("units"),
     script:
         "../scripts/surface_figure.py"
 
@@ -51,11 +32,16 @@ rule expectation_figure:
             f"{RESULTS}/{{scene}}/figures/expectation.png",
             category="{scene}",
             caption="../report/expectation.rst",
+            labels={"scene": "{scene}", "figure": "expectation of a constant"},
         ),
-    params:
-        population=scene_part("population", {}),
     log:
         f"{RESULTS}/{{scene}}/logs/expectation_figure.log",
+    conda:
+        ENV
+    params:
+        version=code_version("expectation_figure"),
+        population=scene_part("population"),
+        units=scene_part("units"),
     script:
         "../scripts/expectation_figure.py"
 
@@ -68,12 +54,16 @@ rule interface_figure:
             f"{RESULTS}/{{scene}}/figures/interface.png",
             category="{scene}",
             caption="../report/interface.rst",
+            labels={"scene": "{scene}", "figure": "interface"},
         ),
-    params:
-        units=scene_part("units"),
-        compare_with=scene_part("compare_with", []),
     log:
         f"{RESULTS}/{{scene}}/logs/interface_figure.log",
+    conda:
+        ENV
+    params:
+        version=code_version("interface_figure"),
+        units=scene_part("units"),
+        compare_with=compare_with,
     script:
         "../scripts/interface_figure.py"
 
@@ -89,12 +79,16 @@ rule adhesion_figure:
             f"{RESULTS}/{{scene}}/figures/adhesion.png",
             category="{scene}",
             caption="../report/adhesion.rst",
+            labels={"scene": "{scene}", "figure": "with and without adhesion"},
         ),
-    params:
-        units=scene_part("units"),
-        compare_with=scene_part("compare_with", []),
     log:
         f"{RESULTS}/{{scene}}/logs/adhesion_figure.log",
+    conda:
+        ENV
+    params:
+        version=code_version("adhesion_figure"),
+        units=scene_part("units"),
+        compare_with=compare_with,
     script:
         "../scripts/adhesion_figure.py"
 
@@ -108,12 +102,16 @@ rule asperities_figure:
             f"{RESULTS}/{{scene}}/figures/asperities.png",
             category="{scene}",
             caption="../report/asperities.rst",
+            labels={"scene": "{scene}", "figure": "asperity responses"},
         ),
-    params:
-        units=scene_part("units"),
-        compare_with=scene_part("compare_with", []),
     log:
         f"{RESULTS}/{{scene}}/logs/asperities_figure.log",
+    conda:
+        ENV
+    params:
+        version=code_version("asperities_figure"),
+        units=scene_part("units"),
+        compare_with=compare_with,
     script:
         "../scripts/asperities_figure.py"
 
@@ -126,9 +124,14 @@ rule verification_figure:
             f"{RESULTS}/{{scene}}/figures/verification.png",
             category="{scene}",
             caption="../report/verification.rst",
+            labels={"scene": "{scene}", "figure": "against Hertz"},
         ),
     log:
         f"{RESULTS}/{{scene}}/logs/verification_figure.log",
+    conda:
+        ENV
+    params:
+        version=code_version("verification_figure"),
     script:
         "../scripts/verification_figure.py"
 
@@ -141,10 +144,14 @@ rule unloading_figure:
             f"{RESULTS}/{{scene}}/figures/unloading.png",
             category="{scene}",
             caption="../report/unloading.rst",
+            labels={"scene": "{scene}", "figure": "unloading paths"},
         ),
-    params:
-        units=scene_part("units"),
     log:
         f"{RESULTS}/{{scene}}/logs/unloading_figure.log",
+    conda:
+        ENV
+    params:
+        version=code_version("unloading_figure"),
+        units=scene_part("units"),
     script:
         "../scripts/unloading_figure.py"

@@ -2,12 +2,6 @@
 # with their figures. Only for scenes with a `friction:` or `laws:` section.
 
 
-def friction_compared(wildcards):
-    """The compared scenes that have a friction section (their friction.nc is drawn)."""
-    return [other for other in SCENES[wildcards.scene].get("compare_with", [])
-            if "friction" in SCENES[other]]
-
-
 rule friction:
     """mu = tau_s A_c / F plus interlocking, on the loading branch (9.41)."""
     input:
@@ -15,13 +9,16 @@ rule friction:
         surface=f"{RESULTS}/{{scene}}/surface.nc",
     output:
         f"{RESULTS}/{{scene}}/friction.nc",
-    params:
-        scene=lambda w: w.scene,
-        friction=scene_part("friction", {}),
-        material=scene_part("material", {}),
-        units=scene_part("units"),
     log:
         f"{RESULTS}/{{scene}}/logs/friction.log",
+    conda:
+        ENV
+    params:
+        version=code_version("friction"),
+        scene=lambda w: w.scene,
+        friction=scene_part("friction"),
+        material=scene_part("material"),
+        units=scene_part("units"),
     script:
         "../scripts/friction.py"
 
@@ -32,12 +29,15 @@ rule laws:
         interface=f"{RESULTS}/{{scene}}/interface.nc",
     output:
         f"{RESULTS}/{{scene}}/laws.nc",
-    params:
-        scene=lambda w: w.scene,
-        laws=scene_part("laws", {}),
-        units=scene_part("units"),
     log:
         f"{RESULTS}/{{scene}}/logs/laws.log",
+    conda:
+        ENV
+    params:
+        version=code_version("laws"),
+        scene=lambda w: w.scene,
+        laws=scene_part("laws"),
+        units=scene_part("units"),
     script:
         "../scripts/laws.py"
 
@@ -51,12 +51,16 @@ rule friction_figure:
             f"{RESULTS}/{{scene}}/figures/friction.png",
             category="{scene}",
             caption="../report/friction.rst",
+            labels={"scene": "{scene}", "figure": "coefficient of friction"},
         ),
-    params:
-        units=scene_part("units"),
-        compare_with=friction_compared,
     log:
         f"{RESULTS}/{{scene}}/logs/friction_figure.log",
+    conda:
+        ENV
+    params:
+        version=code_version("friction_figure"),
+        units=scene_part("units"),
+        compare_with=friction_compared,
     script:
         "../scripts/friction_figure.py"
 
@@ -69,10 +73,14 @@ rule laws_figure:
             f"{RESULTS}/{{scene}}/figures/laws.png",
             category="{scene}",
             caption="../report/laws.rst",
+            labels={"scene": "{scene}", "figure": "fitted laws"},
         ),
-    params:
-        units=scene_part("units"),
     log:
         f"{RESULTS}/{{scene}}/logs/laws_figure.log",
+    conda:
+        ENV
+    params:
+        version=code_version("laws_figure"),
+        units=scene_part("units"),
     script:
         "../scripts/laws_figure.py"

@@ -7,20 +7,19 @@ rule expectation:
         surface=f"{RESULTS}/{{scene}}/surface.nc",
     output:
         f"{RESULTS}/{{scene}}/expectation.nc",
-    params:
-        scene=lambda w: w.scene,
-        population=scene_part("population", {}),
-        asperity=scene_part("asperity", {}),
-        homogenization=scene_part("homogenization", {}),
-        units=scene_part("units"),
     log:
         f"{RESULTS}/{{scene}}/logs/expectation.log",
+    conda:
+        ENV
+    params:
+        version=code_version("expectation"),
+        scene=lambda w: w.scene,
+        population=scene_part("population"),
+        asperity=scene_part("asperity"),
+        homogenization=scene_part("homogenization"),
+        units=scene_part("units"),
     script:
         "../scripts/expectation.py"
-
-
-def unloads(name):
-    return "unloading" in SCENES[name].get("effects", [])
 
 
 rule unloading:
@@ -29,21 +28,15 @@ rule unloading:
         asperities=f"{RESULTS}/{{scene}}/asperities.nc",
     output:
         f"{RESULTS}/{{scene}}/unloading.nc",
-    params:
-        scene=lambda w: w.scene,
     log:
         f"{RESULTS}/{{scene}}/logs/unloading.log",
+    conda:
+        ENV
+    params:
+        version=code_version("unloading"),
+        scene=lambda w: w.scene,
     script:
         "../scripts/unloading.py"
-
-
-def interface_inputs(wildcards):
-    out = f"{RESULTS}/{wildcards.scene}"
-    inputs = {"surface": f"{out}/surface.nc", "plan": f"{out}/plan.nc",
-              "asperities": f"{out}/asperities.nc"}
-    if unloads(wildcards.scene):
-        inputs["unloading"] = f"{out}/unloading.nc"
-    return inputs
 
 
 rule interface:
@@ -52,25 +45,21 @@ rule interface:
         unpack(interface_inputs),
     output:
         f"{RESULTS}/{{scene}}/interface.nc",
-    params:
-        scene=lambda w: w.scene,
-        population=scene_part("population", {}),
-        homogenization=scene_part("homogenization", {}),
-        units=scene_part("units"),
-        material=scene_part("material", {}),
-        effects=scene_part("effects", []),
-        validity=scene_part("validity", {}),
     log:
         f"{RESULTS}/{{scene}}/logs/interface.log",
+    conda:
+        ENV
+    params:
+        version=code_version("interface"),
+        scene=lambda w: w.scene,
+        population=scene_part("population"),
+        homogenization=scene_part("homogenization"),
+        units=scene_part("units"),
+        material=scene_part("material"),
+        effects=scene_part("effects"),
+        validity=scene_part("validity"),
     script:
         "../scripts/interface.py"
-
-
-def verification_inputs(wildcards):
-    if "single_asperity" in SCENES[wildcards.scene]:
-        return {}  # one asperity against Hertz: nothing upstream
-    out = f"{RESULTS}/{wildcards.scene}"
-    return {"surface": f"{out}/surface.nc", "interface": f"{out}/interface.nc"}
 
 
 rule verification:
@@ -80,13 +69,16 @@ rule verification:
         unpack(verification_inputs),
     output:
         f"{RESULTS}/{{scene}}/verification.nc",
+    log:
+        f"{RESULTS}/{{scene}}/logs/verification.log",
+    conda:
+        ENV
     params:
+        version=code_version("verification"),
         scene=lambda w: w.scene,
         verification=scene_part("verification"),
         single_asperity=scene_part("single_asperity"),
-        material=scene_part("material", {}),
+        material=scene_part("material"),
         units=scene_part("units"),
-    log:
-        f"{RESULTS}/{{scene}}/logs/verification.log",
     script:
         "../scripts/verification.py"

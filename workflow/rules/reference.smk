@@ -3,36 +3,26 @@
 # is a scene of its own, <scene>+<route> (asperity.stages.reference.route_scene),
 # through the usual surface -> plan -> samples -> interface rules.
 
-from asperity.stages.reference import ROUTE_SEPARATOR
-
-
-def reference_routes(wildcards):
-    return list(SCENES[wildcards.scene].get("routes") or {})
-
-
-def route_interfaces(wildcards):
-    """interface.nc of every route of the scene (at the scene's preset, if it has one)."""
-    base, at, preset = wildcards.scene.partition("@")
-    return [f"{RESULTS}/{base}{ROUTE_SEPARATOR}{route}{at}{preset}/interface.nc"
-            for route in reference_routes(wildcards)]
-
 
 rule reference:
     """Boundary-element contact of the map: depends on the map, the material and the
     solver settings only (a route or comparison change does not rerun it)."""
     input:
-        map=lambda w: surface_inputs(w)["data"],
+        map=reference_map,
         surface=f"{RESULTS}/{{scene}}/surface.nc",
     output:
         f"{RESULTS}/{{scene}}/reference.nc",
+    log:
+        f"{RESULTS}/{{scene}}/logs/reference.log",
+    conda:
+        ENV
     params:
+        version=code_version("reference"),
         scene=lambda w: w.scene,
         surface=scene_part("surface"),
         material=scene_part("material"),
         reference=scene_part("reference"),
         units=scene_part("units"),
-    log:
-        f"{RESULTS}/{{scene}}/logs/reference.log",
     script:
         "../scripts/reference.py"
 
@@ -44,13 +34,16 @@ rule reference_comparison:
         interfaces=route_interfaces,
     output:
         f"{RESULTS}/{{scene}}/comparison.nc",
+    log:
+        f"{RESULTS}/{{scene}}/logs/reference_comparison.log",
+    conda:
+        ENV
     params:
+        version=code_version("reference_comparison"),
         scene=lambda w: w.scene,
         routes=reference_routes,
         route_config=scene_part("routes"),
-        agreement=lambda w: SCENES[w.scene]["reference"].get("agreement", 0.25),
-    log:
-        f"{RESULTS}/{{scene}}/logs/reference_comparison.log",
+        reference=scene_part("reference"),
     script:
         "../scripts/reference_comparison.py"
 
@@ -64,10 +57,14 @@ rule reference_figure:
             f"{RESULTS}/{{scene}}/figures/reference.png",
             category="{scene}",
             caption="../report/reference.rst",
+            labels={"scene": "{scene}", "figure": "statistical routes against boundary elements"},
         ),
-    params:
-        units=scene_part("units"),
     log:
         f"{RESULTS}/{{scene}}/logs/reference_figure.log",
+    conda:
+        ENV
+    params:
+        version=code_version("reference_figure"),
+        units=scene_part("units"),
     script:
         "../scripts/reference_figure.py"

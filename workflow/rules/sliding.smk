@@ -6,15 +6,18 @@ rule sliding:
     largest deformation sits (a scene's `sliding` section, at the global accuracy preset)."""
     output:
         f"{RESULTS}/{{scene}}/sliding.nc",
+    log:
+        f"{RESULTS}/{{scene}}/logs/sliding.log",
+    conda:
+        ENV
     params:
+        version=code_version("sliding"),
         scene=lambda w: w.scene,
         title=scene_part("title"),
         report=scene_part("report"),
         units=scene_part("units"),
         sliding=scene_part("sliding"),
         accuracy=accuracy_of,
-    log:
-        f"{RESULTS}/{{scene}}/logs/sliding.log",
     script:
         "../scripts/sliding.py"
 
@@ -24,11 +27,18 @@ rule sliding_figure:
     input:
         sliding=f"{RESULTS}/{{scene}}/sliding.nc",
     output:
-        report(f"{RESULTS}/{{scene}}/figures/sliding.png", category="{scene}",
-               caption="../report/sliding.rst"),
-    params:
-        units=scene_part("units"),
+        report(
+            f"{RESULTS}/{{scene}}/figures/sliding.png",
+            category="{scene}",
+            caption="../report/sliding.rst",
+            labels={"scene": "{scene}", "figure": "pressed and slid"},
+        ),
     log:
         f"{RESULTS}/{{scene}}/logs/sliding_figure.log",
+    conda:
+        ENV
+    params:
+        version=code_version("sliding_figure"),
+        units=scene_part("units"),
     script:
         "../scripts/sliding_figure.py"

@@ -1,30 +1,18 @@
 # Stage 1-2: profile or map statistics (report 2.3, 2.4.3) -> surface.nc
 
 
-def surface_inputs(wildcards):
-    kind = surface_kind(wildcards.scene)
-    source = SCENES[wildcards.scene]["surface"][kind]
-    if kind in ("profile", "map"):
-        if "generate" in source:
-            suffix = "txt" if kind == "profile" else "npy"
-            return {"data": f"{RESULTS}/{wildcards.scene}/input/{kind}.{suffix}"}
-        return {"data": source["file"]}
-    if kind == "profiles":
-        if "generate" in source:
-            return {"data": f"{RESULTS}/{wildcards.scene}/input/profiles"}
-        return {"data": [item["file"] for item in source["files"]]}
-    return {}
-
-
 rule synthetic_profile:
     """A synthetic profile of the report's examples (2.6.1), written as a text file."""
     output:
         f"{RESULTS}/{{scene}}/input/profile.txt",
-    params:
-        generate=lambda w: SCENES[w.scene]["surface"]["profile"]["generate"],
-        units=scene_part("units"),
     log:
         f"{RESULTS}/{{scene}}/logs/synthetic_profile.log",
+    conda:
+        ENV
+    params:
+        version=code_version("synthetic_profile"),
+        generate=lambda w: SCENES[w.scene]["surface"]["profile"]["generate"],
+        units=scene_part("units"),
     script:
         "../scripts/synthetic_profile.py"
 
@@ -33,11 +21,14 @@ rule synthetic_profiles:
     """Profiles of a synthetic anisotropic surface along the scene's directions (2.3.2)."""
     output:
         directory(f"{RESULTS}/{{scene}}/input/profiles"),
-    params:
-        generate=lambda w: SCENES[w.scene]["surface"]["profiles"]["generate"],
-        units=scene_part("units"),
     log:
         f"{RESULTS}/{{scene}}/logs/synthetic_profiles.log",
+    conda:
+        ENV
+    params:
+        version=code_version("synthetic_profiles"),
+        generate=lambda w: SCENES[w.scene]["surface"]["profiles"]["generate"],
+        units=scene_part("units"),
     script:
         "../scripts/synthetic_profiles.py"
 
@@ -46,10 +37,13 @@ rule synthetic_map:
     """A synthetic Gaussian random height map, written as .npy."""
     output:
         f"{RESULTS}/{{scene}}/input/map.npy",
-    params:
-        generate=lambda w: SCENES[w.scene]["surface"]["map"]["generate"],
     log:
         f"{RESULTS}/{{scene}}/logs/synthetic_map.log",
+    conda:
+        ENV
+    params:
+        version=code_version("synthetic_map"),
+        generate=lambda w: SCENES[w.scene]["surface"]["map"]["generate"],
     script:
         "../scripts/synthetic_map.py"
 
@@ -60,12 +54,15 @@ rule surface:
         unpack(surface_inputs),
     output:
         f"{RESULTS}/{{scene}}/surface.nc",
+    log:
+        f"{RESULTS}/{{scene}}/logs/surface.log",
+    conda:
+        ENV
     params:
+        version=code_version("surface"),
         scene=lambda w: w.scene,
         surface=scene_part("surface"),
         units=scene_part("units"),
-    log:
-        f"{RESULTS}/{{scene}}/logs/surface.log",
     script:
         "../scripts/surface.py"
 
@@ -74,11 +71,14 @@ rule convergence:
     """Sampled statistics of a synthetic series against its exact ones, versus spacing."""
     output:
         f"{RESULTS}/{{scene}}/convergence.nc",
+    log:
+        f"{RESULTS}/{{scene}}/logs/convergence.log",
+    conda:
+        ENV
     params:
+        version=code_version("convergence"),
         scene=lambda w: w.scene,
         generate=lambda w: SCENES[w.scene]["surface"]["profile"]["generate"],
         units=scene_part("units"),
-    log:
-        f"{RESULTS}/{{scene}}/logs/convergence.log",
     script:
         "../scripts/convergence.py"

@@ -6,14 +6,17 @@ rule uniaxial:
     """The tests of a scene's `uniaxial` section: one material point each, on dims (test, step)."""
     output:
         f"{RESULTS}/{{scene}}/uniaxial.nc",
+    log:
+        f"{RESULTS}/{{scene}}/logs/uniaxial.log",
+    conda:
+        ENV
     params:
+        version=code_version("uniaxial"),
         scene=lambda w: w.scene,
         title=scene_part("title"),
         report=scene_part("report"),
         units=scene_part("units"),
         uniaxial=scene_part("uniaxial"),
-    log:
-        f"{RESULTS}/{{scene}}/logs/uniaxial.log",
     script:
         "../scripts/uniaxial.py"
 
@@ -27,9 +30,14 @@ rule uniaxial_figure:
             f"{RESULTS}/{{scene}}/figures/uniaxial.png",
             category="{scene}",
             caption="../report/uniaxial.rst",
+            labels={"scene": "{scene}", "figure": "uniaxial tests"},
         ),
     log:
         f"{RESULTS}/{{scene}}/logs/uniaxial_figure.log",
+    conda:
+        ENV
+    params:
+        version=code_version("uniaxial_figure"),
     script:
         "../scripts/uniaxial_figure.py"
 
@@ -38,11 +46,18 @@ rule accuracy_bodner_partom:
     """Implicit against explicit integration: steps, wall time and end error per tolerance."""
     output:
         data=f"{RESULTS}/accuracy/bodner_partom.nc",
-        figure=report(f"{RESULTS}/accuracy/bodner_partom.png", category="accuracy",
-                      caption="../report/accuracy_bodner_partom.rst"),
-    params:
-        study=config.get("accuracy_bodner_partom", {}),
+        figure=report(
+            f"{RESULTS}/accuracy/bodner_partom.png",
+            category="accuracy",
+            caption="../report/accuracy_bodner_partom.rst",
+            labels={"study": "Bodner-Partom integrators", "figure": "accuracy against cost"},
+        ),
     log:
         f"{RESULTS}/accuracy/logs/bodner_partom.log",
+    conda:
+        ENV
+    params:
+        version=code_version("accuracy_bodner_partom"),
+        study=config.get("accuracy_bodner_partom", {}),
     script:
         "../scripts/uniaxial_accuracy.py"

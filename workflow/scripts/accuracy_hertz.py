@@ -6,8 +6,8 @@ from asperity.io.netcdf import write_dataset
 from asperity.stages import accuracy
 
 with job_log(snakemake.log[0], "accuracy study (Hertz)"):
-    s = snakemake.params.study
-    ds = accuracy.hertz_accuracy_dataset(s)
+    p = snakemake.params
+    ds = accuracy.hertz_accuracy_dataset(p.study)
     write_dataset(ds, snakemake.output.data, scene="accuracy", title="accuracy study on the Hertz problem",
-                  config={"accuracy_study": s})
-    save_figure(accuracy.hertz_accuracy_figure(ds), snakemake.output.figure)
+                  config={"accuracy_study": p.study}, version=p.version)
+    save_figure(accuracy.hertz_accuracy_figure(ds), snakemake.output.figure, version=p.version)

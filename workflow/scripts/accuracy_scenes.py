@@ -20,6 +20,7 @@ with job_log(snakemake.log[0], "accuracy study of the scenes") as log:
                      d["deviation"].sel(quantity="contact_area_ratio").values)
     write_dataset(ds, snakemake.output.data, scene="accuracy",
                   title="what accuracy costs for a whole scene: deviation from the finest preset "
-                        "against CPU time", config={"accuracy_scenes": s})
+                        "against CPU time", config={"accuracy_scenes": s},
+                  version=snakemake.params.version)
     save_figure(accuracy.scenes_accuracy_figure(read_dataset(snakemake.output.data)),
-                snakemake.output.figure)
+                snakemake.output.figure, version=snakemake.params.version)

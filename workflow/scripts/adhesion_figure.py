@@ -10,4 +10,4 @@ with job_log(snakemake.log[0], "adhesion figure"):
     others = {name: read_dataset(path) for name, path in zip(p.compare_with, i.others)}
     fig = figures.adhesion_figure(read_dataset(i.interface), read_dataset(i.asperities), p.units,
                                   others)
-    save_figure(fig, snakemake.output[0])
+    save_figure(fig, snakemake.output[0], version=p.version)

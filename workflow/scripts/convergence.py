@@ -9,4 +9,4 @@ with job_log(snakemake.log[0], "convergence"):
     ds = surface.series_convergence(gen, units)
     write_dataset(ds, snakemake.output[0], scene=snakemake.params.scene,
                   title="profile statistics versus sampling interval",
-                  config={"generate": gen, "units": units})
+                  config={"generate": gen, "units": units}, version=snakemake.params.version)

@@ -12,4 +12,5 @@ with job_log(snakemake.log[0], "expectation") as log:
              float(ds.normalization), float(ds.expectation), float(ds.macroscopic))
     write_dataset(ds, snakemake.output[0], scene=p.scene, title="expectation of X",
                   config={"population": p.population, "asperity": p.asperity,
-                          "homogenization": p.homogenization, "units": p.units})
+                          "homogenization": p.homogenization, "units": p.units},
+                  version=p.version)

@@ -6,7 +6,7 @@ from asperity.io.netcdf import read_dataset
 from asperity.stages import figures
 
 with job_log(snakemake.log[0], "expectation figure"):
-    i = snakemake.input
-    fig = figures.expectation_figure(read_dataset(i.surface), read_dataset(i.expectation),
-                                     snakemake.params.population)
-    save_figure(fig, snakemake.output[0])
+    i, p = snakemake.input, snakemake.params
+    fig = figures.expectation_figure(read_dataset(i.surface), read_dataset(i.expectation), p.population,
+                                     p.units)
+    save_figure(fig, snakemake.output[0], version=p.version)

@@ -12,4 +12,5 @@ with job_log(snakemake.log[0], "friction") as log:
              float(ds["junction_shear_strength"]), ds.attrs["junction_shear_strength_origin"],
              float(ds["mu_interlocking"]), float(ds["mu"].min()), float(ds["mu"].max()))
     write_dataset(ds, snakemake.output[0], scene=p.scene, title="static coefficient of friction (9.1)",
-                  config={"friction": p.friction, "material": p.material, "units": p.units})
+                  config={"friction": p.friction, "material": p.material, "units": p.units},
+                  version=p.version)

@@ -9,4 +9,4 @@ with job_log(snakemake.log[0], "friction figure"):
     i, p = snakemake.input, snakemake.params
     others = {name: read_dataset(path) for name, path in zip(p.compare_with, i.others)}
     save_figure(friction.friction_figure(read_dataset(i.friction), p.units, others),
-                snakemake.output[0])
+                snakemake.output[0], version=p.version)

@@ -9,8 +9,9 @@ with job_log(snakemake.log[0], "interface"):
     ds = homogenize.interface_dataset(read_dataset(i.asperities), read_dataset(i.surface),
                                   read_dataset(i.plan), p.population, p.homogenization, p.units,
                                   read_dataset(i.unloading) if "unloading" in i.keys() else None,
-                                  material=p.material, effects=p.effects, validity=p.validity)
+                                  material_cfg=p.material, effects=p.effects,
+                                  validity_cfg=p.validity)
     write_dataset(ds, snakemake.output[0], scene=p.scene, title="homogenized interface",
                   config={"population": p.population, "homogenization": p.homogenization,
                           "units": p.units, "material": p.material, "effects": p.effects,
-                          "validity": p.validity})
+                          "validity": p.validity}, version=p.version)

@@ -10,4 +10,4 @@ with job_log(snakemake.log[0], "interface figure"):
     ver = read_dataset(i.verification) if "verification" in i.keys() else None
     others = {name: read_dataset(path) for name, path in zip(p.compare_with, i.others)}
     fig = figures.interface_figure(read_dataset(i.interface), p.units, ver, others)
-    save_figure(fig, snakemake.output[0])
+    save_figure(fig, snakemake.output[0], version=p.version)

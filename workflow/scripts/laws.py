@@ -14,4 +14,4 @@ with job_log(snakemake.log[0], "laws") as log:
             zip(ds["parameter"].values, est.values, ds["standard_error"].sel(law=law).values)
             if v == v), float(ds["r_squared"].sel(law=law)))
     write_dataset(ds, snakemake.output[0], scene=p.scene, title="analytic interface laws (section 10)",
-                  config={"laws": p.laws, "units": p.units})
+                  config={"laws": p.laws, "units": p.units}, version=p.version)

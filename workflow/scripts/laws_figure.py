@@ -7,4 +7,4 @@ from asperity.stages import friction
 
 with job_log(snakemake.log[0], "laws figure"):
     save_figure(friction.laws_figure(read_dataset(snakemake.input.laws), snakemake.params.units),
-                snakemake.output[0])
+                snakemake.output[0], version=snakemake.params.version)

@@ -16,4 +16,4 @@ with job_log(snakemake.log[0], "boundary-element reference") as log:
                                  p.units)
     write_dataset(ds, snakemake.output[0], scene=p.scene, title="boundary-element reference",
                   config={"material": p.material, "reference": p.reference, "surface": p.surface,
-                          "units": p.units})
+                          "units": p.units}, version=p.version)

@@ -8,4 +8,4 @@ from asperity.stages import reference as stage
 with job_log(snakemake.log[0], "reference figure"):
     i, p = snakemake.input, snakemake.params
     fig = stage.reference_figure(read_dataset(i.reference), read_dataset(i.comparison), p.units)
-    save_figure(fig, snakemake.output[0])
+    save_figure(fig, snakemake.output[0], version=p.version)

@@ -11,4 +11,5 @@ with job_log(snakemake.log[0], f"sliding asperity of {p.scene}") as log:
              ds.attrs["largest_deformation"], ds.attrs["largest_deformation_depth"])
     ds.attrs["report"] = p.report
     write_dataset(ds, snakemake.output[0], scene=p.scene, title=p.title,
-                  config={"units": p.units, "sliding": p.sliding, "accuracy": p.accuracy})
+                  config={"units": p.units, "sliding": p.sliding, "accuracy": p.accuracy},
+                  version=p.version)

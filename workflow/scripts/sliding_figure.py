@@ -7,4 +7,4 @@ from asperity.stages import sliding
 
 with job_log(snakemake.log[0], "sliding figure"):
     save_figure(sliding.sliding_figure(read_dataset(snakemake.input.sliding), snakemake.params.units),
-                snakemake.output[0])
+                snakemake.output[0], version=snakemake.params.version)

@@ -34,4 +34,5 @@ with job_log(snakemake.log[0], "surface statistics") as log:
     else:
         ds = surface.surface_from_statistics(cfg, units)
     write_dataset(ds, snakemake.output[0], scene=snakemake.params.scene,
-                  title="surface statistics", config={"surface": cfg, "units": units})
+                  title="surface statistics", config={"surface": cfg, "units": units},
+                  version=snakemake.params.version)

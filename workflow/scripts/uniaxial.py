@@ -11,4 +11,4 @@ with job_log(snakemake.log[0], f"uniaxial tests of {p.scene}") as log:
         log.info("%s: %d steps, %.2f s", name, steps, wall)
     ds.attrs["report"] = p.report
     write_dataset(ds, snakemake.output[0], scene=p.scene, title=p.title,
-                  config={"units": p.units, "uniaxial": p.uniaxial})
+                  config={"units": p.units, "uniaxial": p.uniaxial}, version=p.version)

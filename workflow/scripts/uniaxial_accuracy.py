@@ -13,5 +13,6 @@ with job_log(snakemake.log[0], "accuracy study (Bodner-Partom material point)") 
         log.info("%s: explicit/implicit steps %.1f (pairing), %.1f (matched accuracy)", name, r, m)
     write_dataset(ds, snakemake.output.data, scene="accuracy",
                   title="implicit against explicit integration of the Bodner-Partom material point",
-                  config={"accuracy_bodner_partom": s})
-    save_figure(uniaxial.accuracy_figure(read_dataset(snakemake.output.data)), snakemake.output.figure)
+                  config={"accuracy_bodner_partom": s}, version=snakemake.params.version)
+    save_figure(uniaxial.accuracy_figure(read_dataset(snakemake.output.data)), snakemake.output.figure,
+                version=snakemake.params.version)

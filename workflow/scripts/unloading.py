@@ -7,4 +7,4 @@ from asperity.io.joblog import job_log
 with job_log(snakemake.log[0], "unloading"):
     ds = homogenize.unloading_dataset(read_dataset(snakemake.input.asperities))
     write_dataset(ds, snakemake.output[0], scene=snakemake.params.scene,
-                  title="blended unloading paths", config={})
+                  title="blended unloading paths", config={}, version=snakemake.params.version)

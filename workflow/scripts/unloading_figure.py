@@ -7,4 +7,5 @@ from asperity.stages import figures
 
 with job_log(snakemake.log[0], "unloading figure"):
     save_figure(figures.unloading_figure(read_dataset(snakemake.input.unloading),
-                                         snakemake.params.units), snakemake.output[0])
+                                         snakemake.params.units), snakemake.output[0],
+                version=snakemake.params.version)

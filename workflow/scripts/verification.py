@@ -14,4 +14,4 @@ with job_log(snakemake.log[0], "verification") as log:
     log.info("largest relative errors: %s", {k: v for k, v in ds.attrs.items() if k.startswith("max_")})
     write_dataset(ds, snakemake.output[0], scene=p.scene, title=f"verification: {p.verification}",
                   config={"verification": p.verification, "single_asperity": p.single_asperity,
-                          "material": p.material, "units": p.units})
+                          "material": p.material, "units": p.units}, version=p.version)

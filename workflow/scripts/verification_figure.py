@@ -7,4 +7,4 @@ from asperity.stages import figures
 
 with job_log(snakemake.log[0], "verification figure"):
     save_figure(figures.verification_figure(read_dataset(snakemake.input.verification)),
-                snakemake.output[0])
+                snakemake.output[0], version=snakemake.params.version)

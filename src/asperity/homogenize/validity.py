@@ -63,6 +63,7 @@ from typing import Any, Mapping
 import numpy as np
 import xarray as xr
 
+from asperity.scene.materials import Material
 from asperity.units import attrs
 
 log = logging.getLogger("asperity")
@@ -129,18 +130,18 @@ class Plasticity:
     modelled: bool
 
 
-def hardness_of(material_si: Mapping[str, Any], given: float | None = None) -> tuple[float, str]:
-    """H [Pa] of a material in SI (`asperity.scene.material_si`) and its rule (module
-    docstring); `given`: the scene's ``material.hardness`` in Pa.  (NaN, reason) if the
-    material has neither hardness nor a yield stress nor a Bodner-Partom set."""
-    if given is not None:
-        return float(given), "given in the scene (material.hardness)"
-    y = material_si.get("yield_stress")
-    if material_si.get("model") == "bodner_partom":
-        from asperity.scene import materials  # here: builds the body (imports asperity.fe)
+def hardness_of(material: Material) -> tuple[float, str]:
+    """H [Pa] of a material (`asperity.scene.Material`) and its rule (module docstring).
+    (NaN, reason) if the material has neither a hardness nor a yield stress nor a
+    Bodner-Partom set."""
+    if material.hardness is not None:
+        return float(material.hardness), "given in the scene (material.hardness)"
+    y = material.yield_stress
+    if material.model == "bodner_partom":
+        from asperity.scene.materials import build  # here: builds the body (imports asperity.fe)
         from asperity.uniaxial.point import uniaxial_flow_stress
 
-        body = materials.build(material_si, ["plasticity"])
+        body = build(material, ["plasticity"])
         z_sat = body.Z1 + (body.Z3 if body.directional_hardening else 0.0)
         flow = uniaxial_flow_stress(body, REFERENCE_STRAIN_RATE, z_sat)
         return HARDNESS_OVER_YIELD * flow, (
@@ -152,18 +153,16 @@ def hardness_of(material_si: Mapping[str, Any], given: float | None = None) -> t
     return math.nan, "unknown: the material has no hardness, yield stress or Bodner-Partom set"
 
 
-def plasticity_of(material_si: Mapping[str, Any], effects, hardness: float | None = None,
-                  fe_flag: bool = False) -> Plasticity:
-    """The `Plasticity` of a scene's material in SI under its `effects`; `hardness`
-    [Pa]: the scene's ``material.hardness``; `fe_flag`: the asperity table carries
-    the FE jobs' ``elastic`` flag (then it judges first yield where the body has a
-    yield stress)."""
+def plasticity_of(material: Material, effects, fe_flag: bool = False) -> Plasticity:
+    """The `Plasticity` of a scene's material under its `effects`; `fe_flag`: the
+    asperity table carries the FE jobs' ``elastic`` flag (then it judges first yield
+    where the body has a yield stress)."""
     from asperity.references.hertz import plane_strain_modulus
 
-    e_prime = float(plane_strain_modulus(material_si["youngs_modulus"], material_si["poisson"]))
-    h, rule = hardness_of(material_si, hardness)
+    e_prime = float(plane_strain_modulus(material.youngs_modulus, material.poisson))
+    h, rule = hardness_of(material)
     modelled = "plasticity" in set(effects)
-    y = float(material_si.get("yield_stress", math.nan))
+    y = math.nan if material.yield_stress is None else float(material.yield_stress)
     by_flag = fe_flag and (modelled or math.isfinite(y))
     if by_flag:
         p_lim, p_rule = math.nan, "first yield of the FE job (the `elastic` flag of asperities.nc)"

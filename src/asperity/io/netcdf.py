@@ -2,8 +2,9 @@
 
 Every file is a self-describing xarray Dataset: ``units`` and ``long_name``
 on every variable and coordinate, global attributes ``scene``, ``title``,
-``history``, ``source`` (package version) and ``config`` (the YAML of the
-configuration subtree that produced the file).  Files are written to a
+``history``, ``source`` (package version), ``config`` (the YAML of the
+configuration subtree that produced the file) and ``code_version`` (the version
+of the stage's code, `asperity.versions`).  Files are written to a
 temporary name in the target folder and renamed, so a failed or killed job
 never leaves a file that looks finished.
 """
@@ -22,6 +23,7 @@ import xarray as xr
 import yaml
 
 from asperity import __version__
+from asperity.versions import ATTRIBUTE
 
 REQUIRED_ATTRS = ("units", "long_name")
 
@@ -74,9 +76,12 @@ def write_dataset(
     scene: str,
     title: str,
     config: Mapping[str, Any] | None = None,
+    version: str | None = None,
 ) -> Path:
     """Write `ds` atomically to `path` under the netCDF contract.
 
+    `version`: the code version of the stage that computed it
+    (`asperity.versions.code_version`), kept in the attribute ``code_version``.
     Raises ContractError, before anything is written, when a variable or
     coordinate lacks ``units`` or ``long_name``.
     """
@@ -93,6 +98,8 @@ def write_dataset(
         source=f"asperity {__version__}",
         config=config_yaml(config),
     )
+    if version is not None:
+        ds.attrs[ATTRIBUTE] = version
     path.parent.mkdir(parents=True, exist_ok=True)
     fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp.nc", dir=path.parent)
     os.close(fd)

@@ -1,7 +1,7 @@
 """The adhesion figure (report 7.3, Figs. 7.6 to 7.9): with and without adhesion.
 
 Drawn from ``interface.nc`` and ``asperities.nc`` of an adhesive scene
-(`asperity.population.adhesive`) and the interfaces of compared scenes.
+(`asperity.population.kinds.adhesive`) and the interfaces of compared scenes.
 Pressures change sign (net attraction), so they are drawn on a symmetric
 log scale, linear within the smallest attraction shown.
 """

@@ -49,7 +49,7 @@ def expectation_figure(density_values: np.ndarray, z: np.ndarray, kappa: np.ndar
     return fig
 
 
-#: with adhesion the branches are the flat's approach and retraction (asperity.population.adhesive)
+#: with adhesion the branches are the flat's approach and retraction (asperity.population.kinds.adhesive)
 ADHESIVE_BRANCH = {"loading": "approach", "unloading": "retract"}
 
 

@@ -121,7 +121,7 @@ def _sweep_panel(ax, ds: xr.Dataset, xvar: str):
 
 def uniaxial_accuracy_figure(ds: xr.Dataset) -> plt.Figure:
     """1 x 3: end error vs steps, vs wall time (each integrator over its
-    tolerance sweep; circled: the pairing of the issue), and the step
+    tolerance sweep; circled: the study's pairing of tolerances), and the step
     ratios explicit / implicit per test (the pairing and matched accuracy)."""
     tests = _text(ds["test"].values)
     fig, axes = plt.subplots(1, 3, figsize=(17.0, 5.0))

@@ -4,16 +4,13 @@ on: which estimator of `surface.nc` feeds it, and the rectangle of its effective
 from __future__ import annotations
 
 import logging
-from typing import Any, Mapping
 
 import xarray as xr
 
 from asperity import peaks
-from asperity.scene import length_factor
+from asperity.scene import Population
 
 log = logging.getLogger("asperity")
-
-Config = Mapping[str, Any]
 
 
 def default_density(surface_ds: xr.Dataset) -> str:
@@ -21,9 +18,9 @@ def default_density(surface_ds: xr.Dataset) -> str:
     return {"gaussian_heights": "fixed_curvature", "map": "sampled"}.get(estimator, "nayak")
 
 
-def population_density(surface_ds: xr.Dataset, population: Config):
+def population_density(surface_ds: xr.Dataset, population: Population):
     """The peak density of a scene: Nayak/Francis, fixed curvature, or sampled."""
-    kind = population.get("density") or default_density(surface_ds)
+    kind = population.density or default_density(surface_ds)
     estimator = surface_ds.attrs.get("population_estimator")
     if kind == "fixed_curvature":
         if "sigma_peak_height" not in surface_ds:
@@ -35,10 +32,9 @@ def population_density(surface_ds: xr.Dataset, population: Config):
     if kind == "sampled":
         if "peak" not in surface_ds.dims:
             raise ValueError("population.density sampled needs a 2-D map (surface.map)")
-        bins = tuple(population.get("histogram_bins", (20, 20)))
         return peaks.SampledDensity.from_peaks(
-            surface_ds["height"].values, surface_ds["curvature"].values, bins=bins
-        )
+            surface_ds["height"].values, surface_ds["curvature"].values,
+            bins=population.histogram_bins)
     stats = surface_ds.sel(estimator=estimator) if "estimator" in surface_ds.dims else surface_ds
     return peaks.JointDensity(
         sigma=float(stats["sigma"]),
@@ -67,12 +63,14 @@ def height_scale(surface_ds: xr.Dataset) -> float:
     return population_stat(surface_ds, "sigma")
 
 
-def bounds(density, cfg: Config, units_cfg: Config, threshold: float) -> tuple[float, float, float, float]:
-    """Integration/sampling rectangle: the effective support, or the scene's ranges."""
-    length = length_factor(units_cfg)
+def bounds(density, height_range: tuple[float, float] | None,
+           curvature_range: tuple[float, float] | None, threshold: float
+           ) -> tuple[float, float, float, float]:
+    """Integration/sampling rectangle: the effective support, or the scene's ranges
+    (height [m], curvature [1/m]; None: the support's)."""
     z0, z1, k0, k1 = density.support(threshold)
-    if "height_range" in cfg:
-        z0, z1 = (v * length for v in cfg["height_range"])
-    if "curvature_range" in cfg:
-        k0, k1 = (v / length for v in cfg["curvature_range"])
+    if height_range is not None:
+        z0, z1 = height_range
+    if curvature_range is not None:
+        k0, k1 = curvature_range
     return float(z0), float(z1), float(k0), float(k1)

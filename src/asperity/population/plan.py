@@ -87,7 +87,7 @@ def make_plan(
     """The samples of a scene on the grid heights x curvatures (x unloading levels).
 
     `job_spec(height, job curvature, unloading level)`: exactly what the
-    sample's job depends on (`asperity.population.models.job_spec`), stored as JSON in
+    sample's job depends on (the kind's `spec`, `asperity.population.kinds`), stored as JSON in
     ``spec``; the key is its hash, so samples with equal specs share a job.
     `shift_invariant`: the response depends on the interference only, not
     on the peak height (the spec leaves the height out, and samples of one

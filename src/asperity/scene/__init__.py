@@ -1,36 +1,28 @@
-"""A scene's sections as objects in SI.
+"""A scene's sections as typed objects in SI (DESIGN.md: the library, by stage).
 
-`materials`: the scene's material in SI and the constitutive body it names
-(report 3.2.2). The functions here turn other scene values into SI.
+A scene file (config/scenes/<name>.yaml) writes its values in its own units; the
+workflow validates it against config/schema.yaml, which fills in every default (the
+defaults live there and nowhere else). This package turns each section into a
+frozen dataclass in SI, once, so that the physics packages take objects and never
+read a scene's dictionaries:
+
+- `units`: `Units` (the scene's length and pressure units);
+- `materials`: `Material` from the ``material`` section, and `build`, the one place a
+  material becomes the `asperity.fe` body (elastic, J2, Bodner-Partom; 3.2);
+- `population`: `Population`, `Asperity`, `Adhesion` and `effects` (2.4, 8.2, 3.16);
+- `interface`: `Homogenization` (2.5), `Friction` (9.1), `Laws` (section 10);
+- `uniaxial`: `UniaxialTest`, one material-point test (5, 6.3.1, 8.2.1);
+- `sliding`: `Sliding`, the 3-D asperity pressed and slid (9.2).
+
+The `surface` section is read by `asperity.stages.surface`.
 """
 
-from __future__ import annotations
+from asperity.scene.interface import Friction, Homogenization, Laws
+from asperity.scene.materials import Material, build
+from asperity.scene.population import Adhesion, Asperity, Population, effects
+from asperity.scene.sliding import Sliding
+from asperity.scene.uniaxial import UniaxialTest
+from asperity.scene.units import Units, length_factor
 
-from typing import Any, Mapping
-
-from asperity import units
-from asperity.scene import materials
-
-Config = Mapping[str, Any]
-
-
-def length_factor(units_cfg: Config) -> float:
-    return units.length_scale(units_cfg["length"])
-
-
-def material_si(material: Config, units_cfg: Config) -> dict[str, Any]:
-    """The scene's material in SI (`asperity.scene.materials.material_si`)."""
-    return materials.material_si(material, units_cfg)
-
-
-def hardness_si(material: Config, units_cfg: Config) -> float | None:
-    """The material's hardness [Pa] if the scene gives one (``material.hardness``; it
-    enters no job's key: only the validity of the interface uses it)."""
-    h = material.get("hardness")
-    return None if h is None else float(h) * units.pressure_scale(units_cfg.get("pressure", "Pa"))
-
-
-def velocity_si(asperity: Config, units_cfg: Config) -> float | None:
-    """The flat's loading velocity [m/s] (report 8.2.2), None if the scene gives none."""
-    v = asperity.get("velocity")
-    return None if v is None else float(v) * length_factor(units_cfg)
+__all__ = ["Adhesion", "Asperity", "Friction", "Homogenization", "Laws", "Material", "Population",
+           "Sliding", "UniaxialTest", "Units", "build", "effects", "length_factor"]

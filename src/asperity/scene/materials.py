@@ -1,31 +1,32 @@
-"""A scene's `material` section: to SI, and to the `asperity.fe` material object.
+"""A body's material in SI (`Material`), and the one builder of the `asperity.fe` body.
 
-One place converts what a scene says about its material (report 3.2: the
-elastic constants; 3.2.2: J2 plasticity or Bodner-Partom with its
-hardening, recovery and damage constants) into SI and into the object the
-finite element solvers and the uniaxial driver use.  Which mechanisms act
-is decided by the scene's *effects*, not by zero constants:
+Three sections of a scene describe a material (report 3.2: the elastic constants;
+3.2.2: J2 plasticity or Bodner-Partom with its hardening, recovery and damage
+constants), each parsed where its section is (`from_scene` here for ``material``,
+`asperity.scene.uniaxial` for a uniaxial test, `asperity.scene.sliding` for the
+sliding asperity); every one becomes a `Material`, and `build` alone turns a
+`Material` into the object the finite element solvers and the uniaxial driver use.
+Which mechanisms act is decided by the *effects*, not by zero constants:
 
-- without ``plasticity`` the body is linear elastic (its ``yield_stress``,
-  if given, only sets the ``elastic`` flag of report 7.3);
-- with ``plasticity`` it is the scene's ``model`` (``j2``: rate-independent
-  J2 with linear hardening; ``bodner_partom``: the unified viscoplastic
-  model 3.13-3.15, starting from a named set of the report and any
-  constants overridden);
-- ``damage`` switches the isotropic damage of Bodner-Partom on (its
-  constants in ``damage``).
+- without ``plasticity`` the body is linear elastic (its ``yield_stress``, if
+  given, only sets the ``elastic`` flag of report 7.3);
+- with ``plasticity`` it is the material's ``model`` (``j2``: rate-independent
+  J2 with linear hardening; ``bodner_partom``: the unified viscoplastic model
+  3.13-3.15, from a named set of the report with any constants overridden, and
+  the mechanisms listed, or the set's);
+- ``damage`` switches the isotropic damage of Bodner-Partom on (3.15).
 
-Units: stresses (E, yield stress, hardening modulus, Z0..Z3, H) in the
-scene's pressure unit, m1 and m2 in 1/(pressure unit), rates (D0, A1, A2,
-damage rate) in 1/s.
+Units of a scene: stresses (E, yield stress, hardening modulus, Z0..Z3, H) in its
+pressure unit, m1 and m2 in 1/(pressure unit), rates (D0, A1, A2, damage rate) in 1/s.
 """
 
 from __future__ import annotations
 
 import math
-from typing import Any, Mapping
+from dataclasses import dataclass, field
+from typing import Any, Iterable, Mapping
 
-from asperity import units
+from asperity.scene.units import Units, parses
 
 Config = Mapping[str, Any]
 
@@ -60,6 +61,13 @@ DAMAGE_CONSTANTS = {
     "rupture_strain_rate": ("rupture_strain_rate", "plain", "s-1",
                             "inelastic strain rate at which rupture (creep runaway) is declared"),
 }
+#: the damage key that is no constant: how damage softens the hardness (3.15)
+SOFTENING = "softening"
+
+BP_MECHANISMS = ("isotropic_hardening", "recovery", "directional_hardening")
+#: the report's named sets (`BodnerPartom` class methods)
+BP_PRESETS = ("b1900_hf_871C", "aluminum_6061_t4", "aluminum_6061_t6", "sae_1020")
+MODELS = ("elastic", "j2", "bodner_partom")
 
 
 def unit_scale(kind: str, pressure: float) -> float:
@@ -67,80 +75,139 @@ def unit_scale(kind: str, pressure: float) -> float:
     return {"pressure": pressure, "compliance": 1.0 / pressure, "plain": 1.0}[kind]
 
 
-BP_MECHANISMS = ("isotropic_hardening", "recovery", "directional_hardening")
-#: the report's named sets (`BodnerPartom` class methods)
-BP_PRESETS = ("b1900_hf_871C", "aluminum_6061_t4", "aluminum_6061_t6", "sae_1020")
+@dataclass(frozen=True)
+class Material:
+    """A material in SI, as a scene gives it (None: not given).
+
+    model: ``elastic``, ``j2`` or ``bodner_partom`` (the body under the effect
+    ``plasticity``); youngs_modulus [Pa] and poisson (None only for a Bodner-Partom
+    set that brings its own); yield_stress [Pa]; hardening_modulus [Pa] (J2);
+    preset: a Bodner-Partom set of the report; constants: Bodner-Partom constants
+    by name (`CONSTANTS`), SI; mechanisms: the Bodner-Partom mechanisms that act
+    (None: the set's); damage: damage constants by name (`DAMAGE_CONSTANTS`, and
+    ``softening``), SI; name: what the body is called in result files; hardness
+    [Pa]: the indentation hardness a scene gives, which only judges the validity of an
+    interface (`asperity.homogenize.validity`) and is no part of a job's spec.
+    """
+
+    model: str
+    youngs_modulus: float | None = None
+    poisson: float | None = None
+    yield_stress: float | None = None
+    hardening_modulus: float | None = None
+    preset: str | None = None
+    constants: Mapping[str, float] = field(default_factory=dict)
+    mechanisms: tuple[str, ...] | None = None
+    damage: Mapping[str, Any] = field(default_factory=dict)
+    name: str | None = None
+    hardness: float | None = None
+
+    def __post_init__(self):
+        if self.model not in MODELS:
+            raise ValueError(f"unknown material.model {self.model!r}; known: {', '.join(MODELS)}")
+
+    @classmethod
+    @parses("material")
+    def from_scene(cls, section: Config, units: Units) -> "Material":
+        """A scene's ``material`` section (its pressure unit) in SI."""
+        p = units.pressure_factor
+        bp = dict(section.get("bodner_partom") or {})
+        return cls(
+            model=section["model"],
+            youngs_modulus=section["youngs_modulus"] * p,
+            poisson=section["poisson"],
+            yield_stress=section["yield_stress"] * p if "yield_stress" in section else None,
+            hardening_modulus=(section["hardening_modulus"] * p
+                               if "hardening_modulus" in section else None),
+            preset=bp.pop("preset", None),
+            mechanisms=tuple(bp.pop("mechanisms")) if "mechanisms" in bp else None,
+            constants={k: v * unit_scale(CONSTANTS[k][1], p) for k, v in bp.items()},
+            damage={k: v * unit_scale(DAMAGE_CONSTANTS[k][1], p)
+                    for k, v in (section.get("damage") or {}).items()},
+            hardness=section["hardness"] * p if "hardness" in section else None,
+        )
+
+    def spec(self) -> dict[str, Any]:
+        """The material as a sample job's spec holds it (SI; what its key hashes):
+        the elastic constants, the yield stress and hardening modulus if given, the
+        model unless elastic, the Bodner-Partom set, constants and mechanisms, and the
+        damage constants, each only if given."""
+        out: dict[str, Any] = {"youngs_modulus": self.youngs_modulus, "poisson": self.poisson}
+        if self.yield_stress is not None:
+            out["yield_stress"] = self.yield_stress
+        if self.model != "elastic":
+            out["model"] = self.model
+        if self.hardening_modulus is not None:
+            out["hardening_modulus"] = self.hardening_modulus
+        if self.preset is not None or self.constants or self.mechanisms is not None:
+            bp: dict[str, Any] = dict(self.constants)
+            if self.preset is not None:
+                bp["preset"] = self.preset
+            if self.mechanisms is not None:
+                bp["mechanisms"] = list(self.mechanisms)
+            out["bodner_partom"] = bp
+        if self.damage:
+            out["damage"] = dict(self.damage)
+        return out
+
+    @classmethod
+    def from_spec(cls, spec: Config) -> "Material":
+        """The material of a sample job's spec (`spec`)."""
+        bp = dict(spec.get("bodner_partom") or {})
+        return cls(
+            model=spec.get("model", "elastic"),  # the spec leaves an elastic model out
+            youngs_modulus=spec["youngs_modulus"], poisson=spec["poisson"],
+            yield_stress=spec.get("yield_stress"), hardening_modulus=spec.get("hardening_modulus"),
+            preset=bp.pop("preset", None),
+            mechanisms=tuple(bp.pop("mechanisms")) if "mechanisms" in bp else None,
+            constants=bp, damage=dict(spec.get("damage") or {}),
+        )
+
+    def rate_independent(self, effects: Iterable[str] = ()) -> bool:
+        """The response does not depend on the loading rate (elastic or J2)."""
+        return "plasticity" not in set(effects) or self.model in ("elastic", "j2")
 
 
-def material_si(material: Config, units_cfg: Config) -> dict[str, Any]:
-    """The scene's material section in SI (everything a job's key depends on)."""
-    p = units.pressure_scale(units_cfg.get("pressure", "Pa"))
-    out: dict[str, Any] = {"youngs_modulus": material["youngs_modulus"] * p,
-                           "poisson": material["poisson"]}
-    if "yield_stress" in material:
-        out["yield_stress"] = material["yield_stress"] * p
-    model = material.get("model", "elastic")
-    if model != "elastic":
-        out["model"] = model
-    if "hardening_modulus" in material:
-        out["hardening_modulus"] = material["hardening_modulus"] * p
-    bp = material.get("bodner_partom")
-    if bp is not None:  # preset and mechanisms pass as they are
-        out["bodner_partom"] = {k: v * unit_scale(CONSTANTS[k][1], p) if k in CONSTANTS else v
-                                for k, v in bp.items()}
-    dmg = material.get("damage")
-    if dmg is not None:
-        out["damage"] = {k: v * unit_scale(DAMAGE_CONSTANTS[k][1], p) for k, v in dmg.items()}
-    return out
-
-
-def build(material: Config, effects=()):
-    """The `asperity.fe` material of an SI material dict (`material_si`) under `effects`."""
+def build(material: Material, effects: Iterable[str] = ()):
+    """The `asperity.fe` body of `material` under `effects` (module docstring):
+    `LinearElastic`, `J2Plasticity` or `BodnerPartom`."""
     from asperity.fe.bodner_partom import BodnerPartom
     from asperity.fe.j2 import J2Plasticity
     from asperity.fe.material import LinearElastic
 
     effects = set(effects)
-    E, nu = float(material["youngs_modulus"]), float(material["poisson"])
-    yield_stress = float(material.get("yield_stress", math.inf))
-    model = material.get("model", "elastic")
-    if "plasticity" not in effects or model == "elastic":
+    yield_stress = math.inf if material.yield_stress is None else float(material.yield_stress)
+    if "plasticity" not in effects or material.model == "elastic":
         if "plasticity" in effects:
             raise ValueError("effect `plasticity` needs material.model j2 or bodner_partom")
         if "damage" in effects:
             raise ValueError("effect `damage` needs effect `plasticity` with material.model bodner_partom")
-        return LinearElastic(E, nu, yield_stress)
-    if model == "j2":
+        return LinearElastic(float(material.youngs_modulus), float(material.poisson), yield_stress)
+    if material.model == "j2":
         if not math.isfinite(yield_stress):
             raise ValueError("material.model j2 needs material.yield_stress")
         if "damage" in effects:
             raise ValueError("effect `damage` needs material.model bodner_partom (J2 has no damage)")
-        return J2Plasticity(E, nu, yield_stress, float(material.get("hardening_modulus", 0.0)))
-    if model != "bodner_partom":
-        raise ValueError(f"unknown material.model {model!r}")
-    bp = dict(material.get("bodner_partom", {}))
-    preset = bp.pop("preset", None)
-    mechanisms = bp.pop("mechanisms", None)
-    constants = {k: float(v) for k, v in bp.items()}
-    constants.update(E=E, nu=nu)
+        hardening = {} if material.hardening_modulus is None else {"H": float(material.hardening_modulus)}
+        return J2Plasticity(float(material.youngs_modulus), float(material.poisson), yield_stress,
+                            **hardening)
+    constants: dict[str, Any] = {k: float(v) for k, v in material.constants.items()}
+    if material.youngs_modulus is not None:
+        constants.update(E=float(material.youngs_modulus), nu=float(material.poisson))
     if math.isfinite(yield_stress):
         constants["yield_stress"] = yield_stress
-    if mechanisms is not None:
-        constants.update({m: m in mechanisms for m in BP_MECHANISMS})
-    if preset is None:
-        mat = BodnerPartom(**constants)
-    elif preset in BP_PRESETS:
-        mat = getattr(BodnerPartom, preset)(**constants)
-    else:
-        raise ValueError(f"unknown Bodner-Partom set {preset!r}; known: {', '.join(BP_PRESETS)}")
+    if material.mechanisms is not None:
+        constants.update({m: m in material.mechanisms for m in BP_MECHANISMS})
     if "damage" in effects:
-        dmg = dict(material.get("damage", {}))
-        if "H" not in dmg:
-            raise ValueError("effect `damage` needs material.damage.H")
-        mat = mat.with_damage(**dmg)
-    return mat
-
-
-def rate_independent(material: Config, effects=()) -> bool:
-    """The response does not depend on the loading rate (elastic or J2)."""
-    return "plasticity" not in set(effects) or material.get("model", "elastic") in ("elastic", "j2")
+        if "H" not in material.damage:
+            raise ValueError("effect `damage` needs material.damage.H (damage_H, the H_hat of 3.15)")
+        constants["damage"] = True
+    for key, value in material.damage.items():
+        constants["damage_softening" if key == SOFTENING else DAMAGE_CONSTANTS[key][0]] = value
+    if material.name is not None:
+        constants["name"] = material.name
+    if material.preset is None:
+        return BodnerPartom(**constants)
+    if material.preset not in BP_PRESETS:
+        raise ValueError(f"unknown Bodner-Partom set {material.preset!r}; known: {', '.join(BP_PRESETS)}")
+    return getattr(BodnerPartom, material.preset)(**constants)

@@ -3,7 +3,7 @@ Hertz problem (report 6.1) and for whole scenes (`asperity.studies`)."""
 
 from __future__ import annotations
 
-from typing import Any, Mapping, Sequence
+from typing import Any, Mapping
 
 import xarray as xr
 
@@ -28,14 +28,9 @@ def scenes_accuracy_dataset(interfaces: Mapping[tuple[str, str], xr.Dataset], st
                             ) -> xr.Dataset:
     """Deviation of each (scene, preset) from the finest preset, with its FE cost."""
     return scenes.scene_accuracy(interfaces, study["scenes"], study["presets"],
-                                 reference=study.get("reference"),
-                                 threshold=study.get("threshold", 1e-3))
+                                 threshold=study["threshold"])
 
 
 def scenes_accuracy_figure(ds: xr.Dataset):
     return accuracy_scenes.scene_accuracy_figure(ds)
 
-
-def runs(study: Config) -> Sequence[tuple[str, str]]:
-    """(scene, preset) of every run the scene accuracy study compares."""
-    return [(name, preset) for name in study.get("scenes", []) for preset in study.get("presets", [])]

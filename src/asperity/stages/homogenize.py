@@ -1,6 +1,9 @@
 """Stage `homogenize` (workflow/rules/homogenize.smk): the expectation over the population
 (2.5, 2.6.2), the interface versus separation with its unloading branch (8.3), and
-verification against closed forms (6.1, 7.1)."""
+verification against closed forms (6.1, 7.1).
+
+The functions take the scene's sections as the scene file spells them (validated, with
+the defaults of config/schema.yaml) and turn them into `asperity.scene` objects."""
 
 from __future__ import annotations
 
@@ -10,12 +13,11 @@ from typing import Any, Mapping
 import numpy as np
 import xarray as xr
 
-from asperity import homogenize, peaks
-from asperity.population import adhesive as adhesive_interface
+from asperity import homogenize, peaks, scene
 from asperity.homogenize import validity as validity_checks
 from asperity.population.density import bounds, height_scale, peak_density, population_density
+from asperity.population.kinds import kind_of_plan
 from asperity.references import greenwood_williamson
-from asperity.scene import hardness_si, length_factor, material_si
 from asperity.unloading import family_table as unloading_family_table
 from asperity.unloading import unloading_asperities
 from asperity.units import attrs
@@ -23,12 +25,6 @@ from asperity.units import attrs
 log = logging.getLogger("asperity")
 
 Config = Mapping[str, Any]
-
-
-def separations(homogenization: Config, surface_ds: xr.Dataset, units_cfg: Config) -> np.ndarray:
-    sep = homogenization.get("separations", {"start": 0.0, "stop": 3.0, "count": 31})
-    scale = height_scale(surface_ds) if sep.get("unit", "sigma") == "sigma" else length_factor(units_cfg)
-    return np.linspace(sep["start"], sep["stop"], sep["count"]) * scale
 
 
 def _fraction(out: xr.Dataset, name: str, long_name: str) -> xr.Dataset:
@@ -41,16 +37,15 @@ def _fraction(out: xr.Dataset, name: str, long_name: str) -> xr.Dataset:
     return out.drop_vars([source, f"raw_{name}"])
 
 
-def _homogenized(asperities: xr.Dataset, density, h: np.ndarray, rect, homogenization: Config,
-                 surface_ds: xr.Dataset, **options) -> xr.Dataset:
+def _homogenized(asperities: xr.Dataset, density, h: np.ndarray, rect,
+                 homogenization: scene.Homogenization, surface_ds: xr.Dataset, **options) -> xr.Dataset:
     """`homogenize.interface_response` of a table, with the shares of contacting asperities;
     `options`: its ``reach`` and ``contact`` (adhesion)."""
-    rule = homogenization.get("rule", "gauss")
     grid_dims = {"height", "curvature", "interference"}
     asperities = asperities[[v for v in asperities.data_vars if set(asperities[v].dims) == grid_dims]]
     out = homogenize.interface_response(
-        asperities, density, h, bounds=rect, cells=tuple(homogenization.get("cells", (40, 40))),
-        rule=rule, peak_density=peak_density(surface_ds), **options)
+        asperities, density, h, bounds=rect, cells=homogenization.cells,
+        rule=homogenization.rule, peak_density=peak_density(surface_ds), **options)
     out = _fraction(out, "extrapolated", "fraction of contacting asperities beyond their FE job's "
                     "largest interference")
     out = _fraction(out, "elastic", "fraction of contacting asperities still elastic (report 7.3, "
@@ -63,58 +58,56 @@ def _homogenized(asperities: xr.Dataset, density, h: np.ndarray, rect, homogeniz
 REBOUND_POINTS = 25
 
 
-def unloading_from(homogenization: Config, surface_ds: xr.Dataset, units_cfg: Config) -> float:
+def unloading_from(homogenization: scene.Homogenization, surface_ds: xr.Dataset) -> float:
     """Separation [m] from which the interface unloads: ``unloading_from`` (in the
     separations' unit) or the smallest separation."""
-    h = separations(homogenization, surface_ds, units_cfg)
-    if "unloading_from" not in homogenization:
-        return float(h.min())
-    sep = homogenization.get("separations", {})
-    scale = height_scale(surface_ds) if sep.get("unit", "sigma") == "sigma" else length_factor(units_cfg)
-    return float(homogenization["unloading_from"]) * scale
+    if homogenization.unloading_from is None:
+        return float(homogenization.separations(height_scale(surface_ds)).min())
+    return float(homogenization.unloading_from) * homogenization.separation_scale(height_scale(surface_ds))
 
 
 def interface_dataset(
     asperities: xr.Dataset, surface_ds: xr.Dataset, plan: xr.Dataset,
-    population: Config, homogenization: Config, units_cfg: Config,
-    unloading: xr.Dataset | None = None, *, material: Config | None = None, effects=(),
-    validity: Config | None = None,
+    population_cfg: Config, homogenization_cfg: Config, units_cfg: Config,
+    unloading: xr.Dataset | None = None, *, material_cfg: Config | None = None, effects=(),
+    validity_cfg: Config | None = None,
 ) -> xr.Dataset:
     """Nominal pressure, contact area ratio, stiffness versus separation (2.5).
 
     With an `unloading` family (`unloading_dataset`), a ``branch``
     dimension: ``loading``, and ``unloading`` from the separation
     `unloading_from` back up (NaN below it), each asperity on the path from
-    its own maximum interference (report 8.3).  With the scene's `validity`
-    limits (and its `material`, `effects`), where the result holds
+    its own maximum interference (report 8.3).  With the scene's ``validity``
+    limits (and its ``material``, `effects`), where the result holds
     (`asperity.homogenize.validity`).
     """
-    plastic = validity_checks.plasticity_of(
-        material_si(material, units_cfg), effects, hardness_si(material, units_cfg),
-        fe_flag="elastic" in asperities) if validity is not None and material else None
-    asperities = validity_checks.with_indicators(asperities, plastic) if validity is not None else asperities
-    density = population_density(surface_ds, population)
-    threshold = float(plan.attrs.get("support_threshold", 1e-4))
-    rect = bounds(density, homogenization, units_cfg, threshold)
-    rule = homogenization.get("rule", "gauss")
+    units = scene.Units.from_section(units_cfg)
+    homogenization = scene.Homogenization.from_section(homogenization_cfg, units)
+    plastic = None
+    if validity_cfg is not None and material_cfg:
+        plastic = validity_checks.plasticity_of(scene.Material.from_scene(material_cfg, units),
+                                                effects, fe_flag="elastic" in asperities)
+    if validity_cfg is not None:
+        asperities = validity_checks.with_indicators(asperities, plastic)
+    density = population_density(surface_ds, scene.Population.from_section(population_cfg, units))
+    threshold = float(plan.attrs["support_threshold"])
+    rect = bounds(density, homogenization.height_range, homogenization.curvature_range, threshold)
+    rule = homogenization.rule
     if isinstance(density, peaks.SampledDensity) and rule != "peaks":
         log.info("sampled density: rule %s over histogram cells", rule)
-    h = separations(homogenization, surface_ds, units_cfg)
+    h = homogenization.separations(height_scale(surface_ds))
     if unloading is not None:
         # the unloading branch is steep (elastic rebound, 8.3): resolve the largest
         # rebound of the asperities present with REBOUND_POINTS more separations
-        h0 = unloading_from(homogenization, surface_ds, units_cfg)
+        h0 = unloading_from(homogenization, surface_ds)
         w_max = unloading["maximum_interference"].values
         reach = w_max <= rect[1] - h0
         rebound = (w_max - unloading["residual_interference"].values)[:, reach]
         if rebound.size:
             extra = h0 + np.linspace(0.0, float(np.nanmax(rebound)), REBOUND_POINTS)[1:]
             h = np.unique(np.concatenate([h, extra]))
-    if "branch" in asperities.dims:  # adhesion: approach and retraction (asperity.population.adhesive)
-        out = adhesive_interface.by_branch(asperities, h, lambda table, **options: _homogenized(
-            table, density, h, rect, homogenization, surface_ds, **options))
-    else:
-        out = _homogenized(asperities, density, h, rect, homogenization, surface_ds)
+    out = kind_of_plan(plan).interface(asperities, h, lambda table, **options: _homogenized(
+        table, density, h, rect, homogenization, surface_ds, **options))
     if unloading is not None:
         up = h[h >= h0 - 1e-12 * abs(h0)]
         log.info("unloading branch from separation %.6g m over %d separations", h0, up.size)
@@ -139,14 +132,14 @@ def interface_dataset(
             "1", "loading, or unloading from the separation unloading_from (report 8.3)")))
         out.attrs["unloading_from"] = h0
     out.attrs["rule"] = rule
-    out.attrs["cells"] = str(tuple(homogenization.get("cells", (40, 40))))
+    out.attrs["cells"] = str(homogenization.cells)
     for name in ("accuracy", "fe_jobs", "fe_cpu_time", "max_newton_iterations", "max_step_cuts",
                  "max_dofs", "max_time_steps"):  # what the asperities cost (FE scenes)
         if name in asperities.attrs:
             out.attrs[name] = asperities.attrs[name]
-    if validity is not None:  # where the result holds
+    if validity_cfg is not None:  # where the result holds
         out = validity_checks.assess(out, plastic, validity_checks.peak_statistics(density, rect),
-                                     validity_checks.Limits(**validity))
+                                     validity_checks.Limits(**validity_cfg))
     return out
 
 
@@ -156,19 +149,21 @@ def unloading_dataset(asperities: xr.Dataset) -> xr.Dataset:
 
 
 def expectation_dataset(
-    surface_ds: xr.Dataset, population: Config, asperity: Config,
-    homogenization: Config, units_cfg: Config,
+    surface_ds: xr.Dataset, population_cfg: Config, asperity: Config,
+    homogenization_cfg: Config, units_cfg: Config,
 ) -> xr.Dataset:
     """E(X) for a constant X: the check of report 2.6.2 (eqs. 2.5 to 2.7)."""
+    units = scene.Units.from_section(units_cfg)
+    population = scene.Population.from_section(population_cfg, units)
+    homogenization = scene.Homogenization.from_section(homogenization_cfg, units)
     density = population_density(surface_ds, population)
-    threshold = population.get("support_threshold", 1e-4)
+    threshold = population.support_threshold
     support = density.support(threshold)
-    rect = bounds(density, homogenization, units_cfg, threshold)
-    area = homogenization.get("area", 1.0) * length_factor(units_cfg) ** 2
-    value = asperity.get("value", 1.0)
+    rect = bounds(density, homogenization.height_range, homogenization.curvature_range, threshold)
+    value = scene.Asperity.from_section(asperity, units).value
     res = homogenize.expectation(
-        value, density, rect, cells=tuple(homogenization.get("cells", (20, 20))),
-        rule=homogenization.get("rule", "trapezoid"), peak_density=peak_density(surface_ds), area=area,
+        value, density, rect, cells=homogenization.cells, rule=homogenization.rule,
+        peak_density=peak_density(surface_ds), area=homogenization.area,
     )
     scalar = lambda v, u, ln: ((), float(v), attrs(u, ln))  # noqa: E731
     ds = xr.Dataset(
@@ -187,8 +182,8 @@ def expectation_dataset(
         coords={"bound": ("bound", ["height_min", "height_max", "curvature_min", "curvature_max"],
                           attrs("1", "which bound"))},
     )
-    ds.attrs["rule"] = homogenization.get("rule", "trapezoid")
-    ds.attrs["cells"] = str(tuple(homogenization.get("cells", (20, 20))))
+    ds.attrs["rule"] = homogenization.rule
+    ds.attrs["cells"] = str(homogenization.cells)
     ds.attrs["beta"] = float(getattr(density, "beta", np.nan))
     return ds
 
@@ -200,13 +195,13 @@ def verification_dataset(
     """The homogenized interface beside a closed form, with relative errors."""
     if verification != "greenwood_williamson":
         raise ValueError(f"unknown verification {verification!r}")
-    mat = material_si(material, units_cfg)
+    mat = scene.Material.from_scene(material, scene.Units.from_section(units_cfg))
     closed = greenwood_williamson.gw_interface(
         interface["separation"].values,
         radius=1.0 / float(surface_ds["tip_curvature"]),
         sigma_p=float(surface_ds["sigma_peak_height"]),
         peak_density=float(surface_ds["peak_density"]),
-        E=mat["youngs_modulus"], nu=mat["poisson"],
+        E=mat.youngs_modulus, nu=mat.poisson,
     )
     ds = xr.Dataset(coords={"separation": interface["separation"]})
     pressure = interface["nominal_pressure"]
@@ -235,12 +230,13 @@ def hertz_verification_dataset(single: Config, material: Config, units_cfg: Conf
     """
     from asperity.studies.hertz import hertz_accuracy_study
 
-    length = length_factor(units_cfg)
-    mat = material_si(material, units_cfg)
+    units = scene.Units.from_section(units_cfg)
+    length = units.length_factor
+    mat = scene.Material.from_scene(material, units)
     ds = hertz_accuracy_study(
-        radius=single["radius"] * length, youngs_modulus=mat["youngs_modulus"], poisson=mat["poisson"],
+        radius=single["radius"] * length, youngs_modulus=mat.youngs_modulus, poisson=mat.poisson,
         interferences=tuple(v * length for v in single["interferences"]),
-        presets=tuple(single.get("presets", ("standard", "fine"))), refinement=(), penalty_factors=(),
+        presets=tuple(single["presets"]), refinement=(), penalty_factors=(),
     )
     for body in ds["body"].values:
         for run in ds["run"].values:

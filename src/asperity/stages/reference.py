@@ -14,6 +14,7 @@ statistical route (2.5, 7.1).
 from __future__ import annotations
 
 import copy
+import dataclasses
 import logging
 import math
 from typing import Any, Mapping
@@ -25,9 +26,10 @@ from asperity.references import boundary_element
 from asperity.homogenize import validity
 from asperity.population.density import height_scale
 from asperity.references.hertz import plane_strain_modulus
-from asperity.scene import hardness_si, length_factor, material_si
+from asperity import scene
+from asperity.scene import length_factor
 from asperity.plots.reference import reference_figure as _reference_figure
-from asperity.units import attrs, pressure_scale
+from asperity.units import attrs
 
 log = logging.getLogger("asperity")
 
@@ -72,21 +74,20 @@ def reference_hardness(material: Config, reference: Config, units_cfg: Config) -
     """The hardness of the perfectly plastic solve (Pa): the reference's `hardness`, else the
     material's by the rule of `asperity.homogenize.validity.hardness_of` (given, or Tabor's
     2.8 times the yield or flow stress), else None (elastic only)."""
-    given = reference.get("hardness")
-    if given is not None:
-        given = float(given) * pressure_scale(units_cfg.get("pressure", "Pa"))
-    else:
-        given = hardness_si(material, units_cfg)
-    h, _ = validity.hardness_of(material_si(material, units_cfg), given)
+    units = scene.Units.from_section(units_cfg)
+    body = scene.Material.from_scene(material, units)
+    if reference.get("hardness") is not None:
+        body = dataclasses.replace(body, hardness=float(reference["hardness"]) * units.pressure_factor)
+    h, _ = validity.hardness_of(body)
     return h if math.isfinite(h) else None
 
 
 def reference_separations(reference: Config, surface_ds: xr.Dataset, units_cfg: Config) -> np.ndarray:
     """The separations [m] of the reference section (in sigma of the map, or the length unit)."""
     sep = reference["separations"]
-    scale = height_scale(surface_ds) if sep.get("unit", "sigma") == "sigma" else length_factor(units_cfg)
+    scale = height_scale(surface_ds) if sep["unit"] == "sigma" else length_factor(units_cfg)
     h = np.linspace(sep["start"], sep["stop"], sep["count"]) * scale
-    if reference.get("boundary", "periodic") == "periodic" and h.min() <= 0:
+    if reference["boundary"] == "periodic" and h.min() <= 0:
         raise ValueError("reference.separations: a periodic interface's mean gap equals the separation "
                          "and cannot be zero or negative (full contact); start above 0")
     return h
@@ -96,13 +97,12 @@ def reference_dataset(z: np.ndarray, dx: float, dy: float, surface_ds: xr.Datase
                       material: Config, reference: Config, units_cfg: Config) -> xr.Dataset:
     """The boundary-element solution of the map (SI input) on dims (limit, separation):
     limit ``elastic``, and ``hardness`` where the scene gives one (`reference_hardness`)."""
-    mat = material_si(material, units_cfg)
-    modulus = float(plane_strain_modulus(mat["youngs_modulus"], mat["poisson"]))
+    body = scene.Material.from_scene(material, scene.Units.from_section(units_cfg))
+    modulus = float(plane_strain_modulus(body.youngs_modulus, body.poisson))
     h = reference_separations(reference, surface_ds, units_cfg)
     hardness = reference_hardness(material, reference, units_cfg)
-    options = {"boundary": reference.get("boundary", "periodic"),
-               "tolerance": reference.get("tolerance", 1e-6),
-               "max_iterations": reference.get("max_iterations", 5000)}
+    options = {"boundary": reference["boundary"], "tolerance": reference["tolerance"],
+               "max_iterations": reference["max_iterations"]}
     limits = {"elastic": None} | ({"hardness": hardness} if hardness is not None else {})
     parts = []
     for limit, cap in limits.items():  # two solves at most

@@ -7,20 +7,27 @@ from typing import Any, Callable, Mapping
 
 import xarray as xr
 
-from asperity.fe.solid3d import solve_sliding_scene
+from asperity.fe.solid3d import solve_sliding
 from asperity.plots import sliding as sliding_plots
+from asperity.scene import Sliding, Units
 
 Config = Mapping[str, Any]
 
 
 def sliding_dataset(scene_name: str, sliding: Config, units_cfg: Config, accuracy: str,
                     progress: Callable[..., None] | None = None) -> xr.Dataset:
-    """Force histories, the deformed section and the largest deformation; a failure names
-    the scene."""
+    """Force histories, the deformed section and the largest deformation of the scene's
+    ``sliding`` section at the accuracy preset `accuracy` (the section's steps, mesh
+    sizes and inelastic step limit override the preset's); a failure names the scene."""
     try:
-        return solve_sliding_scene(sliding, units_cfg, accuracy, progress=progress)
+        s = Sliding.from_section(sliding, Units.from_section(units_cfg))
+        ds = solve_sliding(s.geometry(), s.body(), s.motion(), s.friction(),
+                           accuracy=s.preset(accuracy), penalty_factor=s.penalty_factor,
+                           friction_pressure=s.friction_pressure, progress=progress)
     except Exception as err:
         raise RuntimeError(f"scene {scene_name}, sliding asperity: {err}") from err
+    ds.attrs["accuracy"] = accuracy
+    return ds
 
 
 def sliding_figure(ds: xr.Dataset, units_cfg: Config):

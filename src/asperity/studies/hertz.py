@@ -13,8 +13,7 @@ present model on the same problem:
   a paraboloidal gap, so the error is the model's numerical error) for
   every accuracy preset and every member of a refinement sequence;
 - the true sphere (`Sphere`) for every preset, reported beside: its
-  difference to Hertz (about -1.4 % in load at w = 0.02) is geometric
-  (a / R up to 0.14), not numerical;
+  difference to Hertz is geometric (a / R up to 0.14), not numerical;
 - the penalty method's own error against the exact (augmented Lagrangian)
   contact option on the same mesh (`penalty_error`), for a range of
   penalty factors, with the wall time of complete runs of each.
@@ -25,19 +24,9 @@ Five members from very coarse to very fine.  Each step tightens the mesh
 (ring growth ratio, sectors per ring, adaptive sweeps, target ZZ error)
 *and* the cut-off radius of the block (``domain_factor``) together: on the
 Hertz problem the load error of a fine mesh is dominated by the cut-off
-(fixing u = 0 at L stiffens the body by about a / L; measured at the
-'fine' mesh: 0.31 %, 0.031 %, 0.003 % in load for domain factors 100,
-1000, 10000), so refining the mesh alone stalls at the cut-off error.
-Measured here (paraboloid, 2 shared cores; wall times vary with the load of
-the machine, and multi-threaded OpenBLAS slows down many-fold when the
-cores are shared with another busy process):
-
-    member    dofs     wall     max |load error|   max |radius error|
-    refine-1     400   0.02 s   3.3 %              1.5 %
-    refine-2   2 200   0.1 s    0.40 %             0.50 %
-    refine-3   4 300   0.2 s    0.13 %             0.17 %
-    refine-4  19 000   1.2 s    0.032 %            0.054 %
-    refine-5  37 000   2.5 s    0.003 %            0.030 %
+(fixing u = 0 at L stiffens the body by about a / L), so refining the mesh
+alone stalls at the cut-off error. What each member costs and reaches is
+results/accuracy/hertz.nc (the README's table).
 
 The contact radius error falls more slowly: the contact edge is located
 between nodes (`contact.contact_edge`), so it is bounded by the element

@@ -1,4 +1,4 @@
-"""What accuracy costs for a whole scene (issue #6): results/accuracy/scenes.nc.
+"""What accuracy costs for a whole scene: results/accuracy/scenes.nc.
 
 A scene run at each accuracy preset (``results/<scene>@<preset>/interface.nc``)
 gives the homogenized interface (report 2.5: the nominal pressure
@@ -6,7 +6,7 @@ p = n E(F) and the real contact area ratio n E(A) of eq. 2.7, on the loading
 branch and, for scenes that unload, on the unloading branch of 8.3) and, in
 its attributes, what its finite element asperities cost: the number of FE
 jobs, their total CPU time, the largest Newton iteration, step-cut, dof and
-time-step counts (`asperity.population.models.gather`).  `scene_accuracy` puts these side
+time-step counts (`asperity.population.gather.gather`).  `scene_accuracy` puts these side
 by side with the deviation of each preset's interface from the finest
 preset's, so a user can pick a preset knowing its price.
 
@@ -26,7 +26,7 @@ and are compared only where they coincide.  How many separations entered,
 and where the largest deviation lies, are stored beside it, as is the largest
 share of contacting asperities the gather extrapolated beyond their FE job's
 last level: where it is large, the deviation measures the extrapolation (the
-secant of the last two steps, `asperity.population.models`) as much as the mesh.
+secant of the last two steps, `asperity.population.gather`) as much as the mesh.
 """
 
 from __future__ import annotations

@@ -9,17 +9,11 @@ directional hardening 3.14, damage 3.15) as implemented by
 `asperity.fe.bodner_partom.BodnerPartom` and driven by
 `asperity.uniaxial.run_uniaxial`.
 
-A scene's ``uniaxial`` section is a list of tests.  Each names a constant set
-of the report (``material``), overrides any constant in the scene's units
-(``constants``; damage constants under ``damage``), lists the mechanisms that
-are on (``effects``: isotropic_hardening, recovery, directional_hardening,
-damage; every other one is switched off by `BodnerPartom` flags, never by a
-zero constant), the ``control`` (strain or stress), the ``history`` and the
-integrator.  Units: stresses, moduli, hardnesses and H_hat in the scene's
-pressure unit, m1 and m2 in 1 / (pressure unit), rates in 1/s, times in s,
-strains dimensionless.  Everything returned is SI.
+A scene's ``uniaxial`` section is a list of tests, each an
+`asperity.scene.UniaxialTest` (its material, mechanisms, control, history and
+integrator, in SI). Everything returned is SI.
 
-- `material_from_test`, `history_from_test`: one test's material and history;
+- `run_uniaxial_test`: one test;
 - `run_uniaxial_scene`: every test of the section as ONE Dataset on dims
   (test, step), shorter histories padded with NaN;
 - `uniaxial_reference`: the same uniaxial problem as a small ODE system in
@@ -31,42 +25,35 @@ strains dimensionless.  Everything returned is SI.
   (backward Euler) and the explicit (predictor-corrector 3.33-3.36)
   integrators over a sweep of tolerances, per test.
 
-The accuracy study measures two regimes (both are in the file):
+The accuracy study measures two regimes (both are in the file; the numbers are
+in the README):
 
-1. the pairing the issue asks for: the implicit integrator at its default
-   tolerance (1e-3) against the explicit *reference* (the report's own
-   scheme of 3.6 at tolerance 1e-6): both end within 1 % of the ODE
-   reference, the implicit one with 26 to 29 times fewer steps on B1900+Hf
-   and 44 to 47 times fewer on aluminum and steel (``steps_ratio_reference``);
+1. a pairing of tolerances: the implicit integrator at its default tolerance
+   against the explicit *reference* (the report's own scheme of 3.6 at a tight
+   tolerance), both within the target of the ODE reference
+   (``steps_ratio_reference``);
 2. matched accuracy: for each integrator the fewest steps of its sweep
-   whose end error is within the target (``steps_to_target``).  On the
-   mildly stiff B1900+Hf histories the adaptive explicit scheme then needs
-   0.6 to 4 times the implicit steps (``steps_ratio_matched``), each far
-   cheaper, so it is faster in wall time; on the stiff aluminum (n = 5.8,
-   D0 = 1e8/s) and steel sets its step is limited by stability, not
-   accuracy, and it needs 37 to 54 times the implicit steps.
+   whose end error is within the target (``steps_to_target``, hence
+   ``steps_ratio_matched``). On stiff sets (aluminum, n = 5.8, D0 = 1e8/s;
+   steel) the explicit step is limited by stability, not accuracy.
 """
 
 from __future__ import annotations
 
 import math
 import time as _time
-from dataclasses import replace
+from typing import Sequence
 
 import numpy as np
 import xarray as xr
 from scipy.integrate import solve_ivp
 
-from asperity import units as _units
 from asperity.fe.bodner_partom import BodnerPartom
-from asperity.scene.materials import CONSTANTS, DAMAGE_CONSTANTS, unit_scale
+from asperity.scene.materials import CONSTANTS, DAMAGE_CONSTANTS
+from asperity.scene.uniaxial import EFFECTS, PLOTS, IntegratorStudy, UniaxialTest
 from asperity.uniaxial.point import run_uniaxial, uniaxial_flow_stress
 
 __all__ = [
-    "PRESETS",
-    "EFFECTS",
-    "material_from_test",
-    "history_from_test",
     "run_uniaxial_test",
     "run_uniaxial_scene",
     "uniaxial_reference",
@@ -74,123 +61,10 @@ __all__ = [
     "response_name",
 ]
 
-#: constant sets of the report, by the name a scene gives
-PRESETS = {
-    "b1900_hf_871C": BodnerPartom.b1900_hf_871C,      # section 5
-    "aluminum_6061_t4": BodnerPartom.aluminum_6061_t4,  # 6.3.1, E = 65 GPa, n = 5.8
-    "aluminum_6061_t6": BodnerPartom.aluminum_6061_t6,  # 6.3.1, ref. [10] set
-    "sae_1020": BodnerPartom.sae_1020,                  # 8.2.1
-}
-
-#: mechanisms a scene switches on by name (flags of `BodnerPartom`)
-EFFECTS = ("isotropic_hardening", "recovery", "directional_hardening", "damage")
-
-
 #: per-step variables of `run_uniaxial` written to the scene's file
 STEP_VARS = ("time", "strain", "stress", "hardness", "hardness_isotropic",
              "hardness_directional", "damage", "inelastic_strain", "lateral_strain",
              "plastic_work", "dt")
-
-#: what a figure panel plots: plot name -> (x, y)
-PLOTS = {
-    "strain-stress": ("strain", "stress"),
-    "time-stress": ("time", "stress"),
-    "time-strain": ("time", "strain"),
-    "time-damage": ("time", "damage"),
-    "time-hardness": ("time", "hardness"),
-}
-
-
-def _pressure(units: dict | None) -> float:
-    return _units.pressure_scale((units or {}).get("pressure", "Pa"))
-
-
-def material_from_test(test: dict, units: dict | None = None) -> BodnerPartom:
-    """The `BodnerPartom` material of one test of a scene (report 3.2.2).
-
-    The preset ``test["material"]`` (`PRESETS`), its constants overridden by
-    ``test["constants"]`` and ``test["damage"]`` (scene units, see the module
-    docstring), and exactly the mechanisms of ``test["effects"]`` switched
-    on.  A mechanism switched on without its constants (recovery without
-    Z2, damage without H) raises ValueError naming the test.
-    """
-    name = test.get("name", "?")
-    preset = test["material"]
-    if preset not in PRESETS:
-        raise ValueError(f"test {name}: unknown material {preset!r}; known: {', '.join(PRESETS)}")
-    effects = list(test.get("effects", []))
-    unknown = sorted(set(effects) - set(EFFECTS))
-    if unknown:
-        raise ValueError(f"test {name}: unknown effects {unknown}; known: {', '.join(EFFECTS)}")
-    p = _pressure(units)
-    kw = {}
-    for key, value in (test.get("constants") or {}).items():
-        if key not in CONSTANTS:
-            raise ValueError(f"test {name}: unknown constant {key!r}; "
-                             f"known: {', '.join(CONSTANTS)}")
-        field, kind, _, _ = CONSTANTS[key]
-        kw[field] = float(value) * unit_scale(kind, p)
-    for key, value in (test.get("damage") or {}).items():
-        if key == "softening":
-            kw["damage_softening"] = str(value)
-            continue
-        if key not in DAMAGE_CONSTANTS:
-            raise ValueError(f"test {name}: unknown damage constant {key!r}; "
-                             f"known: {', '.join(DAMAGE_CONSTANTS)}, softening")
-        field, kind, _, _ = DAMAGE_CONSTANTS[key]
-        kw[field] = float(value) * unit_scale(kind, p)
-    kw.update({m: (m in effects) for m in EFFECTS})
-    base = PRESETS[preset]()
-    try:
-        return replace(base, **kw)
-    except ValueError as err:
-        raise ValueError(f"test {name}: {err}") from None
-
-
-def history_from_test(test: dict, units: dict | None = None) -> tuple[list, str]:
-    """``([(time [s], value), ...], control)`` of one test, value in SI.
-
-    History kinds (values are strains under strain control, stresses in the
-    scene's pressure unit under stress control; rates per second):
-
-    - ``ramp_hold``: ``value`` reached linearly in ``ramp_time``, then held
-      for ``hold_time`` (creep 5.1, relaxation 5.3, load-creep 5.4);
-    - ``constant_rate``: to ``value`` at ``rate`` (tension 6.14, 8.13),
-      then held for ``hold_time`` (default 0);
-    - ``cyclic``: ``cycles`` triangles 0 -> +amplitude -> -amplitude -> 0 at
-      ``rate`` (5.2);
-    - ``points``: the (time, value) pairs given, from (0, 0).
-    """
-    control = test["control"]
-    if control not in ("strain", "stress"):
-        raise ValueError(f"test {test.get('name', '?')}: control is 'strain' or 'stress'")
-    h = dict(test["history"])
-    scale = _pressure(units) if control == "stress" else 1.0
-    kind = h["kind"]
-    if kind == "ramp_hold":
-        v = float(h["value"]) * scale
-        pts = [(0.0, 0.0), (float(h["ramp_time"]), v)]
-        if float(h.get("hold_time", 0.0)) > 0:
-            pts.append((pts[-1][0] + float(h["hold_time"]), v))
-    elif kind == "constant_rate":
-        v = float(h["value"]) * scale
-        pts = [(0.0, 0.0), (abs(float(h["value"]) / float(h["rate"])), v)]
-        if float(h.get("hold_time", 0.0)) > 0:
-            pts.append((pts[-1][0] + float(h["hold_time"]), v))
-    elif kind == "cyclic":
-        a = float(h["amplitude"]) * scale
-        quarter = float(h["amplitude"]) / float(h["rate"])
-        pts = [(0.0, 0.0)]
-        for i in range(int(h["cycles"])):
-            t = 4.0 * quarter * i
-            pts += [(t + quarter, a), (t + 3 * quarter, -a), (t + 4 * quarter, 0.0)]
-    elif kind == "points":
-        pts = [(float(t), float(v) * scale) for t, v in h["points"]]
-        if pts[0] != (0.0, 0.0):
-            pts.insert(0, (0.0, 0.0))
-    else:
-        raise ValueError(f"test {test.get('name', '?')}: unknown history kind {kind!r}")
-    return pts, control
 
 
 def response_name(control: str) -> str:
@@ -199,36 +73,31 @@ def response_name(control: str) -> str:
     return "stress" if control == "strain" else "strain"
 
 
-def run_uniaxial_test(test: dict, units: dict | None = None, *, integrator: str | None = None,
+def run_uniaxial_test(test: UniaxialTest, *, integrator: str | None = None,
                       tolerance: float | None = None, outputs: int | None = None) -> xr.Dataset:
-    """One test of a scene through `run_uniaxial` (Dataset on dim ``step``).
+    """One test through `run_uniaxial` (Dataset on dim ``step``).
 
     ``integrator``, ``tolerance`` (implicit: the error indicator's; explicit:
     the predictor-corrector's) and ``outputs`` (implicit: the initial step is
-    the duration / outputs; explicit: output intervals) default to the test's
-    own (implicit, 1e-3, 100)."""
-    mat = material_from_test(test, units)
-    history, control = history_from_test(test, units)
-    integrator = integrator or test.get("integrator", "implicit")
-    tol = float(tolerance if tolerance is not None else test.get("tolerance", 1e-3))
-    outputs = int(outputs if outputs is not None else test.get("outputs", 100))
+    the duration / outputs; explicit: output intervals) are the test's own
+    unless given (the accuracy study sweeps them)."""
+    mat = test.body()
+    integrator = integrator or test.integrator
+    tol = float(tolerance if tolerance is not None else test.tolerance)
+    outputs = int(outputs if outputs is not None else test.outputs)
     kw = dict(tol=tol) if integrator == "implicit" else dict(explicit_tol=tol)
     try:
-        return run_uniaxial(mat, history, integrator=integrator, control=control, steps=outputs,
-                            **kw)
+        return run_uniaxial(mat, list(test.history), integrator=integrator, control=test.control,
+                            steps=outputs, **kw)
     except (ValueError, RuntimeError) as err:
-        raise type(err)(f"test {test.get('name', '?')}: {err}") from err
+        raise type(err)(f"test {test.name}: {err}") from err
 
 
 def _var(dims, values, units, long_name):
     return (dims, values, dict(units=units, long_name=long_name))
 
 
-def _default_plot(control: str) -> str:
-    return "strain-stress" if control == "strain" else "time-strain"
-
-
-def run_uniaxial_scene(section: dict, units: dict | None = None) -> xr.Dataset:
+def run_uniaxial_scene(tests: Sequence[UniaxialTest]) -> xr.Dataset:
     """Every test of a scene's ``uniaxial`` section as one Dataset (SI).
 
     Dims ``test`` (the tests' names) and ``step`` (step 0 the initial
@@ -243,14 +112,14 @@ def run_uniaxial_scene(section: dict, units: dict | None = None) -> xr.Dataset:
     stresses of constant-rate tension (flow_stress_initial at Z0,
     flow_stress_saturated at Z1), and the figure hints panel and plot.
     """
-    tests = list(section["tests"])
-    names = [t["name"] for t in tests]
+    tests = list(tests)
+    names = [t.name for t in tests]
     if len(set(names)) != len(names):
         raise ValueError(f"uniaxial test names must be unique, got {names}")
     runs, mats = [], []
     for t in tests:
-        mats.append(material_from_test(t, units))
-        runs.append(run_uniaxial_test(t, units))
+        mats.append(t.body())
+        runs.append(run_uniaxial_test(t))
     nmax = max(r.sizes["step"] for r in runs)
     nt = len(tests)
     data = {}
@@ -276,20 +145,19 @@ def run_uniaxial_scene(section: dict, units: dict | None = None) -> xr.Dataset:
     data["integrator"] = _var("test", np.array([r.attrs["integrator"] for r in runs], object),
                               "1", "time integrator (implicit: backward Euler; explicit: "
                                    "predictor-corrector 3.33-3.36)")
-    data["tolerance"] = _var("test", np.array([float(t.get("tolerance", 1e-3)) for t in tests]),
+    data["tolerance"] = _var("test", np.array([t.tolerance for t in tests]),
                              "1", "tolerance of the error indicator (3.36)")
-    data["control"] = _var("test", np.array([t["control"] for t in tests], object), "1",
+    data["control"] = _var("test", np.array([t.control for t in tests], object), "1",
                            "controlled axial quantity (strain or stress)")
-    data["history_kind"] = _var("test", np.array([t["history"]["kind"] for t in tests], object),
+    data["history_kind"] = _var("test", np.array([t.history_kind for t in tests], object),
                                 "1", "kind of load history")
-    data["material"] = _var("test", np.array([t["material"] for t in tests], object), "1",
+    data["material"] = _var("test", np.array([t.preset for t in tests], object), "1",
                             "constant set of the report the test starts from")
-    data["test_title"] = _var("test", np.array([t.get("title", t["name"]) for t in tests],
-                                               object), "1", "what the test reproduces")
-    data["panel"] = _var("test", np.array([t.get("panel", t["name"]) for t in tests], object),
+    data["test_title"] = _var("test", np.array([t.title for t in tests], object), "1",
+                              "what the test reproduces")
+    data["panel"] = _var("test", np.array([t.panel for t in tests], object),
                          "1", "figure panel the test is drawn in")
-    data["plot"] = _var("test", np.array([t.get("plot", _default_plot(t["control"]))
-                                          for t in tests], object),
+    data["plot"] = _var("test", np.array([t.plot for t in tests], object),
                         "1", "what the panel plots (x-y): " + ", ".join(PLOTS))
     for m in EFFECTS:
         data[f"effect_{m}"] = _var("test", np.array([bool(getattr(mat, m)) for mat in mats]),
@@ -300,13 +168,11 @@ def run_uniaxial_scene(section: dict, units: dict | None = None) -> xr.Dataset:
                                unit, long_name)
     flow0, flow1 = np.full(nt, np.nan), np.full(nt, np.nan)
     for i, (t, mat) in enumerate(zip(tests, mats)):
-        h = t["history"]
-        if t["control"] == "strain" and h["kind"] == "constant_rate":
-            rate = abs(float(h["rate"]))
-            flow0[i] = math.copysign(uniaxial_flow_stress(mat, rate), float(h["value"]))
+        if t.control == "strain" and t.history_kind == "constant_rate":
+            rate = abs(float(t.rate))
+            flow0[i] = math.copysign(uniaxial_flow_stress(mat, rate), float(t.value))
             if mat.isotropic_hardening:
-                flow1[i] = math.copysign(uniaxial_flow_stress(mat, rate, mat.Z1),
-                                         float(h["value"]))
+                flow1[i] = math.copysign(uniaxial_flow_stress(mat, rate, mat.Z1), float(t.value))
     data["flow_stress_initial"] = _var(
         "test", flow0, "Pa", "steady flow stress at the test's strain rate with Z = Z0 "
         "(closed form; constant-rate strain-controlled tests)")
@@ -485,37 +351,31 @@ def _end_error(run: xr.Dataset, ref_value: float, key: str, t_end: float) -> flo
     return abs(float(run[key][-1]) / ref_value - 1.0)
 
 
-def accuracy_study(tests: list, units: dict | None = None, *,
-                   tolerances: dict | None = None, pairing: dict | None = None,
-                   explicit_outputs: int = 20, implicit_outputs: int = 100,
-                   target: float = 0.01, reference_rtol: float = 1e-10,
-                   reference_method: str = "LSODA") -> xr.Dataset:
+def accuracy_study(study: IntegratorStudy) -> xr.Dataset:
     """Steps, wall time and end error of both integrators, per test and tolerance.
 
-    For each test (a scene-style test dict; its own integrator and
-    tolerance are ignored): the reference end value by `uniaxial_reference`,
-    then `run_uniaxial` with each integrator at each of its tolerances
-    (``tolerances = {"implicit": [...], "explicit": [...]}``; the union is
-    the ``indicator_tolerance`` dim, NaN where an integrator was not run; not
-    ``tolerance``, which `xarray.Dataset.sel` takes as its own keyword).  The error
-    is the relative error of the response at the end of the history: the
-    stress under strain control, the strain under stress control (the
-    stress is prescribed there).
+    For each test of `study` (its own integrator and tolerance are ignored): the
+    reference end value by `uniaxial_reference` (the study's method and rtol), then
+    `run_uniaxial` with each integrator at each of its tolerances (the union is the
+    ``indicator_tolerance`` dim, NaN where an integrator was not run; not
+    ``tolerance``, which `xarray.Dataset.sel` takes as its own keyword), with the
+    study's outputs.  The error is the relative error of the response at the end of
+    the history: the stress under strain control, the strain under stress control
+    (the stress is prescribed there).
 
-    Two regimes (module docstring): ``pairing = {"implicit": 1e-3,
-    "explicit": 1e-6}`` gives ``steps_ratio_reference`` (explicit reference
-    steps / implicit steps, both must be within ``target``) and
-    ``steps_to_target`` (fewest steps of the sweep within ``target``), hence
-    ``steps_ratio_matched``.
+    Two regimes (module docstring): the ``pairing`` tolerances give
+    ``steps_ratio_reference`` (explicit reference steps / implicit steps, both must
+    be within ``target``) and ``steps_to_target`` (fewest steps of the sweep within
+    ``target``), hence ``steps_ratio_matched``.
     """
-    tolerances = tolerances or {"implicit": [3e-2, 1e-2, 1e-3],
-                                "explicit": [1e-2, 1e-3, 1e-4, 1e-6]}
-    pairing = pairing or {"implicit": 1e-3, "explicit": 1e-6}
+    tests, tolerances, pairing, target = study.tests, study.tolerances, study.pairing, study.target
+    implicit_outputs, explicit_outputs = study.implicit_outputs, study.explicit_outputs
+    reference_rtol, reference_method = study.reference_rtol, study.reference_method
     integrators = ("implicit", "explicit")
-    tol_sets = {g: sorted({float(x) for x in tolerances.get(g, [])} | {float(pairing[g])},
+    tol_sets = {g: sorted({float(x) for x in tolerances[g]} | {float(pairing[g])},
                           reverse=True) for g in integrators}
     tol_all = np.array(sorted(set(tol_sets["implicit"]) | set(tol_sets["explicit"]), reverse=True))
-    names = [t["name"] for t in tests]
+    names = [t.name for t in tests]
     nt, ng, nk = len(tests), len(integrators), tol_all.size
     steps = np.full((ng, nt, nk), np.nan)
     rejected = np.full((ng, nt, nk), np.nan)
@@ -527,8 +387,8 @@ def accuracy_study(tests: list, units: dict | None = None, *,
     ref_nfev = np.zeros(nt, int)
     responses, controls = [], []
     for i, test in enumerate(tests):
-        mat = material_from_test(test, units)
-        history, control = history_from_test(test, units)
+        mat = test.body()
+        history, control = list(test.history), test.control
         key = response_name(control)
         responses.append(key)
         controls.append(control)
@@ -536,7 +396,7 @@ def accuracy_study(tests: list, units: dict | None = None, *,
         ref = uniaxial_reference(mat, history, control, rtol=reference_rtol,
                                  method=reference_method)
         if ref.attrs["ruptured"]:
-            raise ValueError(f"test {test['name']}: ruptures before the end of its history; "
+            raise ValueError(f"test {test.name}: ruptures before the end of its history; "
                              "the accuracy study compares end values")
         ref_value[i] = float(ref[key][-1])
         ref_wall[i] = ref.attrs["wall_time"]
@@ -544,7 +404,7 @@ def accuracy_study(tests: list, units: dict | None = None, *,
         for g, integ in enumerate(integrators):
             for tol in tol_sets[integ]:
                 k = int(np.nonzero(tol_all == tol)[0][0])
-                run = run_uniaxial_test(test, units, integrator=integ, tolerance=tol,
+                run = run_uniaxial_test(test, integrator=integ, tolerance=tol,
                                         outputs=implicit_outputs if integ == "implicit"
                                         else explicit_outputs)
                 steps[g, i, k] = run.attrs["steps"]
@@ -582,7 +442,7 @@ def accuracy_study(tests: list, units: dict | None = None, *,
         "response": _var(T, np.array(responses, object), "1",
                          "the response whose end error is measured"),
         "control": _var(T, np.array(controls, object), "1", "controlled axial quantity"),
-        "material": _var(T, np.array([t["material"] for t in tests], object), "1",
+        "material": _var(T, np.array([t.preset for t in tests], object), "1",
                          "constant set of the report"),
         "steps_to_target": _var((G, T), steps_to_target, "1",
                                 "fewest steps of the tolerance sweep with the end error "

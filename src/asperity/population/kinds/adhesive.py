@@ -1,4 +1,5 @@
-"""Adhesive asperities in the pipeline: grid, job, gather, interface (report 3.3.3, 7.3, 9.1).
+"""The ``adhesive`` kind: elastic FE asperities with Lennard-Jones adhesion in the
+pipeline: grid, job, gather, interface (report 3.3.3, 7.3, 9.1).
 
 A scene turns adhesion on with the effect ``adhesion`` and a section
 
@@ -20,22 +21,21 @@ What changes against an asperity without adhesion:
   grid gets gap levels from there to 0, spaced d / 8 out to 12 d (where
   the asperities jump in and out) and growing by 10 % per level farther
   out, joined to the usual geometric grid of w > 0.
-- **Job** (`job_spec`, `solve_job`): one job per curvature (the response is
-  shift invariant in height but not self-similar: d does not scale;
-  `asperity.population.models.self_similar` refuses adhesion).  It approaches the
+- **Job** (`Adhesive.spec`, `Adhesive.solve`): one job per curvature (the response
+  is shift invariant in height but not self-similar: d does not scale).  It approaches the
   flat from the cut-off to the top of the sample's range and retracts it
   until the asperity lets go, recording jumps and the pull-off force.  The
   law (dgamma, d, cutoff, SI) is in the spec, hence in the key.
-- **Gather** (`gather`): both branches (dim ``branch``: approach, retract)
+- **Gather** (`Adhesive.gather`): both branches (dim ``branch``: approach, retract)
   on (height, curvature, interference) by `interpolate_adhesive` (jumps kept
   as jumps); force is negative where the asperity attracts, contact area 0
   where it does not touch; ``in_contact`` is 1 where the contact area is
   positive; ``extrapolated`` flags grid points beyond the job's deepest
-  level (the last tangent), as `asperity.population.models.gather`.  Per curvature:
+  level (the last tangent), as `asperity.population.gather.gather`.  Per curvature:
   pull-off force, Tabor parameter, jump interferences, the DMT and JKR
   pull-off forces 2 pi R W_c and 3/2 pi R W_c, and the computed paths
   (Fig. 7.6) on (curvature, step).
-- **Interface** (`by_branch`): the same integrator as every scene
+- **Interface** (`Adhesive.interface`): the same integrator as every scene
   (`asperity.homogenize.interface_response`, eqs. 2.5-2.7) with
   ``reach``: an asperity of peak height z at separation h contributes
   X(z, kappa, w = z - h) for every w > -reach, not only w > 0; contacts
@@ -51,20 +51,16 @@ from __future__ import annotations
 
 import math
 import time
-from typing import Any, Callable, Mapping
+from typing import Callable, Mapping
 
 import numpy as np
 import xarray as xr
 
+from asperity.population.kinds.base import FiniteElementKind
 from asperity.population.plan import interference_grid as contact_grid
-from asperity.scene import materials
+from asperity.scene import Adhesion, Material, build
 from asperity.units import attrs
 
-Config = Mapping[str, Any]
-
-#: the scene's `adhesion` section: work of adhesion [J/m^2], spacing d [nm], cut-off s_c / d
-DEFAULTS = {"work_of_adhesion": 1.0, "spacing": 0.5, "cutoff": 16.0}
-NM = 1e-9
 BRANCHES = ("approach", "retract")
 #: gap levels of the grid: d * NEAR_STEP apart out to NEAR_RANGE d, growing by GROWTH beyond
 NEAR_STEP = 0.125
@@ -72,31 +68,24 @@ NEAR_RANGE = 12.0
 GROWTH = 0.1
 
 
-
 # --- the law ------------------------------------------------------------------------------
-def law_si(adhesion_cfg: Config | None) -> dict[str, float]:
-    """The scene's `adhesion` section as the law's SI parameters {dgamma, d, cutoff}."""
-    cfg = {**DEFAULTS, **dict(adhesion_cfg or {})}
-    return {"dgamma": float(cfg["work_of_adhesion"]), "d": float(cfg["spacing"]) * NM,
-            "cutoff": float(cfg["cutoff"])}
-
-
-def law(adhesion_si: Config):
-    """`asperity.fe.LennardJones` of SI parameters (`law_si`)."""
+def law(adhesion: Adhesion | Mapping[str, float]):
+    """`asperity.fe.LennardJones` of the law (an `Adhesion`, or a job spec's ``adhesion``)."""
     from asperity.fe import LennardJones
 
-    return LennardJones(float(adhesion_si["dgamma"]), float(adhesion_si["d"]),
-                        float(adhesion_si["cutoff"]))
+    if isinstance(adhesion, Adhesion):
+        adhesion = adhesion.spec()
+    return LennardJones(float(adhesion["dgamma"]), float(adhesion["d"]), float(adhesion["cutoff"]))
 
 
-def reach(adhesion_si: Config) -> float:
+def reach(adhesion: Adhesion) -> float:
     """Largest gap -w [m] at which the law acts: the tip at the cut-off separation,
     w = d - s_c (the first level of `asperity.fe.adhesive.adhesive_path`)."""
-    lj = law(adhesion_si)
+    lj = law(adhesion)
     return float(lj.range - lj.d)
 
 
-def interference_grid(largest: float, count: int, adhesion_si: Config) -> np.ndarray:
+def interference_grid(largest: float, count: int, adhesion: Adhesion) -> np.ndarray:
     """Gap levels from -`reach` up to 0, then the plan's geometric grid of w > 0.
 
     The gap levels are d / 8 apart out to 12 d, where the asperities jump
@@ -107,8 +96,8 @@ def interference_grid(largest: float, count: int, adhesion_si: Config) -> np.nda
     linearly in w, so a jump between two levels is integrated with an error
     of at most its height times half the spacing, d / 16.
     """
-    d = float(adhesion_si["d"])
-    lo = reach(adhesion_si)
+    d = float(adhesion.d)
+    lo = reach(adhesion)
     h0 = NEAR_STEP * d
     w_near = min(NEAR_RANGE * d, lo)  # uniform steps up to here, geometric beyond
     near = np.linspace(0.0, w_near, int(math.ceil(w_near / h0 * (1 - 1e-12))) + 1)[1:]
@@ -119,44 +108,6 @@ def interference_grid(largest: float, count: int, adhesion_si: Config) -> np.nda
         far[-1] = lo
     gaps = np.concatenate([near, far])
     return np.concatenate([-gaps[::-1], contact_grid(largest, count)])
-
-
-# --- the job ------------------------------------------------------------------------------
-def job_spec(spec: dict, adhesion_si: Config, effects, level: float) -> dict:
-    """The spec of an adhesive job: geometry, range and body (`asperity.population.models.job_spec`)
-    and the law in SI (`law_si`); the path is the solver's own, no level count."""
-    if "plasticity" in set(effects):
-        raise ValueError("effect `adhesion` needs an elastic body (no `plasticity`): "
-                         "the adhesive solver is elastic (asperity.fe.adhesive)")
-    if not math.isnan(level):
-        raise ValueError("an adhesive asperity approaches and retracts: no unloading levels")
-    adhesion_si = adhesion_si or law_si(None)  # the section's defaults
-    out = dict(spec)
-    out["adhesion"] = {k: float(adhesion_si[k]) for k in ("dgamma", "d", "cutoff")}
-    return out
-
-
-def solve_job(spec: Config, key: str) -> xr.Dataset:
-    """The adhesive FE job of `spec`: approach from the cut-off to the top of the range
-    and retraction until the asperity lets go (`solve_asperity_adhesive`)."""
-    from asperity import fe
-    from asperity.population import models
-
-    curvature = float(spec["curvature"])
-    geometry = models.fe_geometry(spec, curvature, spec.get("width_to_height"), spec.get("height"))
-    material = materials.build(spec["material"], spec["effects"])
-    top = float(spec["range"][1])
-    cpu = time.process_time()
-    try:
-        ds = fe.solve_asperity_adhesive(geometry, material, law(spec["adhesion"]), w_max=top,
-                                        accuracy=spec["accuracy"], label=key)
-    except (fe.ConvergenceError, fe.ContactZoneError) as err:
-        raise models.SampleFailed(f"sample {key} (curvature {curvature:.6g} 1/m, adhesive): "
-                                  f"{err}") from err
-    ds.attrs.update(key=key, model="fe", curvature=curvature, geometry=repr(geometry),
-                    height=float(spec.get("height", math.nan)), unloading_level=math.nan,
-                    cpu_time=time.process_time() - cpu)
-    return ds
 
 
 # --- the gather ---------------------------------------------------------------------------
@@ -176,10 +127,10 @@ PATH = {"interference": "path_interference", "force": "path_force",
 
 def gather(plan: xr.Dataset, samples: Mapping[str, xr.Dataset]) -> xr.Dataset:
     """Adhesive samples onto (branch, height, curvature, interference) (module docstring)."""
-    from asperity.population import models
     from asperity.fe.adhesive import interpolate_adhesive, stack_runs
+    from asperity.population.gather import fe_cost, samples_by_key
 
-    by_key = models.samples_by_key(plan, samples)
+    by_key = samples_by_key(plan, samples)
     heights, curvatures = plan["height"].values, plan["curvature"].values
     grid = plan["interference"].values
     pk, keys = plan["sample_curvature"].values, plan["key"].values
@@ -235,7 +186,7 @@ def gather(plan: xr.Dataset, samples: Mapping[str, xr.Dataset]) -> xr.Dataset:
     adh = runs[0].attrs
     out.attrs.update(
         reach=-float(grid[0]), adhesion=str(adh.get("adhesion", "")),
-        work_of_adhesion=W, **models.fe_cost(runs),
+        work_of_adhesion=W, **fe_cost(runs),
         sign_convention="force compressive positive; adhesion (attraction) negative")
     return out
 
@@ -293,3 +244,58 @@ def by_branch(asperities: xr.Dataset, separations: np.ndarray,
         largest_attraction_approach=float(max(-p[0].min(), 0.0)),
         sign_convention="pressure compressive positive; net attraction negative")
     return out
+
+
+# --- the kind -----------------------------------------------------------------------------
+class Adhesive(FiniteElementKind):
+    name = "adhesive"
+
+    def check(self, asperity, material, effects):
+        if "plasticity" in effects:
+            raise ValueError("effect `adhesion` needs an elastic body (no `plasticity`): "
+                             "the adhesive solver is elastic (asperity.fe.adhesive)")
+        super().check(asperity, material, effects)
+
+    def grid(self, base, largest, count, adhesion):
+        """The attraction acts before contact: gap levels too (`interference_grid`)."""
+        return interference_grid(largest, count, adhesion)
+
+    def spec(self, planning, height, curvature, level):
+        """Geometry, range and body (`FiniteElementKind.base_spec`) and the law in SI;
+        the path is the solver's own, no level count."""
+        spec = self.base_spec(planning, height, curvature)
+        spec["adhesion"] = planning.adhesion.spec()
+        return spec
+
+    def solve(self, spec, key):
+        """Approach from the cut-off to the top of the range and retraction until the
+        asperity lets go (`solve_asperity_adhesive`)."""
+        from asperity import fe
+        from asperity.population.geometry import spec_geometry
+
+        curvature = float(spec["curvature"])
+        geometry = spec_geometry(spec)
+        material = build(Material.from_spec(spec["material"]), spec["effects"])
+        top = float(spec["range"][1])
+        cpu = time.process_time()
+        try:
+            ds = fe.solve_asperity_adhesive(geometry, material, law(spec["adhesion"]), w_max=top,
+                                            accuracy=spec["accuracy"], label=key)
+        except (fe.ConvergenceError, fe.ContactZoneError) as err:
+            raise self.failed(key, curvature, err, ", adhesive") from err
+        return self.record(ds, spec, key, geometry, math.nan, time.process_time() - cpu)
+
+    def gather(self, plan, samples):
+        return gather(plan, samples)
+
+    def plan_attrs(self, planning):
+        a = planning.adhesion
+        return {"adhesion": f"Lennard-Jones dgamma = {a.dgamma:g} J/m^2, d = {a.d:g} m, "
+                            f"cut-off {a.cutoff:g} d",
+                "reach": reach(a)}
+
+    def interface(self, asperities, separations, homogenized):
+        return by_branch(asperities, separations, homogenized)
+
+
+ADHESIVE = Adhesive()

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# A one-node SLURM cluster on localhost, to try workflow/profiles/slurm without
+# A one-node SLURM cluster on localhost, to try profiles/slurm without
 # a real cluster (and what tests/workflow/test_slurm.py runs the profile on).
 #
 #   localhost-cluster.sh install      apt-get install slurm-wlm munge (Debian/Ubuntu; skipped if present)

@@ -1,0 +1,286 @@
+"""The gather: the responses of finite element samples on the plan's grid (report 2.5, 8.3).
+
+An FE job computes a geometric sequence of levels up to the largest interference
+its geometry admits (`asperity.population.geometry.max_interference`). The gather
+interpolates each sample onto the plan's (height, curvature, interference) grid in
+log-log space (monotone cubic), continues below the first level with the local power
+law and above the last with the median slope of its last steps, and flags the latter
+as ``extrapolated``; samples of a self-similar family are scaled from their job's
+asperity, and the computed unloading paths are kept for the blend of 8.3.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Mapping
+
+import numpy as np
+import xarray as xr
+
+
+#: the share of the computed range whose step slopes continue a curve beyond its end
+TAIL = 0.1
+
+
+def tail_slope(levels: np.ndarray, values: np.ndarray) -> float:
+    """The slope that continues a curve beyond its last level: the median of the step
+    slopes over the last `TAIL` of the range (at least the last step).  One step where
+    an inelastic job's force jumps (a contact node snapping onto the flat) would
+    otherwise set the slope of everything beyond.  For a convex curve it stays a lower
+    bound, like the last tangent."""
+    steps = np.diff(values) / np.diff(levels)
+    window = levels[:-1] >= levels[-1] - TAIL * (levels[-1] - levels[0])
+    window[-1] = True
+    return float(np.median(steps[window]))
+
+
+def _loglog(levels: np.ndarray, values: np.ndarray, targets: np.ndarray,
+            derivative: bool = False):
+    """Interpolate positive increasing `values` at `levels` to `targets` (>= 0).
+
+    Monotone cubic in (log w, log X) inside the levels; the power law of
+    the first two levels below (X -> 0 as w -> 0); above, a straight line
+    with the `tail_slope` of the last levels.
+    Returns the values and a flag of the targets beyond the last level
+    (and, with `derivative`, dX/dw at the targets as a third item).
+    """
+    from scipy.interpolate import PchipInterpolator  # here: 0.2 s most stages never need
+
+    out = np.zeros_like(targets, dtype=float)
+    slope_out = np.zeros_like(targets, dtype=float)
+    lw, lx = np.log(levels), np.log(np.maximum(values, np.finfo(float).tiny))
+    inside = (targets >= levels[0]) & (targets <= levels[-1])
+    spline = PchipInterpolator(lw, lx)
+    out[inside] = np.exp(spline(np.log(targets[inside])))
+    slope_out[inside] = out[inside] / targets[inside] * spline(np.log(targets[inside]), 1)
+    below = (targets > 0) & (targets < levels[0])
+    p = (lx[1] - lx[0]) / (lw[1] - lw[0])
+    out[below] = values[0] * (targets[below] / levels[0]) ** p
+    slope_out[below] = p * out[below] / targets[below]
+    above = targets > levels[-1]
+    slope = tail_slope(levels, values)
+    out[above] = values[-1] + slope * (targets[above] - levels[-1])
+    slope_out[above] = slope
+    if derivative:
+        return out, above, slope_out
+    return out, above
+
+
+#: inside small-strain theory while the largest strain magnitude stays below this (report 7.3)
+SMALL_STRAIN_LIMIT = 0.08
+
+
+def _first_violation(w: np.ndarray, ok: np.ndarray) -> float:
+    """Interference where a flag that holds at small w first fails (midway between
+    the last step where it holds and the first where it does not; inf if never)."""
+    bad = np.flatnonzero(~ok)
+    if bad.size == 0:
+        return math.inf
+    i = int(bad[0])
+    return float(w[0]) if i == 0 else 0.5 * float(w[i - 1] + w[i])
+
+
+def loading_branch(ds: xr.Dataset) -> dict[str, np.ndarray]:
+    """The loading curve of an FE sample: steps with w > 0 and F > 0, w increasing.
+
+    Keys: interference, force, contact_area, contact_radius, stiffness (the
+    consistent tangent where the job recorded it, else None) and the
+    interferences where the asperity leaves the elastic range
+    (``w_inelastic``: first step with inelastic strain or von Mises above
+    the yield stress) and small-strain theory (``w_large_strain``: largest
+    strain magnitude >= 8 %, report 7.3).
+    """
+    w = ds["interference"].values
+    keep = (w > 0) & (ds["force"].values > 0)
+    if "branch" in ds:
+        keep &= ds["branch"].values.astype(str) == "loading"
+    idx = np.flatnonzero(keep)
+    idx = idx[np.concatenate([[True], np.diff(w[idx]) > 0])] if idx.size else idx
+    if idx.size < 2:
+        raise ValueError(f"sample {ds.attrs.get('key', '?')}: fewer than two loading steps in contact")
+    strain = ds["max_principal_strain"] if "max_principal_strain" in ds else ds["max_equivalent_strain"]
+    wi = w[idx]
+    return {
+        "interference": wi,
+        "force": ds["force"].values[idx],
+        "contact_area": ds["contact_area"].values[idx],
+        "contact_radius": ds["contact_radius"].values[idx],
+        "stiffness": ds["normal_stiffness"].values[idx] if "normal_stiffness" in ds else None,
+        "w_inelastic": _first_violation(wi, ds["elastic"].values[idx].astype(bool)),
+        "w_large_strain": _first_violation(wi, ds["small_strain"].values[idx].astype(bool)
+                                           if "small_strain" in ds else
+                                           strain.values[idx] < SMALL_STRAIN_LIMIT),
+    }
+
+
+#: how each gathered variable scales with the length scale lambda of a self-similar family
+SCALING_POWER = {"force": 2, "contact_area": 2, "contact_radius": 1, "stiffness": 1,
+                 "elastic": 0, "small_strain": 0}
+
+
+def _curves(ds: xr.Dataset, grid: np.ndarray, scale: float = 1.0) -> dict[str, np.ndarray]:
+    """One sample's loading response on the interference grid; with `scale` lambda,
+    of the asperity lambda times the job's (X(w) = lambda^p X_job(w / lambda))."""
+    lb = loading_branch(ds)
+    w = lb["interference"] * scale
+    lb = {k: (v * scale ** SCALING_POWER[k] if k in SCALING_POWER and v is not None else v)
+          for k, v in lb.items()}
+    lb["w_inelastic"] *= scale
+    lb["w_large_strain"] *= scale
+    out = {}
+    out["force"], beyond, slope = _loglog(w, lb["force"], grid, derivative=True)
+    out["contact_area"], _ = _loglog(w, lb["contact_area"], grid)
+    out["contact_radius"], _ = _loglog(w, lb["contact_radius"], grid)
+    out["stiffness"] = slope if lb["stiffness"] is None else _loglog(w, lb["stiffness"], grid)[0]
+    touching = grid > 0
+    out["elastic"] = (touching & (grid < lb["w_inelastic"])).astype(float)
+    out["small_strain"] = (touching & (grid < lb["w_large_strain"])).astype(float)
+    out["beyond"] = beyond
+    return out
+
+
+GATHERED_ATTRS = {
+    "force": ("N", "normal contact force"),
+    "contact_area": ("m^2", "real contact area"),
+    "contact_radius": ("m", "contact radius (edge located between nodes)"),
+    "stiffness": ("N/m", "normal stiffness dF/dw (consistent tangent, or the slope of the "
+                         "interpolated force for inelastic asperities)"),
+    "elastic": ("1", "1 where the asperity is in contact and still elastic (report 7.3)"),
+    "small_strain": ("1", "1 where the asperity is in contact and every strain magnitude is "
+                          "below 8 % (report 7.3)"),
+}
+
+
+def samples_by_key(plan: xr.Dataset, samples: Mapping[str, xr.Dataset]) -> dict[str, xr.Dataset]:
+    """The samples by key; raises naming every sample of the plan missing or failed."""
+    by_key = {str(ds.attrs["key"]): ds for ds in samples.values()}
+    needed = set(plan["key"].values)
+    missing = sorted(needed - set(by_key))
+    failed = sorted(k for k in needed & set(by_key) if by_key[k].attrs.get("status") == "failed")
+    if missing or failed:
+        raise ValueError(
+            f"{len(missing) + len(failed)} of {len(needed)} samples missing from the gather; "
+            "not homogenizing over a hole: "
+            + "; ".join([f"{k}: no result" for k in missing]
+                        + [f"{by_key[k].attrs.get('error', k)}" for k in failed]))
+    return by_key
+
+
+def fe_cost(jobs) -> dict:
+    """What a set of FE jobs cost, for the gathered file's attributes: their
+    preset, count and total CPU time, and the largest Newton, step-cut, dof and time-step
+    counts of any of them (each only where every job records it)."""
+    out = dict(accuracy=str(jobs[0].attrs.get("accuracy", "")), fe_jobs=len(jobs),
+               fe_cpu_time=float(sum(j.attrs.get("cpu_time", np.nan) for j in jobs)))
+    for attr, var in (("max_newton_iterations", "newton_iterations"), ("max_step_cuts", "step_cuts"),
+                      ("max_dofs", "dofs")):
+        if all(var in j for j in jobs):
+            out[attr] = int(max(j[var].max() for j in jobs))
+    if all("steps" in j.attrs for j in jobs):
+        out["max_time_steps"] = int(max(j.attrs["steps"] for j in jobs))
+    return out
+
+
+def gather(plan: xr.Dataset, samples: Mapping[str, xr.Dataset]) -> xr.Dataset:
+    """FE samples onto the plan's (height, curvature, interference) grid.
+
+    Samples that share a key (derived by a shift in height) share the
+    response.  The loading branch of a (height, curvature) comes from its
+    sample unloaded from the largest level (or its loading-only sample).
+    ``extrapolated`` marks grid points beyond the sample's last computed
+    level.  Samples with unloading levels also give their computed
+    unloading paths on (curvature, unloading_level, point) for the blend
+    of report 8.3 (`asperity.unloading.family_table`).
+    """
+    by_key = samples_by_key(plan, samples)
+    heights, curvatures = plan["height"].values, plan["curvature"].values
+    grid = plan["interference"].values
+    ph, pk = plan["sample_height"].values, plan["sample_curvature"].values
+    level = np.nan_to_num(plan["unloading_level"].values, nan=np.inf)
+    scale = plan["scale"].values if "scale" in plan else np.ones(ph.size)
+    # the loading source of every grid point: the sample of its (height, curvature) with the largest level
+    order = np.lexsort((level, pk, ph))
+    last = np.ones(order.size, bool)
+    last[:-1] = (ph[order][1:] != ph[order][:-1]) | (pk[order][1:] != pk[order][:-1])
+    source = plan["key"].values[order][last]  # in (height, curvature) order, the plan's grid order
+    source_scale = scale[order][last]
+    pairs = np.array([f"{k}@{x!r}" for k, x in zip(source, source_scale)])
+    unique, first, index = np.unique(pairs, return_index=True, return_inverse=True)
+    names = list(GATHERED_ATTRS)
+    curves = {name: np.empty((unique.size, grid.size)) for name in names}
+    beyond = np.empty((unique.size, grid.size), bool)
+    for u, i in enumerate(first):  # one curve per (FE job, scale), each vectorized over the grid
+        c = _curves(by_key[str(source[i])], grid, float(source_scale[i]))
+        for name in names:
+            curves[name][u] = c[name]
+        beyond[u] = c["beyond"]
+    shape = (heights.size, curvatures.size, grid.size)
+    dims = ("height", "curvature", "interference")
+    ds = xr.Dataset(
+        {name: (dims, curves[name][index].reshape(shape),
+                {"units": GATHERED_ATTRS[name][0], "long_name": GATHERED_ATTRS[name][1]})
+         for name in names},
+        coords={
+            "height": ("height", heights, {"units": "m", "long_name": "asperity peak height"}),
+            "curvature": ("curvature", curvatures, {"units": "1/m", "long_name": "tip curvature"}),
+            "interference": ("interference", grid, {"units": "m", "long_name": "interference"}),
+        },
+    )
+    ds.attrs.update(fe_cost([by_key[str(k)] for k in np.unique(plan["key"].values)]))
+    ds["extrapolated"] = (dims, beyond[index].reshape(shape), {
+        "units": "1", "long_name": "beyond the largest interference the FE job computed "
+        "(continued with the median slope of its last steps)"})
+    if np.isfinite(level).any():
+        ds = ds.merge(_unloading_paths(plan, by_key))
+    return ds
+
+
+def _unloading_paths(plan: xr.Dataset, by_key: Mapping[str, xr.Dataset]) -> xr.Dataset:
+    """The computed unloading paths per curvature (dims curvature, unloading_level, point)."""
+    if not np.all(plan.attrs.get("shift_invariant", 1)):
+        raise ValueError("unloading is supported for asperities whose response does not depend "
+                         "on their peak height (sphere, paraboloid, representative cosine)")
+    curvatures = plan["curvature"].values
+    pk, lv = plan["sample_curvature"].values, plan["unloading_level"].values
+    scale = plan["scale"].values if "scale" in plan else np.ones(pk.size)
+    left = plan["left_out"].values if "left_out" in plan else np.zeros(pk.size, bool)
+    per = []
+    for k in curvatures:
+        rows = np.flatnonzero((pk == k) & np.isfinite(lv))
+        rows = rows[np.unique(lv[rows], return_index=True)[1]]
+        per.append(rows)
+    nlev = max(r.size for r in per)
+    paths = [[by_key[str(plan["key"].values[r])] for r in rows] for rows in per]
+    npts = max(int((p["branch"].values.astype(str) == "unloading").sum()) + 1
+               for ps in paths for p in ps)
+    shape3 = (curvatures.size, nlev, npts)
+    W, F, A = (np.full(shape3, np.nan) for _ in range(3))
+    level = np.full(shape3[:2], np.nan)
+    residual = np.full(shape3[:2], np.nan)
+    check = np.zeros(shape3[:2], bool)
+    for i, (rows, ps) in enumerate(zip(per, paths)):
+        for j, (r, p) in enumerate(zip(rows, ps)):
+            br = p["branch"].values.astype(str)
+            start = int(np.flatnonzero(br == "unloading")[0]) - 1  # the step at w_max
+            sel = slice(start, None)
+            n = p["interference"].values[sel].size
+            lam = float(scale[r])
+            W[i, j, :n] = p["interference"].values[sel] * lam
+            F[i, j, :n] = p["force"].values[sel] * lam**2
+            A[i, j, :n] = p["contact_area"].values[sel] * lam**2
+            level[i, j] = lv[r] * lam
+            residual[i, j] = p.attrs.get("residual_interference", np.nan) * lam
+            check[i, j] = bool(left[r])
+    d3 = ("curvature", "unloading_level", "point")
+    d2 = ("curvature", "unloading_level")
+    return xr.Dataset({
+        "unloading_interference": (d3, W, {"units": "m", "long_name": "interference along a computed unloading path"}),
+        "unloading_force": (d3, F, {"units": "N", "long_name": "contact force along a computed unloading path"}),
+        "unloading_contact_area": (d3, A, {"units": "m^2", "long_name": "real contact area along a computed unloading path"}),
+        "maximum_interference": (d2, level, {"units": "m", "long_name": "interference from which the path unloads"}),
+        "residual_interference": (d2, residual, {"units": "m", "long_name": "interference where the unloading force returns to zero"}),
+        "left_out": (d2, check, {"units": "1", "long_name": "path left out of the blend to measure its error (gamma_0 of Fig. 8.27)"}),
+    }, coords={
+        "unloading_level": ("unloading_level", np.arange(nlev), {"units": "1", "long_name": "index of the computed unloading level"}),
+        "point": ("point", np.arange(npts), {"units": "1", "long_name": "point along an unloading path (0: the maximum interference)"}),
+    })

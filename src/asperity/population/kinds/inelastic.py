@@ -1,0 +1,93 @@
+"""The ``inelastic`` kind: the finite element asperity of a J2 or Bodner-Partom body
+under the effect ``plasticity`` (report 3.2.2, 7.3, 7.4, 8.2), loaded and, with the
+effect ``unloading``, unloaded from levels (8.3).
+
+A job loads the flat at the scene's ``velocity`` (8.2.2; a rate-independent J2 body
+answers the same at any rate, so its spec leaves the velocity out) to the top of its
+range, or to its unloading level and back to zero force
+(`asperity.fe.solve_asperity_history`). With unloading, every sample has one job per
+level (`asperity.population.geometry.unloading_levels`), on one mesh adapted to the
+asperity's whole range so that the loading branches of its levels coincide (the
+corners of the blend, 8.3).
+"""
+
+from __future__ import annotations
+
+import math
+import time
+
+import numpy as np
+
+from asperity.population.geometry import job_range, sample_geometry, self_similar, spec_geometry
+from asperity.population.geometry import unloading_levels
+from asperity.population.kinds.base import FiniteElementKind
+from asperity.scene import Material, build
+
+#: the first step of an inelastic history, as a fraction of the job's largest interference
+FIRST_STEP = 1e-4
+
+
+def history(level: float, top: float, velocity: float | None):
+    """Load at `velocity` to `level` and back to zero force (NaN level: load to `top`)."""
+    from asperity import fe
+
+    w_max = top if math.isnan(level) else level
+    v = velocity if velocity else top / 100.0  # rate-independent body: any rate
+    if math.isnan(level):
+        return fe.History.loading(w_max, v)
+    return fe.History.load_unload(w_max, v)
+
+
+class Inelastic(FiniteElementKind):
+    name = "inelastic"
+
+    def check(self, asperity, material, effects):
+        if "unloading" in effects and not asperity.shift_invariant:
+            raise ValueError("effect `unloading` needs an asperity whose response does not depend "
+                             "on its peak height (mapping: representative, sphere or paraboloid)")
+        super().check(asperity, material, effects - {"unloading"})
+
+    def scalable(self, asperity, material, effects):
+        return self_similar(asperity, material, effects)
+
+    def unloads(self, effects):
+        return "unloading" in effects
+
+    def levels(self, planning, height, curvature):
+        geometry = sample_geometry(planning.asperity, curvature, planning.width_to_height, height)
+        _, top = job_range(geometry, planning.asperity, planning.grid, curvature, planning.family)
+        return unloading_levels(top, planning.asperity)
+
+    def spec(self, planning, height, curvature, level):
+        spec = self.base_spec(planning, height, curvature)
+        if not planning.material.rate_independent(planning.effects):
+            spec["velocity"] = planning.asperity.velocity
+        if not math.isnan(level):
+            spec["unloading_level"] = float(level)
+        return spec
+
+    def solve(self, spec, key):
+        """`solve_asperity_history` of the job's `history`: the first step presses
+        `FIRST_STEP` of the range (first touch, where most asperities of an interface
+        are, is resolved; steps grow geometrically from there). Raises `SampleFailed`
+        naming the sample, its unloading level and the step."""
+        from asperity import fe
+
+        curvature = float(spec["curvature"])
+        geometry = spec_geometry(spec)
+        top = spec["range"][1]
+        material = build(Material.from_spec(spec["material"]), spec["effects"])
+        level = float(spec.get("unloading_level", math.nan))
+        cpu = time.process_time()
+        try:
+            path = history(level, top, spec.get("velocity"))
+            ds = fe.solve_asperity_history(geometry, material, path, accuracy=spec["accuracy"],
+                                           mesh_levels=np.geomspace(0.01 * top, top, 6),
+                                           initial_time_step=FIRST_STEP * top / path.velocity(0.0))
+        except (fe.ConvergenceError, fe.ContactZoneError) as err:
+            detail = "" if math.isnan(level) else f", unloading from {level:.6g} m"
+            raise self.failed(key, curvature, err, detail) from err
+        return self.record(ds, spec, key, geometry, level, time.process_time() - cpu)
+
+
+INELASTIC = Inelastic()

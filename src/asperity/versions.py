@@ -1,0 +1,92 @@
+"""The version of the code behind each stage's results.
+
+Every rule of the workflow passes the version of the code that computes its outputs
+through ``params:`` (`code_version`), so that Snakemake reruns a stage when its version
+changes, and the result files carry it (netCDF attribute ``code_version``, PNG text
+``asperity code_version``). `asperity show` flags a file written by another version.
+
+Bump a stage's number in `VERSIONS` in the commit that changes what the stage computes
+(its numbers, its variables, its figures), and nothing else: after an upgrade exactly
+the stages whose code changed are computed again, with what depends on their files. A
+sample job's version is that of its asperity kind (``sample:<kind>``,
+`asperity.population.kinds`): bumping one kind reruns its FE samples only.
+"""
+
+from __future__ import annotations
+
+#: stage (a rule of the workflow, or ``sample:<kind>``) -> version of the code behind its outputs
+VERSIONS: dict[str, int] = {
+    # surface (workflow/rules/surface.smk)
+    "synthetic_profile": 1,
+    "synthetic_profiles": 1,
+    "synthetic_map": 1,
+    "surface": 1,
+    "convergence": 1,
+    # population (workflow/rules/population.smk): the plan, the samples by kind, the gather
+    "plan": 1,
+    "sample:hertz": 1,
+    "sample:elastic": 1,
+    "sample:inelastic": 1,
+    "sample:adhesive": 1,
+    "asperities": 1,
+    # homogenize (workflow/rules/homogenize.smk)
+    "expectation": 1,
+    "unloading": 1,
+    "interface": 1,
+    "verification": 1,
+    # friction (workflow/rules/friction.smk)
+    "friction": 1,
+    "laws": 1,
+    # uniaxial, sliding, accuracy
+    "uniaxial": 1,
+    "accuracy_bodner_partom": 1,
+    "sliding": 1,
+    "accuracy_hertz": 1,
+    "accuracy_scenes": 1,
+    # the deterministic reference (workflow/rules/reference.smk)
+    "reference": 1,
+    "reference_comparison": 1,
+    # figures (workflow/rules/figures.smk and the figures of the rules above)
+    "surface_figure": 1,
+    "expectation_figure": 1,
+    "interface_figure": 1,
+    "adhesion_figure": 1,
+    "asperities_figure": 1,
+    "verification_figure": 1,
+    "unloading_figure": 1,
+    "friction_figure": 1,
+    "laws_figure": 1,
+    "uniaxial_figure": 1,
+    "sliding_figure": 1,
+    "reference_figure": 1,
+}
+
+#: the netCDF attribute (and PNG text key) that holds a file's code version
+ATTRIBUTE = "code_version"
+
+
+def code_version(stage: str) -> str:
+    """``"<stage> <version>"``: what a rule's ``params: version`` and its files carry."""
+    try:
+        return f"{stage} {VERSIONS[stage]}"
+    except KeyError:
+        raise KeyError(f"no code version for stage {stage!r} in asperity.versions.VERSIONS") from None
+
+
+def sample_version(kind: str) -> str:
+    """The code version of a sample job of asperity kind `kind`."""
+    return code_version(f"sample:{kind}")
+
+
+def stale(written: str | None) -> str | None:
+    """Why a file whose ``code_version`` is `written` is out of date (None: it is not,
+    or it names no stage of this version of the code)."""
+    if not written:
+        return None
+    stage, _, number = written.rpartition(" ")
+    if stage not in VERSIONS:
+        return None
+    current = str(VERSIONS[stage])
+    if number == current:
+        return None
+    return f"written by {stage} version {number}; this code computes version {current}"

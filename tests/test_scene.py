@@ -1,0 +1,67 @@
+"""The scene layer (asperity.scene): sections in SI, one material builder, clear errors."""
+
+from __future__ import annotations
+
+import math
+
+import pytest
+
+from asperity.fe.bodner_partom import BodnerPartom
+from asperity.fe.material import LinearElastic
+from asperity.scene import Asperity, Material, Sliding, UniaxialTest, Units, build
+from tests.scene_defaults import filled, filled_scene
+
+UNITS = Units("um", "MPa")
+
+
+def test_a_missing_key_names_the_section_and_the_key():
+    with pytest.raises(ValueError, match=r"scene section `asperity`: no key 'value'"):
+        Asperity.from_section({"model": "fe"}, UNITS)
+    with pytest.raises(ValueError, match=r"scene section `units`: no key 'pressure'"):
+        Units.from_section({"length": "um"})
+
+
+def test_material_spec_round_trips_and_builds_the_same_body():
+    """The spec a job's key hashes holds the material as given, in SI; the job rebuilds
+    exactly the scene's body from it."""
+    section = filled("material", {"youngs_modulus": 209000.0, "poisson": 0.3, "model": "bodner_partom",
+                                  "bodner_partom": {"preset": "sae_1020", "Z0": 600.0, "m1": 0.05,
+                                                    "mechanisms": ["isotropic_hardening"]},
+                                  "damage": {"H": 2000.0}})
+    material = Material.from_scene(section, UNITS)
+    assert material.spec() == {"youngs_modulus": 209000.0 * 1e6, "poisson": 0.3, "model": "bodner_partom",
+                               "bodner_partom": {"preset": "sae_1020", "Z0": 600.0 * 1e6,
+                                                 "m1": 0.05 * (1 / 1e6),
+                                                 "mechanisms": ["isotropic_hardening"]},
+                               "damage": {"H": 2000.0 * 1e6}}
+    assert Material.from_spec(material.spec()) == material
+    for effects in ([], ["plasticity"], ["plasticity", "damage"]):
+        assert build(Material.from_spec(material.spec()), effects) == build(material, effects)
+
+
+def test_the_sliding_and_uniaxial_materials_are_the_bodies_their_sections_describe():
+    """One builder for the three sections: the sliding asperity's Bodner-Partom body is
+    the one its constants give (Z1 = Z0 without hardening), the uniaxial test's the
+    report's set with its constants and exactly its mechanisms."""
+    sliding = filled_scene({"units": {"length": "um", "pressure": "MPa"}, "sliding": {
+        "asperity": {"height": 2.0, "base_diameter": 10.0},
+        "material": {"model": "bodner_partom", "youngs_modulus": 209000.0, "poisson": 0.3,
+                     "D0": 1e4, "n": 2.28, "Z0": 600.0},
+        "motion": {"approach": 0.125, "press_time": [0.0, 1.0], "slide": 1.0, "slide_time": [1.0, 2.0]},
+        "shear_resistance": {"c1": 0.5}, "slip_regularization": 0.01}})["sliding"]
+    body = Sliding.from_section(sliding, UNITS).body()
+    assert body == BodnerPartom(E=209000.0 * 1e6, nu=0.3, D0=1e4, n=2.28, Z0=600.0 * 1e6, Z1=600.0 * 1e6,
+                                m1=0.0, isotropic_hardening=False, name="scene material")
+    elastic = Sliding.from_section({**sliding, "material": {"model": "elastic", "youngs_modulus": 1.0,
+                                                            "poisson": 0.25, "name": "x", "m1": 0.0}},
+                                   UNITS).body()
+    assert elastic == LinearElastic(1e6, 0.25) and math.isinf(elastic.yield_stress)
+    test = filled("uniaxial", {"tests": [{"name": "t", "material": "b1900_hf_871C",
+                                          "constants": {"Z0": 2000.0}, "effects": ["recovery"],
+                                          "control": "strain",
+                                          "history": {"kind": "constant_rate", "rate": 1e-3,
+                                                      "value": 0.01}}]})["tests"][0]
+    point = UniaxialTest.from_section(test, UNITS).body()
+    assert point == BodnerPartom.b1900_hf_871C(Z0=2000.0 * 1e6, isotropic_hardening=False,
+                                               recovery=True, directional_hardening=False,
+                                               damage=False)
