@@ -26,6 +26,7 @@ from typing import Any, Mapping
 
 import numpy as np
 
+from asperity.population.plan import geometric_levels
 from asperity.scene import Asperity, Material
 
 
@@ -98,7 +99,7 @@ def fe_levels(w_first: float, w_last: float, count: int) -> np.ndarray:
     """`count` geometric interference levels from w_first to w_last."""
     if not 0 < w_first < w_last:
         raise ValueError(f"FE levels need 0 < first < last, got {w_first:g}, {w_last:g}")
-    return np.geomspace(w_first, w_last, count)
+    return geometric_levels(w_first, w_last, count)
 
 
 def job_range(geometry, asperity: Asperity, grid: np.ndarray, curvature: float,
@@ -146,7 +147,7 @@ def unloading_levels(top: float, asperity: Asperity) -> tuple[np.ndarray, float]
     report's gamma_0 of Fig. 8.27); NaN otherwise.
     """
     count = int(asperity.unloading_levels)
-    levels = np.geomspace(asperity.unloading_smallest * top, top, count)
+    levels = geometric_levels(asperity.unloading_smallest * top, top, count)
     check = math.sqrt(levels[1] * levels[2]) if asperity.unloading_check and count >= 3 \
         else math.nan
     return levels, check

@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import hashlib
 import json
+import math
 from typing import Any, Callable, Mapping
 
 import numpy as np
@@ -56,7 +57,27 @@ def interference_grid(largest: float, count: int, smallest_fraction: float = 1e-
         raise ValueError(f"largest interference must be positive, got {largest}")
     if count < 4:
         raise ValueError(f"the interference grid needs at least 4 levels, got {count}")
-    return np.concatenate([[0.0], np.geomspace(largest * smallest_fraction, largest, count - 1)])
+    return np.concatenate([[0.0], geometric_levels(largest * smallest_fraction, largest, count - 1)])
+
+
+def geometric_levels(start: float, stop: float, count: int) -> np.ndarray:
+    """`count` geometrically spaced values from `start` to `stop` (both > 0), as
+    `numpy.geomspace` computes them, but with the C library's scalar ``log10`` and
+    ``pow``.
+
+    Levels that enter a job spec enter its key, so they must be the same numbers on
+    every machine: numpy's vectorized ``power`` and ``log10`` take other code paths on
+    CPUs with AVX-512 and differ there in the last bit.
+    """
+    if not 0 < start and 0 < stop:
+        raise ValueError(f"geometric levels need start, stop > 0, got {start:g}, {stop:g}")
+    exponents = np.linspace(math.log10(start), math.log10(stop), count)
+    out = np.array([10.0 ** e for e in exponents.tolist()])
+    if count > 0:
+        out[0] = start
+    if count > 1:
+        out[-1] = stop
+    return out
 
 
 def sample_grid(lo: float, hi: float, count: int, positive: bool = False) -> np.ndarray:

@@ -57,6 +57,7 @@ import numpy as np
 import xarray as xr
 
 from asperity.population.kinds.base import FiniteElementKind
+from asperity.population.plan import geometric_levels
 from asperity.population.plan import interference_grid as contact_grid
 from asperity.scene import Adhesion, Material, build
 from asperity.units import attrs
@@ -104,7 +105,7 @@ def interference_grid(largest: float, count: int, adhesion: Adhesion) -> np.ndar
     far = np.empty(0)
     if lo > w_near:
         m = int(math.ceil(math.log(lo / w_near) / math.log1p(GROWTH) * (1 - 1e-12)))
-        far = np.geomspace(w_near, lo, m + 1)[1:]
+        far = geometric_levels(w_near, lo, m + 1)[1:]
         far[-1] = lo
     gaps = np.concatenate([near, far])
     return np.concatenate([-gaps[::-1], contact_grid(largest, count)])
