@@ -22,7 +22,8 @@ The viscoplastic curve is also interpolated (linearly, its steps are at most
 ``max_interference_step`` of the range apart) onto the elastic body's levels, so that
 the two forces are compared at the same interference. For a cylinder the elastic
 contact half width is compared with the plane-strain Hertz solution
-a = 2 sqrt(F' R / (pi E*)) (Johnson, Contact Mechanics, 4.3): the approach of a
+a = 2 sqrt(F' R / (pi E*)), E* = E / (1 - nu^2) (Johnson, Contact Mechanics, 4.3;
+`asperity.fe.analytic.hertz_line_half_width`): the approach of a
 plane-strain contact depends logarithmically on the size of the body, the width at a
 given force per length does not.
 
@@ -54,14 +55,6 @@ def levels(max_interference: float, points: int) -> np.ndarray:
     if not (max_interference > 0 and points >= 2):
         raise ValueError("max_interference must be positive and points at least 2")
     return max_interference * np.arange(1, points + 1) / points
-
-
-def hertz_line_half_width(radius: float, youngs_modulus: float, poisson: float,
-                          force_per_length) -> np.ndarray:
-    """Half width of the plane-strain Hertz contact of a cylinder on a rigid flat,
-    a = 2 sqrt(F' R / (pi E*)), E* = E / (1 - nu^2) (Johnson 4.3; report 6.1 in 2-D)."""
-    e_star = youngs_modulus / (1.0 - poisson**2)
-    return 2.0 * np.sqrt(np.asarray(force_per_length, float) * radius / (np.pi * e_star))
 
 
 def _interpolated(history: xr.Dataset, w: np.ndarray) -> dict[str, np.ndarray]:
@@ -104,6 +97,7 @@ def plane_strain_study(geometry, body, elastic, history, meshes: Mapping[str, di
     mesh and where it was reached, and for a cylinder the Hertz half width.
     """
     from asperity.fe import solve_asperity, solve_asperity_history
+    from asperity.fe.analytic import hertz_line_half_width
 
     if geometry.axisymmetric:
         raise ValueError("a plane-strain study needs a plane section (axisymmetric=False)")
@@ -198,8 +192,7 @@ def plane_strain_study(geometry, body, elastic, history, meshes: Mapping[str, di
     if geometry.kind == "cylinder":
         ds["hertz_half_width"] = (
             ("mesh", "interference"),
-            hertz_line_half_width(geometry.radius, elastic.E, elastic.nu,
-                                  grid["force"][:, 0]),
+            hertz_line_half_width(geometry.radius, elastic.E, elastic.nu, grid["force"][:, 0]),
             attrs("m", "plane-strain Hertz half width 2 sqrt(F' R / (pi E*)) at the elastic "
                        "body's force"))
     ds.attrs.update(
