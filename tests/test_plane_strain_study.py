@@ -174,3 +174,31 @@ def test_ridge_largest_nonelastic_strain_is_of_the_reports_order(ridge):
     assert np.all((0.4 < largest) & (largest < 2.0)), largest
     # reached at the end of the loading: the strain keeps growing at the corners
     np.testing.assert_allclose(ridge["largest_inelastic_strain_interference"].values, 30e-6)
+
+
+@pytest.mark.parametrize("section, words", [
+    ({"shape": "truncated_v", "pitch": 2540.0}, "'top_width' is a required property"),
+    ({"shape": "cylinder"}, "'radius' is a required property"),
+    ({"shape": "wedge", "radius": 1.0}, "'wedge' is not one of"),
+])
+def test_schema_requires_each_shapes_dimensions(section, words):
+    from snakemake.exceptions import WorkflowError
+
+    bad = {"units": {"length": "um", "pressure": "MPa"},
+           "material": {"youngs_modulus": 65000.0, "poisson": 0.33},
+           "plane_strain": {"section": section, "max_interference": 1.0, "velocity": 1.0}}
+    with pytest.raises(WorkflowError) as err:
+        filled_scene(bad)
+    text = str(err.value)
+    cause = err.value.__cause__ or err.value.__context__
+    assert words in text + str(cause)
+
+
+def test_a_truncation_wider_than_the_pitch_is_refused():
+    s = filled_scene({"units": {"length": "um", "pressure": "MPa"},
+                      "material": {"youngs_modulus": 65000.0, "poisson": 0.33},
+                      "plane_strain": {"section": {"shape": "truncated_v", "pitch": 100.0,
+                                                   "top_width": 150.0},
+                                       "max_interference": 1.0, "velocity": 1.0}})
+    with pytest.raises(ValueError, match="top_width must be smaller than the pitch"):
+        PlaneStrain.from_scene(s)
