@@ -7,9 +7,11 @@ README's table: force per length at the largest interference of the elastic and 
 viscoplastic body on the coarse (initial) and refined meshes, their difference, the
 largest nonelastic strain, for the cylinder the largest deviation of the elastic half
 width from plane-strain Hertz, and the CPU time (`time.process_time`) of the solves.
+With ``--sensitivity`` it also runs, at draft, each scene with the dimension the report
+does not give doubled (the cylinder's radius, the ridge's flat top), the rest unchanged.
 Writes benchmarks/results/plane-strain.json. Nothing is asserted.
 
-    python benchmarks/plane_strain.py                       # draft, standard, fine
+    python benchmarks/plane_strain.py --sensitivity         # draft, standard, fine, and the doubled
     python benchmarks/plane_strain.py --presets draft standard
 """
 
@@ -42,14 +44,21 @@ def filled(name: str) -> dict:
     return config["scene_definitions"][name]
 
 
-def measure(name: str, preset: str) -> dict:
+#: scene -> the dimension of its section the report does not give
+UNKNOWN = {"aluminum_cylinder": "radius", "truncated_v": "top_width"}
+
+
+def measure(name: str, preset: str, factor: float = 1.0) -> dict:
+    scene = filled(name)
+    scene["plane_strain"]["section"][UNKNOWN[name]] *= factor
     t0 = time.process_time()
-    ds = plane_strain_dataset(name, filled(name), preset)
+    ds = plane_strain_dataset(name, scene, preset)
     total = time.process_time() - t0
     end = ds.isel(interference=-1)
     f = end["force"]
     row = dict(
-        scene=name, preset=preset, max_interference_um=1e6 * float(ds.attrs["max_interference"]),
+        scene=name, preset=preset, **({UNKNOWN[name] + "_factor": factor} if factor != 1 else {}),
+        max_interference_um=1e6 * float(ds.attrs["max_interference"]),
         dofs={m: int(ds["dofs"].sel(mesh=m, body="elastic")) for m in ds["mesh"].values},
         steps={m: int(ds["viscoplastic_steps"].sel(mesh=m)) for m in ds["mesh"].values},
         force_kN_per_m={f"{b}, {m}": 1e-3 * float(f.sel(mesh=m, body=b))
@@ -80,8 +89,9 @@ def table(rows: list[dict]) -> str:
            "|---|---|---|---|---|---|---|---|---|"]
     for r in rows:
         f = r["force_kN_per_m"]
+        doubled = next((f", {k[:-7]} x {v:g}" for k, v in r.items() if k.endswith("_factor")), "")
         out.append(
-            f"| `{r['scene']}` | {r['preset']} | {r['dofs']['coarse']} / {r['dofs']['refined']} "
+            f"| `{r['scene']}`{doubled} | {r['preset']} | {r['dofs']['coarse']} / {r['dofs']['refined']} "
             f"| {f['elastic, refined']:.1f} | {f['viscoplastic, coarse']:.1f} / "
             f"{f['viscoplastic, refined']:.1f} | {r['coarse_vs_refined_percent']['viscoplastic']:+.1f} % "
             f"| {r['viscoplastic_over_elastic']['refined']:.3f} "
@@ -94,11 +104,17 @@ def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--presets", nargs="+", default=["draft", "standard", "fine"])
     parser.add_argument("--scenes", nargs="+", default=list(SCENES))
+    parser.add_argument("--sensitivity", action="store_true",
+                        help="also each scene at draft with its unknown dimension doubled")
     args = parser.parse_args(argv)
     rows = []
     for preset in args.presets:
         for name in args.scenes:
             rows.append(measure(name, preset))
+            print(json.dumps(rows[-1]), flush=True)
+    if args.sensitivity:
+        for name in args.scenes:
+            rows.append(measure(name, "draft", factor=2.0))
             print(json.dumps(rows[-1]), flush=True)
     RESULTS.mkdir(exist_ok=True)
     (RESULTS / "plane-strain.json").write_text(json.dumps(rows, indent=1) + "\n")
