@@ -133,7 +133,8 @@ def plane_strain_study(geometry, body, elastic, history, meshes: Mapping[str, di
         if progress is not None:
             progress(f"mesh {name}: {dofs[i, 1]} dofs, elastic {cpu[i, 0]:.2f} s, "
                      f"viscoplastic {v.attrs['steps']} steps {cpu[i, 1]:.2f} s, force at "
-                     f"{w_max:.4g} m {grid['force'][i, 0, -1]:.6g} / {grid['force'][i, 1, -1]:.6g} N/m, "
+                     f"{w_max:.4g} m {grid['force'][i, 0, -1]:.6g} / "
+                     f"{grid['force'][i, 1, -1]:.6g} N/m, "
                      f"largest nonelastic strain {float(v['max_inelastic_strain'].max()):.4g}")
 
     steps = max(r.sizes["step"] for r in runs)
@@ -141,7 +142,7 @@ def plane_strain_study(geometry, body, elastic, history, meshes: Mapping[str, di
                 for k in ("time", "interference", "force", "contact_radius",
                           "max_inelastic_strain")}
     largest = np.array([float(r["max_inelastic_strain"].max()) for r in runs])
-    where = np.array([float(r["interference"].values[int(np.argmax(r["max_inelastic_strain"].values))])
+    where = np.array([float(r["interference"].values[np.argmax(r["max_inelastic_strain"].values)])
                       for r in runs])
     dims3 = ("mesh", "body", "interference")
     ds = xr.Dataset(
@@ -160,7 +161,8 @@ def plane_strain_study(geometry, body, elastic, history, meshes: Mapping[str, di
             "elastic_stiffness": (("mesh", "interference"), stiffness,
                                   attrs("N/m^2", "normal stiffness dF/dw of the elastic body per "
                                                  "unit length (consistent tangent)")),
-            "cpu_time": (("mesh", "body"), cpu, attrs("s", "CPU time of the solve, meshing included")),
+            "cpu_time": (("mesh", "body"), cpu,
+                         attrs("s", "CPU time of the solve, meshing included")),
             "dofs": (("mesh", "body"), dofs, attrs("1", "degrees of freedom of the mesh")),
             "largest_inelastic_strain": (("mesh",), largest,
                                          attrs("1", "largest equivalent nonelastic strain over the "
@@ -174,11 +176,11 @@ def plane_strain_study(geometry, body, elastic, history, meshes: Mapping[str, di
             "step_interference": (("mesh", "step"), per_step["interference"],
                                   attrs("m", "interference of the flat at the step")),
             "step_force": (("mesh", "step"), per_step["force"],
-                           attrs("N/m", "contact force per unit length at the step (viscoplastic)")),
+                           attrs("N/m", "contact force per length at the step (viscoplastic)")),
             "step_contact_half_width": (("mesh", "step"), per_step["contact_radius"],
-                                        attrs("m", "contact half width at the step (viscoplastic)")),
+                                        attrs("m", "contact half width at the step")),
             "step_inelastic_strain": (("mesh", "step"), per_step["max_inelastic_strain"],
-                                      attrs("1", "largest equivalent nonelastic strain at the step")),
+                                      attrs("1", "largest nonelastic strain at the step")),
         },
         coords={
             "mesh": ("mesh", names, attrs("1", "mesh: accuracy preset and its overrides")),

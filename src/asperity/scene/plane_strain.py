@@ -42,7 +42,8 @@ class PlaneStrain:
 
     def __post_init__(self):
         if self.shape not in SHAPES:
-            raise ValueError(f"plane_strain.section.shape must be one of {SHAPES}, got {self.shape!r}")
+            raise ValueError(f"plane_strain.section.shape must be one of {SHAPES}, "
+                             f"got {self.shape!r}")
         if self.shape == "truncated_v" and not self.top_width < self.pitch:
             raise ValueError("plane_strain.section: top_width must be smaller than the pitch")
 
