@@ -8,7 +8,7 @@ CORES ?= 2
 export OPENBLAS_NUM_THREADS = 1
 export OMP_NUM_THREADS = 1
 
-.PHONY: all reproduce test test-fast bench time-scenes time-jobs time-adhesion time-reference time-surface compare-results figures clean-results
+.PHONY: all reproduce test test-fast bench time-scenes time-jobs time-adhesion time-plane-strain time-reference time-surface compare-results figures clean-results
 
 all: reproduce
 
@@ -53,6 +53,11 @@ time-jobs: $(STAMP)
 # Fig. 7.6's curves); writes benchmarks/results/adhesion-cost.json.
 time-adhesion: $(STAMP)
 	$(BIN)/python benchmarks/adhesion_cost.py
+
+# Numbers and CPU time of the plane-strain scenes (aluminum_cylinder, truncated_v) at
+# draft, standard and fine; writes benchmarks/results/plane-strain.json.
+time-plane-strain: $(STAMP)
+	$(BIN)/python benchmarks/plane_strain.py
 
 # The deterministic_reference scene at draft: its wall time and each route's, and the
 # routes' errors against the boundary-element solution; writes

@@ -35,6 +35,7 @@ include: "workflow/rules/friction.smk"
 include: "workflow/rules/accuracy.smk"
 include: "workflow/rules/uniaxial.smk"
 include: "workflow/rules/sliding.smk"
+include: "workflow/rules/plane_strain.smk"
 include: "workflow/rules/reference.smk"
 
 

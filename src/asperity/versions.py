@@ -37,10 +37,11 @@ VERSIONS: dict[str, int] = {
     # friction (workflow/rules/friction.smk)
     "friction": 1,
     "laws": 1,
-    # uniaxial, sliding, accuracy
+    # uniaxial, sliding, plane strain, accuracy
     "uniaxial": 1,
     "accuracy_bodner_partom": 1,
     "sliding": 1,
+    "plane_strain": 1,
     "accuracy_hertz": 1,
     "accuracy_scenes": 1,
     # the deterministic reference (workflow/rules/reference.smk)
@@ -58,6 +59,7 @@ VERSIONS: dict[str, int] = {
     "laws_figure": 1,
     "uniaxial_figure": 1,
     "sliding_figure": 1,
+    "plane_strain_figure": 1,
     "reference_figure": 1,
 }
 

@@ -166,6 +166,8 @@ def scene_targets(name):
         return [f"{out}/uniaxial.nc", f"{out}/figures/uniaxial.png"]
     if "sliding" in SCENES[name]:
         return [f"{out}/sliding.nc", f"{out}/figures/sliding.png"]
+    if "plane_strain" in SCENES[name]:
+        return [f"{out}/plane_strain.nc", f"{out}/figures/plane_strain.png"]
     targets = [f"{out}/surface.nc", f"{out}/figures/surface.png"]
     if "reference" in SCENES[name]:
         targets += [f"{out}/reference.nc", f"{out}/comparison.nc", f"{out}/figures/reference.png"]

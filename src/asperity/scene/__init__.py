@@ -12,17 +12,19 @@ read a scene's dictionaries:
 - `population`: `Population`, `Asperity`, `Adhesion` and `effects` (2.4, 8.2, 3.16);
 - `interface`: `Homogenization` (2.5), `Friction` (9.1), `Laws` (section 10);
 - `uniaxial`: `UniaxialTest`, one material-point test (5, 6.3.1, 8.2.1);
-- `sliding`: `Sliding`, the 3-D asperity pressed and slid (9.2).
+- `sliding`: `Sliding`, the 3-D asperity pressed and slid (9.2);
+- `plane_strain`: `PlaneStrain`, a plane-strain asperity pressed by the flat (6.3.2, 6.3.3).
 
 The `surface` section is read by `asperity.stages.surface`.
 """
 
 from asperity.scene.interface import Friction, Homogenization, Laws
 from asperity.scene.materials import Material, build
+from asperity.scene.plane_strain import PlaneStrain
 from asperity.scene.population import Adhesion, Asperity, Population, effects
 from asperity.scene.sliding import Sliding
 from asperity.scene.uniaxial import UniaxialTest
 from asperity.scene.units import Units, length_factor
 
-__all__ = ["Adhesion", "Asperity", "Friction", "Homogenization", "Laws", "Material", "Population",
-           "Sliding", "UniaxialTest", "Units", "build", "effects", "length_factor"]
+__all__ = ["Adhesion", "Asperity", "Friction", "Homogenization", "Laws", "Material", "PlaneStrain",
+           "Population", "Sliding", "UniaxialTest", "Units", "build", "effects", "length_factor"]

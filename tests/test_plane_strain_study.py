@@ -1,0 +1,204 @@
+"""The plane-strain studies of report 6.3.2 (cylinder) and 6.3.3 (truncated V ridge):
+the scenes' sections in SI, and the study at `draft` on the scenes' own geometry,
+material and history, checked against closed forms and between its two meshes.
+
+Tolerances, and why:
+- elastic cylinder: contact half width within 2 % (refined mesh) and 3 % (initial
+  graded mesh, whose elements near the edge are 0.4 times their distance from the apex
+  at draft) of plane-strain Hertz, a = 2 sqrt(F' R / (pi E*)) (Johnson 4.3), at every
+  level (the edge is located between nodes; the approach itself depends on the block's
+  size, so the width against the force is the closed form to test);
+- elastic ridge: the flat top touches at once and stays the contact, a punch: F / w
+  constant to 0.1 %; coarse and refined slopes within 1 %;
+- coarse against refined mesh: force within 2 % (cylinder) and 3 % (ridge), what the
+  draft meshes give (1.1 % and 2.2 %);
+- before anything flows the viscoplastic force is the elastic one within 0.5 % (the
+  inelastic driver's own check in tests/fe/test_inelastic.py); once yielded it is below;
+- largest nonelastic strain of the ridge: between 0.4 and 2, the report's "about 80 %"
+  within a factor of two. It sits at the corners of the flat top, where the elastic
+  strain is singular: it grows as the mesh is refined there (0.79 and 1.08 on the
+  draft meshes), so it is of the report's order, never a converged number.
+
+The study runs once per scene for the module (about 3 s and 2 s of CPU): those tests
+are marked slow.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+import yaml
+
+from asperity.fe.analytic import hertz_line_half_width
+from asperity.fe.bodner_partom import BodnerPartom
+from asperity.fe.geometry import Cylinder, TruncatedV
+from asperity.fe.material import LinearElastic
+from asperity.plane_strain import levels, plane_strain_study
+from asperity.scene.plane_strain import PlaneStrain
+
+from .scene_defaults import SCHEMA, filled_scene
+
+INCH = 0.0254
+
+
+def scene(name: str) -> PlaneStrain:
+    return PlaneStrain.from_scene(
+        filled_scene(yaml.safe_load((SCHEMA.parent / "scenes" / f"{name}.yaml").read_text())))
+
+
+def run(name: str):
+    s = scene(name)
+    return plane_strain_study(s.geometry(), s.body(), s.elastic(), s.history(), s.presets("draft"),
+                              points=s.points)
+
+
+@pytest.fixture(scope="module")
+def cylinder():
+    return run("aluminum_cylinder")
+
+
+@pytest.fixture(scope="module")
+def ridge():
+    return run("truncated_v")
+
+
+def test_scene_sections_in_si():
+    """6.2.1: 45-degree grooves 0.1 in apart; the ridge between them comes to a point
+    0.1207 in above the groove bottom (the 0.125 in depth within 3.5 %); truncated, the
+    ridge still spans one pitch. The body is the 6061-T4 set of 6.3.1."""
+    v = scene("truncated_v")
+    assert v.pitch == pytest.approx(0.1 * INCH)
+    assert v.sharp_ridge_height == pytest.approx(0.05 * INCH / math.tan(math.radians(22.5)))
+    assert v.sharp_ridge_height / (0.125 * INCH) == pytest.approx(0.966, abs=0.001)
+    g = v.geometry()
+    assert isinstance(g, TruncatedV) and not g.axisymmetric
+    assert g.extent == pytest.approx(0.5 * v.pitch)
+    assert 2 * g.top_half_width == pytest.approx(0.005 * INCH)
+    assert g.included_angle_deg == 45.0
+    c = scene("aluminum_cylinder")
+    assert isinstance(c.geometry(), Cylinder) and c.geometry().radius == pytest.approx(INCH / 16)
+    body, elastic = c.body(), c.elastic()
+    assert isinstance(body, BodnerPartom) and isinstance(elastic, LinearElastic)
+    assert (body.E, body.nu, body.n, body.D0) == (65e9, 0.33, 5.8, 1e8)
+    assert (elastic.E, elastic.nu) == (body.E, body.nu)
+    assert c.presets("draft") == {"coarse": {"base": "draft", "sweeps": 0},
+                                  "refined": {"base": "draft"}}
+    assert c.history().interferences[-1] == pytest.approx(6e-6)
+
+
+def test_study_rejects_a_body_of_revolution_and_a_foreign_elastic_twin():
+    from asperity.fe.inelastic import History
+
+    body = BodnerPartom.aluminum_6061_t4()
+    with pytest.raises(ValueError, match="plane section"):
+        plane_strain_study(Cylinder(1e-3, axisymmetric=True), body, LinearElastic(body.E, body.nu),
+                           History.loading(1e-6, 1e-7), {"m": {"base": "draft"}})
+    with pytest.raises(ValueError, match="elastic twin"):
+        plane_strain_study(Cylinder(1e-3), body, LinearElastic(70e9, body.nu),
+                           History.loading(1e-6, 1e-7), {"m": {"base": "draft"}})
+    np.testing.assert_allclose(levels(1.0, 4), [0.25, 0.5, 0.75, 1.0])
+
+
+@pytest.mark.slow
+def test_both_bodies_share_each_mesh_and_the_refined_mesh_is_finer(cylinder, ridge):
+    for ds in (cylinder, ridge):
+        dofs = ds["dofs"]
+        assert np.all(dofs.sel(body="elastic").values == dofs.sel(body="viscoplastic").values)
+        assert int(dofs.sel(mesh="refined", body="elastic")) > int(dofs.sel(mesh="coarse",
+                                                                             body="elastic"))
+
+
+@pytest.mark.slow
+def test_elastic_cylinder_half_width_follows_plane_strain_hertz(cylinder):
+    el = cylinder.sel(body="elastic")
+    F = el["force"].values
+    a_h = hertz_line_half_width(INCH / 16, 65e9, 0.33, F)
+    np.testing.assert_allclose(cylinder["hertz_half_width"].values, a_h, rtol=1e-12)
+    a = el["contact_half_width"]
+    np.testing.assert_allclose(a.sel(mesh="refined").values, a_h[1], rtol=0.02)
+    np.testing.assert_allclose(a.sel(mesh="coarse").values, a_h[0], rtol=0.03)
+    # and the closed form written out: a = 2 sqrt(F R / (pi E*))
+    e_star = 65e9 / (1 - 0.33**2)
+    np.testing.assert_allclose(a_h, 2 * np.sqrt(F * INCH / 16 / (np.pi * e_star)), rtol=1e-12)
+
+
+@pytest.mark.slow
+def test_elastic_ridge_is_a_flat_punch(ridge):
+    el = ridge.sel(body="elastic")
+    w = ridge["interference"].values
+    slope = el["force"].values / w
+    np.testing.assert_allclose(slope, np.broadcast_to(slope[:, :1], slope.shape), rtol=1e-3)
+    np.testing.assert_allclose(el["contact_half_width"].values, 0.0025 * INCH, rtol=1e-4)
+    coarse, refined = slope[:, -1]
+    assert coarse == pytest.approx(refined, rel=0.01)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("name, rtol", [("cylinder", 0.02), ("ridge", 0.03)])
+def test_coarse_and_refined_forces_agree(cylinder, ridge, name, rtol):
+    ds = {"cylinder": cylinder, "ridge": ridge}[name]
+    for body in ("elastic", "viscoplastic"):
+        f = ds["force"].sel(body=body)
+        np.testing.assert_allclose(f.sel(mesh="coarse").values, f.sel(mesh="refined").values,
+                                   rtol=rtol)
+
+
+@pytest.mark.slow
+def test_viscoplastic_force_is_elastic_until_it_flows_then_below(cylinder, ridge):
+    for ds, below_at_end in ((cylinder, 0.95), (ridge, 0.3)):
+        f_el = ds["force"].sel(body="elastic").values
+        f_vp = ds["force"].sel(body="viscoplastic").values
+        eps = ds["max_inelastic_strain"].sel(body="viscoplastic").values
+        still = eps < 1e-7
+        assert still.any() and (~still).any()
+        np.testing.assert_allclose(f_vp[still], f_el[still], rtol=0.005)
+        yielded = eps > 1e-3
+        assert np.all(f_vp[yielded] < f_el[yielded])
+        assert np.all(f_vp[:, -1] < below_at_end * f_el[:, -1])
+    # the cylinder is "almost elastic" (6.3.2): within 15 % of the elastic force, a
+    # nonelastic strain near 1 %; the ridge's flat top flows and its force levels off
+    ratio = (cylinder["force"].sel(body="viscoplastic") / cylinder["force"].sel(body="elastic"))
+    assert float(ratio.min()) > 0.85
+    assert np.all(cylinder["largest_inelastic_strain"].values < 0.03)
+    f = ridge["step_force"].sel(mesh="refined").values
+    w = ridge["step_interference"].sel(mesh="refined").values
+    late = w > 0.5 * np.nanmax(w)
+    assert np.nanmax(f[late]) < 1.05 * np.nanmin(f[late])
+
+
+@pytest.mark.slow
+def test_ridge_largest_nonelastic_strain_is_of_the_reports_order(ridge):
+    largest = ridge["largest_inelastic_strain"].values
+    assert np.all((0.4 < largest) & (largest < 2.0)), largest
+    # reached at the end of the loading: the strain keeps growing at the corners
+    np.testing.assert_allclose(ridge["largest_inelastic_strain_interference"].values, 30e-6)
+
+
+@pytest.mark.parametrize("section, words", [
+    ({"shape": "truncated_v", "pitch": 2540.0}, "'top_width' is a required property"),
+    ({"shape": "cylinder"}, "'radius' is a required property"),
+    ({"shape": "wedge", "radius": 1.0}, "'wedge' is not one of"),
+])
+def test_schema_requires_each_shapes_dimensions(section, words):
+    from snakemake.exceptions import WorkflowError
+
+    bad = {"units": {"length": "um", "pressure": "MPa"},
+           "material": {"youngs_modulus": 65000.0, "poisson": 0.33},
+           "plane_strain": {"section": section, "max_interference": 1.0, "velocity": 1.0}}
+    with pytest.raises(WorkflowError) as err:
+        filled_scene(bad)
+    text = str(err.value)
+    cause = err.value.__cause__ or err.value.__context__
+    assert words in text + str(cause)
+
+
+def test_a_truncation_wider_than_the_pitch_is_refused():
+    s = filled_scene({"units": {"length": "um", "pressure": "MPa"},
+                      "material": {"youngs_modulus": 65000.0, "poisson": 0.33},
+                      "plane_strain": {"section": {"shape": "truncated_v", "pitch": 100.0,
+                                                   "top_width": 150.0},
+                                       "max_interference": 1.0, "velocity": 1.0}})
+    with pytest.raises(ValueError, match="top_width must be smaller than the pitch"):
+        PlaneStrain.from_scene(s)
