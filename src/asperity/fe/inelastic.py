@@ -248,11 +248,6 @@ def elastic_part(material) -> LinearElastic:
     return LinearElastic(material.E, material.nu)
 
 
-def elastic_part(material) -> LinearElastic:
-    """The elastic constants of an inelastic material, for meshing."""
-    return LinearElastic(material.E, material.nu)
-
-
 class RuptureError(ConvergenceError):
     """A material point ruptured (report 3.2.2: w -> 1) in a history solved
     with ``on_rupture="raise"``.
