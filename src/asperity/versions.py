@@ -26,7 +26,7 @@ VERSIONS: dict[str, int] = {
     "plan": 1,
     "sample:hertz": 1,
     "sample:elastic": 1,
-    "sample:inelastic": 1,
+    "sample:inelastic": 2,
     "sample:adhesive": 1,
     "asperities": 1,
     # homogenize (workflow/rules/homogenize.smk)

@@ -223,6 +223,10 @@ def test_package_exports():
     import asperity.fe as fe
 
     assert fe.solve_asperity_history is solve_asperity_history and fe.History is History
+    assert fe.J2Plasticity is J2Plasticity and fe.BodnerPartom is BodnerPartom
+    for name in ("solve_asperity", "solve_asperity_adhesive", "solve_sliding", "LinearElastic",
+                 "Sphere", "Paraboloid", "CosineHill", "Cylinder", "TruncatedV", "LennardJones"):
+        assert name in fe.__all__ and hasattr(fe, name)
 
 
 def test_unloading_to_a_prescribed_interference_and_past_zero_force():

@@ -1,21 +1,26 @@
-"""The single-asperity finite element model (report sections 3, 6.1, 7).
+"""The single-asperity finite element model (report sections 3, 6, 7, 9).
 
 One asperity, a body of revolution or a plane-strain section standing on a
-block of bulk material, pressed by a rigid flat; elastic, small strain,
-P2 elements on a curved graded mesh refined adaptively near the contact
-edge; contact by the C1 penalty of report 3.3.2 or exactly (augmented
-Lagrangian); Newton-Raphson with step cutting; Lennard-Jones adhesion
-on the free surface with jumps into and out of contact (`adhesion`,
-`adhesive`).
+block of bulk material, pressed by a rigid flat: P2 elements on a curved
+graded mesh refined adaptively near the contact edge; small strain; contact
+by the C1 penalty of report 3.3.2 or exactly (augmented Lagrangian), the
+contact edge located between nodes; Newton-Raphson with step cutting.
+Bodies are elastic (`LinearElastic`, report 3.2.1, 6.1), elastic-plastic
+(`J2Plasticity`) or viscoplastic (`BodnerPartom`, 3.2.2) along a
+prescribed interference history (incremental, adaptive time steps, 3.6,
+6.3), or elastic with Lennard-Jones adhesion on the free surface and jumps
+into and out of contact (3.3.3, 7.3); and a 3-D half model of a hill,
+elastic or viscoplastic, pressed and slid under friction (3.3.4, 9.2).
 
-Modules: `geometry` (profiles), `mesh` (graded curved meshes, refinement),
-`material` (stress and tangent at quadrature points), `assembly` (P2
-fields, stiffness, condensation onto the surface), `contact` (penalty law,
-contact points, contact edge), `newton` (Newton, step control, Uzawa),
-`adapt` (ZZ estimator, marking), `presets` (accuracy), `solve` (driver,
-Dataset), `analytic` (Hertz), `errors`; `inelastic` (J2 or Bodner-Partom
-body along a prescribed interference history: incremental, full Newton on
-a fixed mesh, adaptive time steps).
+Drivers: `solve_asperity` (elastic), `solve_asperity_history`
+(inelastic), `solve_asperity_adhesive` (adhesive), `solve_sliding` (3-D
+sliding).  Modules: `geometry` (profiles), `mesh` (graded curved meshes,
+refinement), `material`, `j2`, `bodner_partom` (stress and tangent at
+quadrature points), `assembly` (P2 fields, stiffness, condensation onto the
+surface), `contact` (penalty law, contact points, contact edge), `newton`
+(Newton, step control, Uzawa), `adapt` (ZZ estimator, marking), `presets`
+(accuracy), `solve`, `inelastic`, `adhesion` and `adhesive`, `sliding` and
+`solid3d` (drivers and their laws), `analytic` (Hertz), `errors`.
 
     >>> from asperity.fe import solve_asperity, Paraboloid, LinearElastic
     >>> ds = solve_asperity(Paraboloid(1.0), LinearElastic(1000.0, 0.3),
@@ -24,24 +29,34 @@ a fixed mesh, adaptive time steps).
 
 from .adhesion import LennardJones
 from .adhesive import interpolate_adhesive, smooth_aluminum_curves, solve_asperity_adhesive
+from .bodner_partom import BodnerPartom
 from .errors import ContactZoneError, ConvergenceError
 from .geometry import CosineHill, Cylinder, Paraboloid, Profile, Sphere, TruncatedV
-from .inelastic import History, solve_asperity_history
+from .inelastic import History, RuptureError, solve_asperity_history
+from .j2 import J2Plasticity
 from .material import LinearElastic
 from .presets import ACCURACY
+from .sliding import FrictionLaw, ShearResistance
+from .solid3d import FlatMotion, solve_sliding
 from .solve import hertz, penalty_error, solve_asperity
 
 __all__ = [
     "ACCURACY",
+    "BodnerPartom",
     "ContactZoneError",
-    "History",
     "ConvergenceError",
-    "LennardJones",
     "CosineHill",
     "Cylinder",
+    "FlatMotion",
+    "FrictionLaw",
+    "History",
+    "J2Plasticity",
+    "LennardJones",
     "LinearElastic",
     "Paraboloid",
     "Profile",
+    "RuptureError",
+    "ShearResistance",
     "Sphere",
     "TruncatedV",
     "hertz",
@@ -51,4 +66,5 @@ __all__ = [
     "solve_asperity",
     "solve_asperity_adhesive",
     "solve_asperity_history",
+    "solve_sliding",
 ]

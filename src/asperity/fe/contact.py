@@ -37,10 +37,12 @@ penalty the pressure then oscillates between the points and Newton's
 active set creeps a few points per iteration (measured: 20-30 iterations
 against 4-8 with the nodal rule, independent of the penalty factor).
 Contact area and radius are not counted at the points (the report's
-Fig. 8.15 staircase): the edge is interpolated between nodes
-(`contact_edge`).  An explicit rule ``(points, weights)`` on the facet
-coordinate [0, 1] may be passed instead of a name (the adhesion traction
-of `asperity.fe.adhesion` is integrated with a composite Gauss rule).
+Fig. 8.15 staircase): the edge is interpolated between nodes, from the
+gaps (`contact_edge`) or, for an inelastic body, from the pressures and
+the gaps (`contact_edge_pressure`).  An explicit rule ``(points,
+weights)`` on the facet coordinate [0, 1] may be passed instead of a name
+(the adhesion traction of `asperity.fe.adhesion` is integrated with a
+composite Gauss rule).
 
 Exact option: the same point-wise condition enforced exactly by an
 augmented Lagrangian (Uzawa updates of the multipliers lambda at the
@@ -120,8 +122,9 @@ class ContactZone:
         self.r = pos[0]
         self.z0 = pos[1] + geometry.gap_offset(pos[0])
         self.weights = ds * np.abs(pos[0]) if axisymmetric else ds
-        # facet arc lengths
+        # facet arc lengths, and the arc length weights of the points (no r)
         self.lengths = (np.hypot(tang[0], tang[1]) * wq).sum(axis=1)
+        self.arc = ds
         # 2 pi for a body of revolution; 2 for the two halves of a plane section
         self.force_factor = 2 * np.pi if axisymmetric else 2.0
 
@@ -148,6 +151,15 @@ class ContactZone:
         jj = np.broadcast_to(fn[None, :, :], vals.shape)
         np.add.at(out, (ii.ravel(), jj.ravel()), vals.ravel())
         return out
+
+    def node_traction(self, q: np.ndarray) -> np.ndarray:
+        """A traction q (nf, ng) at the chain nodes (ndofs,): its lumped
+        projection on the surface trace, sum_g q N_j ds / sum_g N_j ds (with
+        the nodal rule, the facets' values at the node averaged by arc length)."""
+        num, den = np.zeros(self.ndofs), np.zeros(self.ndofs)
+        np.add.at(num, self.facet_nodes.ravel(), np.einsum("fg,jg->jf", q * self.arc, self.N).ravel())
+        np.add.at(den, self.facet_nodes.ravel(), np.einsum("fg,jg->jf", self.arc, self.N).ravel())
+        return num / den
 
     def total(self, q: np.ndarray) -> float:
         """Resultant of a traction q (nf, ng): 2 pi int q r ds or 2 int q ds."""
@@ -220,3 +232,94 @@ def contact_edge(r: np.ndarray, gap: np.ndarray, touching: np.ndarray) -> float:
         if np.isfinite(a) and r0 <= a <= r1:
             return float(a)
     return float(lin)
+
+
+def _balance(inside: float, outside: float) -> float:
+    """Share of the interval in contact where the estimates from inside and
+    from outside (as fractions of the interval) balance."""
+    if np.isinf(inside):
+        return 1.0
+    total = inside + outside
+    return inside / total if total > 0 else 0.5
+
+
+def contact_edge_pressure(r: np.ndarray, gap: np.ndarray, pressure: np.ndarray,
+                          touching: np.ndarray) -> float:
+    """Contact radius of an inelastic body from the nodal pressures and gaps.
+
+    The edge lies between the last node in contact r0 and the first one out
+    r1 (spacing L).  With the penalty of report 3.3.2 a node in contact
+    penetrates the flat by almost nothing, so the signed gap alone leaves
+    the edge on r0 until r1 touches (the report's staircase of Fig. 8.15);
+    the pressure says how far the contact has spread past r0.  As the edge
+    moves from r0 to r1 the pressure p0 at r0 rises from zero and the gap g1
+    at r1 closes to zero.  Each side gives the share of the interval in
+    contact, s_in from the pressures (p_ at the node r_ before r0, and p0),
+    1 - s_out from the gaps (g1, and g2 at r2), under two models of the
+    edge's fields:
+
+    - elastic, the Hertz solution of report 6.1 seen close to its edge:
+      p^2 and g^{2/3} linear in r, so s_in = (a_p - r0) / L and
+      1 - s_out = (r1 - a_g) / L with a_p and a_g the zeros of the lines
+      through (r_, p_^2), (r0, p0^2) and (r1, g1^{2/3}), (r2, g2^{2/3});
+    - inelastic, as across an element of a plastic contact: the pressure
+      stays that of the node before up to the edge, so that r0 carries the
+      share s_in = p0 / p_ of it, and the gap opens linearly,
+      1 - s_out = g1 / (g' L) with g' = (g2 - g1) / (r2 - r1).
+
+    Where a model's fields hold, its two estimates agree,
+    d = |s_in - s_out| = 0, and each model's edge is where they balance,
+    s = s_in / (s_in + 1 - s_out).  The two are weighted by the other's
+    disagreement, s = (d_i s_e + d_e s_i) / (d_e + d_i), which is exact for
+    either kind of edge, and a = r0 + s L.  Each model's s tends to 0 as r0
+    comes into contact (p0 -> 0) and to 1 as r1 does (g1 -> 0), and grows as
+    the pressure rises and the gap closes, so the edge moves continuously
+    from node to node (the weights shift with the fields: the blend is
+    continuous, not monotone by construction).  `r` the node radii (increasing), `gap` the separation from
+    the flat, `pressure` the contact traction at the nodes, `touching` the
+    nodes in contact.  Returns 0 if no node touches, the last node's radius
+    if it is the last of the chain, and `contact_edge` (the gap alone) if
+    the apex is the only node in contact.
+    """
+    idx = np.nonzero(touching)[0]
+    if idx.size == 0:
+        return 0.0
+    i = idx[-1]
+    if i + 1 >= len(r):
+        return float(r[i])
+    if i == 0:  # the apex alone: no pressure before it
+        return contact_edge(r, gap, touching)
+    r0, r1 = float(r[i]), float(r[i + 1])
+    length = r1 - r0
+    p0 = max(float(pressure[i]), 0.0)
+    g1 = max(float(gap[i + 1]), 0.0)
+    before = float(pressure[i - 1])
+    # from inside (infinite: the pressure does not fall towards the edge)
+    inelastic_in = p0 / before if before > 0 else np.inf
+    if before > p0:
+        rho = (p0 / before) ** 2
+        elastic_in = rho * (r0 - float(r[i - 1])) / ((1 - rho) * length)
+    else:
+        elastic_in = np.inf
+    # from outside
+    if i + 2 < len(r) and gap[i + 2] > g1:
+        ratio = g1 / float(gap[i + 2])
+        span = (float(r[i + 2]) - r1) / length
+        inelastic_out = ratio * span / (1 - ratio)
+        rho = ratio ** (2.0 / 3.0)
+        elastic_out = rho * span / (1 - rho)
+    else:
+        inelastic_out = elastic_out = 1.0 if g1 > 0 else 0.0
+    s_e = _balance(elastic_in, elastic_out)
+    s_i = _balance(inelastic_in, inelastic_out)
+    d_e = abs(elastic_in + elastic_out - 1)
+    d_i = abs(inelastic_in + inelastic_out - 1)
+    if np.isinf(d_e) and np.isinf(d_i) or d_e + d_i == 0:
+        share = 0.5 * (s_e + s_i)
+    elif np.isinf(d_e):
+        share = s_i
+    elif np.isinf(d_i):
+        share = s_e
+    else:
+        share = (d_i * s_e + d_e * s_i) / (d_e + d_i)
+    return float(r0 + length * share)

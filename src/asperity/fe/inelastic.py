@@ -146,7 +146,7 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as spl
 import xarray as xr
 
-from .contact import PENALTY_FACTOR, C1Penalty, ContactZone, contact_edge
+from .contact import PENALTY_FACTOR, C1Penalty, ContactZone, contact_edge_pressure
 from .errors import ContactZoneError, ConvergenceError, StepFailed, check_iterate
 from .material import METRIC, LinearElastic, equivalent_strain, von_mises
 from .presets import resolve
@@ -241,11 +241,6 @@ class History:
         tk = np.asarray(self.times)
         later = tk[tk > t * (1 + 1e-14) + 1e-300]
         return float(later[0]) if later.size else self.end
-
-
-def elastic_part(material) -> LinearElastic:
-    """The elastic constants of an inelastic material, for meshing."""
-    return LinearElastic(material.E, material.nu)
 
 
 def elastic_part(material) -> LinearElastic:
@@ -524,7 +519,7 @@ class InelasticModel:
         radius = 0.0
         if force > 0:
             pen = zone.node_penetration(u[zone.dofs], w)
-            radius = contact_edge(zone.coords[0], -pen, pen > 0)
+            radius = contact_edge_pressure(zone.coords[0], -pen, zone.node_traction(t), pen > 0)
         strain, stress, state = out["strain"], out["stress"], out["state"]
         e11, e22, e33, e12 = strain
         c = 0.5 * (e11 + e22)
