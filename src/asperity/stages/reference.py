@@ -29,6 +29,9 @@ from asperity.references.hertz import plane_strain_modulus
 from asperity import scene
 from asperity.scene import length_factor
 from asperity.plots.reference import reference_figure as _reference_figure
+# the map as the surface stage reads and prepares it (in-fill, form, filter): the script of
+# the reference rule calls this module only
+from asperity.stages.surface import prepared_roughness, reading  # noqa: F401
 from asperity.units import attrs
 
 log = logging.getLogger("asperity")
