@@ -269,4 +269,4 @@ def reference_figure(reference: xr.Dataset, comparison: xr.Dataset, units_cfg: C
     """Pressure against separation and contact area against pressure, every route beside
     the boundary-element solution."""
     return _reference_figure(reference, comparison, length_unit=units_cfg["length"],
-                             pressure_unit=units_cfg.get("pressure", "Pa"))
+                             pressure_unit=units_cfg["pressure"])  # the schema fills it in
