@@ -168,8 +168,7 @@ def test_the_scene_spectrum_section_reaches_the_spectral_estimator():
     """surface.spectrum through the surface stage: `periodic: true` (even beside a window)
     takes the plain periodogram, whose m0, m2, m4 are those of eq. (2.4) to 1e-12; the
     default Hann window and Blackman do not (sigma 8.72 % and 12.46 % high on this record,
-    computed once and kept to 5e-4;
-    near the 8.8 % the issue found for a few long waves), and the PSD names its window."""
+    computed once and kept to 5e-4), and the PSD in surface.nc names its window."""
     from asperity.stages.surface import surface_from_data
 
     z, dx, exact = few_long_waves()
