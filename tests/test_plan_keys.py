@@ -46,7 +46,7 @@ def surface_dataset(section: dict, units: dict, tmp_path: Path):
         path = write_map(tmp_path / "map.npy", surface.synthetic_map(section["map"]["generate"]))
         data = read_measurement(path, **surface.reading(section, units))
         return surface.surface_from_data(data.heights, data.spacing, section, units, defined=data.defined)
-    return surface.surface_from_statistics(section, units)
+    return surface.surface_from_statistics(filled("surface", section), units)
 
 
 def plans(folder: Path) -> dict:
