@@ -33,8 +33,9 @@ from asperity.scene import Adhesion, Population, Units
 from tests.scene_defaults import filled
 
 UNITS = {"length": "um", "pressure": "MPa"}
-SMOOTH = {"statistics": {"sigma": 0.013, "sigma_slope": 0.013, "sigma_curvature": 0.018,
-                         "peak_density": 0.058}}
+SMOOTH = filled("surface", {"statistics": {
+    "sigma": 0.013, "sigma_slope": 0.013, "sigma_curvature": 0.018,
+    "peak_density": 0.058}})
 MATERIAL = {"youngs_modulus": 65000.0, "poisson": 0.33}
 E_STAR = 65e9 / (1 - 0.33**2)
 ADHESION = {"work_of_adhesion": 1.0, "spacing": 0.5, "cutoff": 16.0}

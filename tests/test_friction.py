@@ -25,8 +25,9 @@ def friction_of(section: dict) -> Friction:
 # the Greenwood-Williamson surface of report 7.1, SI
 R, SIGMA_P, N = 0.1414e-3, 7.07106e-7, 300e6
 E, NU = 321.7335 * 9.80665e6, 0.3
-STEEL = {"statistics": {"sigma": 4.91, "sigma_slope": 0.16, "sigma_curvature": 0.0227,
-                        "peak_density": 0.000508}}
+STEEL = filled("surface", {"statistics": {
+    "sigma": 4.91, "sigma_slope": 0.16, "sigma_curvature": 0.0227,
+    "peak_density": 0.000508}})
 
 
 def _gw_integral_by_quadrature(m, t):

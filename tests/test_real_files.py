@@ -154,3 +154,61 @@ def test_the_optical_map_holds_points_its_instrument_did_not_mark():
     assert np.count_nonzero(z > 200e-6) == 8
     assert np.nanmax(z) == pytest.approx(305.2e-6, rel=1e-4)
     assert np.nanmedian(z) == pytest.approx(79.16e-6, rel=1e-3)
+
+
+def test_a_unit_or_spacing_in_the_scene_overrides_the_file_and_says_so():
+    """di-3.di states nm: a scene that says um takes the same numbers in um (heights and
+    positions 1000 times larger, to round-off 1e-15), a spacing in the scene replaces the
+    file's, and the notes the surface log prints say both."""
+    as_read = read_measurement(DATA / "di-3.di", "map")
+    m = read_measurement(DATA / "di-3.di", "map", unit="um")
+    np.testing.assert_allclose(m.heights, 1e3 * as_read.heights, rtol=1e-15, atol=0)
+    assert (m.dx, m.dy) == (pytest.approx(1e3 * as_read.dx, rel=1e-15), pytest.approx(1e3 * as_read.dy, rel=1e-15))
+    assert "length unit um from the scene (surface.map.unit) overrides the file's nm" in m.notes
+    assert "length unit nm from the file" in as_read.notes
+    spaced = read_measurement(DATA / "di-3.di", "map", spacing=5e-8)
+    assert (spaced.dx, spaced.dy) == (5e-8, 5e-8)
+    np.testing.assert_array_equal(spaced.heights, as_read.heights)
+    assert "spacing 5e-08 m from the scene (surface.map.spacing) overrides the file's 3.90625e-08 m" in spaced.notes
+
+
+@pytest.mark.parametrize("name, kind", [("mi-1.mi", "map"), ("hfm-1.hfm", "profile")])
+def test_a_surface_that_is_not_gaussian_says_so_in_the_log_the_file_and_the_figure(name, kind, caplog):
+    """Skewness and kurtosis beyond the limits of asperity.surface.distribution (|Sk| <= 0.3,
+    Ku 2.5 ... 4, the README says why): a warning in the job's log, the attribute `gaussian`
+    and a red note over the figure, each with the numbers and the limits."""
+    import logging
+
+    from asperity.stages import figures
+
+    m = read_measurement(DATA / name, kind)
+    with caplog.at_level(logging.WARNING, logger="asperity"):
+        ds = stage.surface_from_data(m.heights, m.spacing, {kind: {"file": name}, "form": "tilt"},
+                                     {"length": "um"}, defined=m.defined)
+    sk, ku = MOMENTS[name]
+    verdict = f"skewness {sk:.2f} beyond +-0.3; kurtosis {ku:.2f} outside 2.5 ... 4"
+    assert ds.attrs["gaussian"] == f"no: {verdict}"
+    assert ds.attrs["gaussian_limits"] == "|skewness| <= 0.3, kurtosis 2.5 ... 4"
+    warnings = [r.getMessage() for r in caplog.records if r.levelno == logging.WARNING]
+    assert any(w.startswith(f"the heights are not Gaussian ({verdict})") for w in warnings), warnings
+    fig = figures.surface_figure(kind, ds, {"length": "um"})
+    note = fig._suptitle
+    assert note is not None and note.get_text().startswith(f"heights not Gaussian ({verdict}; limits "
+                                                           f"|skewness| <= 0.3, kurtosis 2.5 ... 4)")
+
+
+def test_a_gaussian_map_gets_no_warning_and_no_note(caplog):
+    """A synthetic Gaussian map (skewness 0.008, kurtosis 2.72 after tilt removal): within the
+    limits, so no warning, `gaussian: yes`, and no note on the figure."""
+    import logging
+
+    from asperity.stages import figures
+
+    z = S.gaussian_map(128, 1.0, 1.0, 6.0, 3) * 1e-6
+    with caplog.at_level(logging.WARNING, logger="asperity"):
+        ds = stage.surface_from_data(z, (1e-6, 1e-6), {"map": {"file": "g.npy"}, "form": "tilt"},
+                                     {"length": "um"}, defined=np.ones(z.shape, bool))
+    assert abs(float(ds["skewness"])) < 0.3 and 2.5 < float(ds["kurtosis"]) < 4
+    assert ds.attrs["gaussian"] == "yes"
+    assert not [r for r in caplog.records if "Gaussian" in r.getMessage()]
+    assert figures.surface_figure("map", ds, {"length": "um"})._suptitle is None

@@ -10,8 +10,9 @@ from asperity.references import hertz
 from tests.scene_defaults import filled
 
 UNITS = {"length": "um", "pressure": "MPa"}
-STEEL = {"statistics": {"sigma": 4.91, "sigma_slope": 0.16, "sigma_curvature": 0.0227,
-                        "peak_density": 0.000508}}
+STEEL = filled("surface", {"statistics": {
+    "sigma": 4.91, "sigma_slope": 0.16, "sigma_curvature": 0.0227,
+    "peak_density": 0.000508}})
 
 
 def test_given_statistics_in_si():

@@ -169,6 +169,24 @@ def test_areal_filter_passes_half_of_a_wave_of_the_cutoff_wavelength_in_any_dire
     assert amplitude(wav[whole].ravel(), phase[whole].ravel()) == pytest.approx(0.5, abs=1e-6)
 
 
+
+@pytest.mark.parametrize("ratio", [0.5, 0.75, 1.5, 2.0, 4.0])
+@pytest.mark.parametrize("direction", [0.0, 30.0, 45.0])
+def test_areal_filter_transmission_is_the_closed_form(ratio, direction):
+    """ISO 16610-61 passes a plane wave of any wavelength in any direction with the profile
+    filter's exp(-pi (alpha lambda_c / lambda)^2), where the whole kernel lies in the map;
+    bound 1e-6 as above (the sampled weights give at most 1.3e-7 here)."""
+    cutoff, dx, dy = 40.0, 2.0, 2.0
+    ny, nx = 160, 180
+    y, x = np.meshgrid(np.arange(ny) * dy, np.arange(nx) * dx, indexing="ij")
+    t, wavelength = np.radians(direction), ratio * cutoff
+    phase = 2 * np.pi * (x * np.cos(t) + y * np.sin(t)) / wavelength
+    rough, wav, region = S.filter_heights(np.cos(phase), (dx, dy), lambda_c=cutoff)
+    whole = (slice(20, ny - 20), slice(20, nx - 20))
+    got = amplitude(wav[whole].ravel(), phase[whole].ravel())
+    assert got == pytest.approx(math.exp(-math.pi * (math.sqrt(math.log(2) / math.pi) / ratio) ** 2), abs=1e-6)
+    assert amplitude(rough[whole].ravel(), phase[whole].ravel()) == pytest.approx(1 - got, abs=1e-6)
+
 def test_mean_line_over_undefined_points_is_the_normalized_weighted_average():
     """At a defined point next to a gap, the mean line is sum w h / sum w over the defined
     neighbours within the kernel: summed directly here (1e-12)."""

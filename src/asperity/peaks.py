@@ -125,7 +125,7 @@ def _radius_bound(threshold: float, beta: float) -> float:
     eta^2 - 1 + exp(-eta^2) <= eta^2 <= r^2 and the quadratic form is
     bounded below by its smallest eigenvalue (1 - beta) times r^2.
     """
-    from scipy.optimize import brentq  # here: 0.15 s most stages never need
+    from scipy.optimize import brentq  # here: an import most stages never need
 
     c = math.sqrt(3.0) / (math.pi * math.sqrt(1.0 - beta * beta))
     s = 2.0 * (1.0 + beta)

@@ -103,3 +103,57 @@ def test_snakemake_finds_the_default_profile(tmp_path):
     none = snakemake(workdir, "-n", "--workflow-profile", "none", "--config",
                      "scenes=[profile_cosine]", "studies=False")
     assert "profiles/default" not in none.stdout + none.stderr
+
+
+def test_every_script_calls_the_stages_module_of_its_rules_file_and_io_only():
+    """The chain workflow/rules/X.smk -> workflow/scripts/*.py -> asperity.stages.X: a
+    script imports the standard library, `asperity.io` and the one stages module named
+    after its rules file, nothing else of the package."""
+    import ast
+
+    scripts = 0
+    for path in sorted(RULES.glob("*.smk")):
+        stage = path.stem
+        for script in re.findall(r'script:\s+"\.\./scripts/(\w+\.py)"', path.read_text()):
+            scripts += 1
+            tree = ast.parse((REPO / "workflow" / "scripts" / script).read_text())
+            for node in ast.walk(tree):
+                if isinstance(node, ast.Import):
+                    names = [(a.name, None) for a in node.names]
+                elif isinstance(node, ast.ImportFrom):
+                    names = [(node.module, a.name) for a in node.names]
+                else:
+                    continue
+                for module, name in names:
+                    top = module.split(".")[0]
+                    where = f"{path.name} -> {script}: {module}{'.' + name if name else ''}"
+                    if top != "asperity":
+                        assert top in sys.stdlib_module_names, where
+                    elif module == "asperity.stages":
+                        assert name == stage, where
+                    else:
+                        assert module.startswith("asperity.io.") or module == f"asperity.stages.{stage}", where
+    assert scripts >= 30
+
+
+def test_the_readme_module_map_lists_every_module():
+    """The README's library table (DESIGN-level documentation) names every module of
+    src/asperity: in a row of its own, or in its package's row."""
+    text = (REPO / "README.md").read_text()
+    start = text.index("## The library")
+    rows = {}
+    for line in text[start:text.index("\n## ", start + 1)].splitlines():
+        m = re.match(r"\| `([\w.]+)` \|(.*)\|\s*$", line)
+        if m:
+            rows[m.group(1).removeprefix("asperity.")] = m.group(2)
+    root = REPO / "src" / "asperity"
+    missing = []
+    for path in sorted(root.rglob("*.py")):
+        parts = list(path.relative_to(root).with_suffix("").parts)
+        parts = parts[:-1] if parts[-1] == "__init__" else parts
+        if not parts or ".".join(parts) in rows:
+            continue
+        # in the row of a package above it, by its name in backticks
+        if not any(f"`{parts[-1]}`" in rows.get(".".join(parts[:k]), "") for k in range(1, len(parts))):
+            missing.append(".".join(parts))
+    assert not missing, f"modules the README's library table does not name: {missing}"

@@ -9,6 +9,7 @@ inputs stop the surface job with an error naming the file, and write nothing.
 from __future__ import annotations
 
 import subprocess
+import sys
 from pathlib import Path
 
 import numpy as np
@@ -17,14 +18,13 @@ import yaml
 
 from asperity.references.hertz import hertz_response
 
-from .conftest import REPO, copy_workflow, result, snakemake
+from .conftest import copy_workflow, result, snakemake
 
 pytestmark = [pytest.mark.workflow, pytest.mark.slow]
 
 
-
 def new_scene(workdir: Path, *args: str) -> str:
-    proc = subprocess.run([str(REPO / ".venv" / "bin" / "asperity"), "new-scene", *args], cwd=workdir,
+    proc = subprocess.run([str(Path(sys.executable).with_name("asperity")), "new-scene", *args], cwd=workdir,
                           capture_output=True, text=True, timeout=120)
     assert proc.returncode == 0, proc.stderr
     return proc.stdout

@@ -23,8 +23,8 @@ rule accuracy_hertz:
 
 
 rule accuracy_scenes:
-    """Deviation of pressure and contact area from the finest preset against CPU time, per scene
-    (issue #6). Not in `rule all` (it runs the scenes at `fine`): snakemake --cores 2 accuracy_scenes
+    """Deviation of pressure and contact area from the finest preset against CPU time, per scene.
+    Not in `rule all` (it runs the scenes at `fine`): snakemake --cores 2 accuracy_scenes
     """
     input:
         [f"{RESULTS}/{name}@{preset}/interface.nc" for name, preset in accuracy_scene_runs()],

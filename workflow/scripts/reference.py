@@ -4,12 +4,11 @@ from asperity.io.joblog import job_log
 from asperity.io.netcdf import read_dataset, write_dataset
 from asperity.io.topography import read_measurement
 from asperity.stages import reference as stage
-from asperity.stages import surface
 
 with job_log(snakemake.log[0], "boundary-element reference") as log:
     p, i = snakemake.params, snakemake.input
-    data = read_measurement(i.map, **surface.reading(p.surface, p.units))
-    z = surface.prepared_roughness(data.heights, data.spacing, p.surface, p.units, defined=data.defined)
+    data = read_measurement(i.map, **stage.reading(p.surface, p.units))
+    z = stage.prepared_roughness(data.heights, data.spacing, p.surface, p.units, defined=data.defined)
     log.info("map %s: %s points, read by %s; form and filter of the scene removed", i.map, z.shape,
              data.reader)
     ds = stage.reference_dataset(z, *data.spacing, read_dataset(i.surface), p.material, p.reference,

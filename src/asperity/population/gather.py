@@ -44,7 +44,7 @@ def _loglog(levels: np.ndarray, values: np.ndarray, targets: np.ndarray,
     Returns the values and a flag of the targets beyond the last level
     (and, with `derivative`, dX/dw at the targets as a third item).
     """
-    from scipy.interpolate import PchipInterpolator  # here: 0.2 s most stages never need
+    from scipy.interpolate import PchipInterpolator  # here: an import most stages never need
 
     out = np.zeros_like(targets, dtype=float)
     slope_out = np.zeros_like(targets, dtype=float)

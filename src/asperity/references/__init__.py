@@ -1,2 +1,6 @@
-"""Closed-form references: Hertz contact of one asperity (6.1) and the
-Greenwood-Williamson interface (7.1)."""
+"""The references the pipeline is checked against.
+
+`hertz`: the closed-form Hertz contact of one asperity (6.1); `greenwood_williamson`: the
+Greenwood-Williamson interface (7.1); `boundary_element`: the deterministic contact of a
+whole height map against a rigid flat (ContactMechanics), the reference of the
+`deterministic_reference` scene."""

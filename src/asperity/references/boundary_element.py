@@ -82,6 +82,7 @@ import numpy as np
 import xarray as xr
 
 from asperity.references.hertz import plane_strain_modulus
+from asperity.units import attrs
 
 __all__ = ["BOUNDARIES", "BoundaryElementError", "solve_map", "contact_patches", "plane_strain_modulus"]
 
@@ -93,10 +94,6 @@ UNDEFINED_DEPTH = 1.0e3
 
 class BoundaryElementError(RuntimeError):
     """The boundary-element solver did not converge at a separation."""
-
-
-def _attrs(units: str, long_name: str) -> dict[str, str]:
-    return {"units": units, "long_name": long_name}
 
 
 def contact_patches(mask: np.ndarray, periodic: bool) -> int:
@@ -281,9 +278,9 @@ def solve_map(
         "iterations": ("1", "conjugate-gradient iterations of the solve"),
     }
     ds = xr.Dataset(
-        {name: ("separation", out[name], _attrs(*meta[name])) for name in names
+        {name: ("separation", out[name], attrs(*meta[name])) for name in names
          if hardness is not None or name != "flowing_area_ratio"},
-        coords={"separation": ("separation", h, _attrs(
+        coords={"separation": ("separation", h, attrs(
             "m", "height of the rigid flat above the mean plane of the surface"))},
     ).sortby("separation")
     ds.attrs.update({

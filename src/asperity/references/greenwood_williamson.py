@@ -39,7 +39,7 @@ def _f_negative_tail(m: float, t: np.ndarray) -> np.ndarray:
     The mass below s = t (< 1e-197 for t < -30) is neglected; the series is
     asymptotic and truncated after j = 8 (remainder < 1e-30 relative at |t| = 30).
     """
-    from scipy import special  # here, not at the top: 0.1 s that most stages never need
+    from scipy import special  # here, not at the top: an import most stages never need
 
     a = np.abs(t)
     total = np.ones_like(a)
@@ -62,7 +62,7 @@ def gw_integral(m: float, t) -> np.ndarray:
     (scipy.special.pbdv; relative accuracy ~1e-11).  For t < -30 the
     expansion in 1/|t| is used (D overflows there).
     """
-    from scipy import special  # here, not at the top: 0.1 s that most stages never need
+    from scipy import special  # here, not at the top: an import most stages never need
 
     m = float(m)
     if m < 0.0:

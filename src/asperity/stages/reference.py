@@ -29,6 +29,9 @@ from asperity.references.hertz import plane_strain_modulus
 from asperity import scene
 from asperity.scene import length_factor
 from asperity.plots.reference import reference_figure as _reference_figure
+# the map as the surface stage reads and prepares it (in-fill, form, filter): the script of
+# the reference rule calls this module only
+from asperity.stages.surface import prepared_roughness, reading  # noqa: F401
 from asperity.units import attrs
 
 log = logging.getLogger("asperity")
@@ -266,4 +269,4 @@ def reference_figure(reference: xr.Dataset, comparison: xr.Dataset, units_cfg: C
     """Pressure against separation and contact area against pressure, every route beside
     the boundary-element solution."""
     return _reference_figure(reference, comparison, length_unit=units_cfg["length"],
-                             pressure_unit=units_cfg.get("pressure", "Pa"))
+                             pressure_unit=units_cfg["pressure"])  # the schema fills it in

@@ -504,7 +504,7 @@ def surface_from_statistics(surface_cfg: Config, units_cfg: Config) -> xr.Datase
         return ds
     st = surface_cfg["statistics"]
     values = {
-        "mean_height": (st.get("mean_height", 0.0) * length, "m", "mean height"),
+        "mean_height": (st["mean_height"] * length, "m", "mean height"),  # the schema fills it in
         "sigma": (st["sigma"] * length, "m", "standard deviation of height"),
         "sigma_slope": (st["sigma_slope"], "1", "standard deviation of slope"),
         "sigma_curvature": (st["sigma_curvature"] / length, "1/m", "standard deviation of curvature"),
