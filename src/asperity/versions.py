@@ -39,7 +39,7 @@ VERSIONS: dict[str, int] = {
     "laws": 1,
     # uniaxial, sliding, plane strain, accuracy
     "uniaxial": 1,
-    "accuracy_bodner_partom": 1,
+    "accuracy_bodner_partom": 2,
     "sliding": 1,
     "plane_strain": 1,
     "accuracy_hertz": 1,

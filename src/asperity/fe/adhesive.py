@@ -72,15 +72,8 @@ contact radius there plus 5 min(l, sqrt(2 R d)) (an adhesive contact is
 never larger than JKR's).  The zone of candidate facets is the band; a
 path whose adhesive ring reaches its last tenth is restarted with a wider
 band.  The number of band facets grows like mu^2 (contact radius /
-cohesive length): at the draft preset 60 at mu = 0.1, 150 at mu = 3,
-350-490 at mu = 5 (15 um asperity, d = 0.3 nm).
-
-Cost (2 shared cores, draft, R = 15 um, d = 0.3 nm, w_max = 2 d, about
-70 path steps): mu = 0.1 and 1 under 1 s, mu = 3 2 s, mu = 5 15-20 s.
-The aluminum asperity of report 7.3 (R = 15.4 um, mu = 4.8, w_max =
-10 nm) takes 15 s of CPU at draft (`make time-adhesion`; 50 s before the truncation allowance of
-`AdhesiveModel.continuous`); draft and standard gave the same pull-off
-force (to 1.4e-4) and jump interferences (to 4e-4).
+cohesive length), and the cost with it: what the adhesive jobs cost is
+measured by `make time-adhesion` (README, "Adhesion").
 """
 
 from __future__ import annotations
@@ -584,10 +577,8 @@ class AdhesiveModel:
         jump-off fold stay within 0.06 d of the predictor at min_step, the
         jump moves 5 d.  Jumps smaller than 0.25 d are recorded as a steep
         continuous stretch.  Without the truncation term the geometric steps
-        beyond 4 d (tens of d each) failed the balance and were halved
-        twice over: the R = 60 um aluminum asperity at draft took 80 s of
-        CPU instead of about 30 s, for the same states (force 4e-8, area 1e-6
-        apart) and the same jumps and pull-off.
+        beyond 4 d (tens of d each) fail the balance through the trapezoidal
+        rule's own error and are halved for nothing.
         """
         d = self.adhesion.d
         ff = self.zone.force_factor
@@ -1173,13 +1164,10 @@ def smooth_aluminum_curves(radii=(15.4e-6, 30e-6, 60e-6), d: float = 0.3e-9,
     pull-off forces 2 pi R W_c and 3/2 pi R W_c for comparison.
 
     Cost grows with the Tabor parameter (R^(1/3) / d): with d = 0.3 nm,
-    mu = 4.8, 6.0, 7.6 at 15.4, 30, 60 um (draft: 15, 54, 190 s of CPU;
-    R = 15.4 um at 'standard' gives the same pull-off force to 1.4e-4);
-    150 and 300 um (mu = 10, 13) need a band of 3000 facets (300 um: 4
-    minutes and 5.6 GB to set up, hours to trace before the truncation
-    allowance of `AdhesiveModel.continuous` cut tracing by about 3) and are
-    not in the default.  With d = 0.5 nm, mu is 0.6 times smaller and 300 um costs
-    about what 60 um does at 0.3 nm.
+    mu = 4.8, 6.0, 7.6 at 15.4, 30, 60 um, and 10, 13 at 150 and 300 um,
+    which need a band of thousands of facets and are not in the default
+    (the costs: `make time-adhesion`, README "Adhesion").  With d = 0.5 nm,
+    mu is 0.6 times smaller.
     """
     from .geometry import Paraboloid
     from .material import LinearElastic

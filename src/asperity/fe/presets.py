@@ -55,11 +55,9 @@ time_tolerance
     rate-dependent material: bound of the time-integration error indicator
     of a step (nodal forces of the local error over the contact forces;
     local: the stiff flow relaxes most of it, the error of the results is
-    far smaller).  Measured on a SAE 1020 cosine hill loaded to 8 %
-    inelastic strain and unloaded (benchmarks/run.py): the force at the top
-    is within 0.3 % (draft, 0.1, 212 steps) and 0.05 % (standard, 0.6, 131
-    steps) of runs at tolerances 0.001 and 0.01, the residual interference
-    within 0.05 %; fine is not measured.
+    far smaller).  What each preset's tolerance costs and how far its
+    results are from tighter ones: `make bench` (benchmarks/run.py, README
+    "Inelastic histories").
 """
 
 from __future__ import annotations

@@ -153,7 +153,7 @@ def uniaxial_accuracy_figure(ds: xr.Dataset) -> plt.Figure:
         for dx, v in ((-0.2, r), (0.2, m)):
             if np.isfinite(v):
                 ax.text(xi + dx, v, f"{v:.1f}", ha="center", va="bottom", fontsize=7)
-    ax.axhline(20, color="k", ls="--", lw=1, label="20x (issue)")
+    ax.axhline(20, color="k", ls="--", lw=1, label="20x fewer steps (target)")
     ax.axhline(1, color="0.5", ls=":", lw=1)
     ax.set_yscale("log")
     top = np.nanmax(np.concatenate([ref, matched, [20.0]]))
