@@ -23,7 +23,7 @@ VERSIONS: dict[str, int] = {
     "surface": 1,
     "convergence": 1,
     # population (workflow/rules/population.smk): the plan, the samples by kind, the gather
-    "plan": 1,
+    "plan": 2,
     "sample:hertz": 1,
     "sample:elastic": 1,
     "sample:inelastic": 2,
