@@ -157,7 +157,8 @@ class ContactZone:
         projection on the surface trace, sum_g q N_j ds / sum_g N_j ds (with
         the nodal rule, the facets' values at the node averaged by arc length)."""
         num, den = np.zeros(self.ndofs), np.zeros(self.ndofs)
-        np.add.at(num, self.facet_nodes.ravel(), np.einsum("fg,jg->jf", q * self.arc, self.N).ravel())
+        np.add.at(num, self.facet_nodes.ravel(),
+                  np.einsum("fg,jg->jf", q * self.arc, self.N).ravel())
         np.add.at(den, self.facet_nodes.ravel(), np.einsum("fg,jg->jf", self.arc, self.N).ravel())
         return num / den
 
@@ -205,6 +206,16 @@ class AugmentedPenalty:
         return np.where(on, x, 0.0), np.where(on, np.broadcast_to(k, a.shape), 0.0)
 
 
+def _last_in_contact(r: np.ndarray, touching: np.ndarray) -> tuple[int, float | None]:
+    """The last node in contact, and the contact radius where no interval to a node out
+    remains to locate the edge in (0 if no node touches, its radius if it ends the chain)."""
+    idx = np.nonzero(touching)[0]
+    if idx.size == 0:
+        return -1, 0.0
+    i = int(idx[-1])
+    return i, (float(r[i]) if i + 1 >= len(r) else None)
+
+
 def contact_edge(r: np.ndarray, gap: np.ndarray, touching: np.ndarray) -> float:
     """Contact radius from the nodal gaps along the surface chain.
 
@@ -216,12 +227,9 @@ def contact_edge(r: np.ndarray, gap: np.ndarray, touching: np.ndarray) -> float:
     used if it falls in that interval (else the gap is interpolated
     linearly between the two nodes).  Returns 0 if no node touches.
     """
-    idx = np.nonzero(touching)[0]
-    if idx.size == 0:
-        return 0.0
-    i = idx[-1]
-    if i + 1 >= len(r):
-        return float(r[i])
+    i, end = _last_in_contact(r, touching)
+    if end is not None:
+        return end
     r0, r1 = r[i], r[i + 1]
     g0, g1 = min(gap[i], 0.0), max(gap[i + 1], 0.0)
     # linear interpolation of the (signed) gap between the two nodes
@@ -275,18 +283,15 @@ def contact_edge_pressure(r: np.ndarray, gap: np.ndarray, pressure: np.ndarray,
     comes into contact (p0 -> 0) and to 1 as r1 does (g1 -> 0), and grows as
     the pressure rises and the gap closes, so the edge moves continuously
     from node to node (the weights shift with the fields: the blend is
-    continuous, not monotone by construction).  `r` the node radii (increasing), `gap` the separation from
-    the flat, `pressure` the contact traction at the nodes, `touching` the
-    nodes in contact.  Returns 0 if no node touches, the last node's radius
-    if it is the last of the chain, and `contact_edge` (the gap alone) if
-    the apex is the only node in contact.
+    continuous, not monotone by construction).  `r` the node radii
+    (increasing), `gap` the separation from the flat, `pressure` the contact
+    traction at the nodes, `touching` the nodes in contact.  Returns 0 if no
+    node touches, the last node's radius if it is the last of the chain, and
+    `contact_edge` (the gap alone) if the apex is the only node in contact.
     """
-    idx = np.nonzero(touching)[0]
-    if idx.size == 0:
-        return 0.0
-    i = idx[-1]
-    if i + 1 >= len(r):
-        return float(r[i])
+    i, end = _last_in_contact(r, touching)
+    if end is not None:
+        return end
     if i == 0:  # the apex alone: no pressure before it
         return contact_edge(r, gap, touching)
     r0, r1 = float(r[i]), float(r[i + 1])
