@@ -15,8 +15,11 @@ An FE asperity (``asperity.model: fe``) has a geometry:
 
 Sphere, paraboloid and the representative hill respond to the interference alone
 (shift invariant in height): one job per curvature. The coupled hill depends on both:
-one job per (height, curvature). An FE job computes the interferences up to the
-largest the geometry admits (`max_interference`).
+one job per (height, curvature), or, with ``scaling: self_similar``, a family of
+aspects: its shape in units of 1/kappa depends on the aspect q = kappa z_p = (k C)^2
+alone, so a few jobs at aspects q_j give every sample by the scaling of 8.2.2 and an
+interpolation in log q (`aspect_family`, `aspect_jobs`). An FE job computes the
+interferences up to the largest the geometry admits (`max_interference`).
 """
 
 from __future__ import annotations
