@@ -22,7 +22,11 @@ prints per scene, on the loading branch:
 
 Writes benchmarks/results/coupled_<accuracy>.json.
 
-    python benchmarks/coupled_numbers.py [results]
+    python benchmarks/coupled_numbers.py [results] [--inelastic]
+
+and the family against one FE job per sample: the elastic hills of asperity_shape_coupled,
+and with ``--inelastic`` the Bodner-Partom hills of rough_aluminum_coupled on a small
+population (8 heights x 4 curvatures: 32 jobs, minutes).
 """
 
 from __future__ import annotations
@@ -50,17 +54,21 @@ def _float(x) -> float | None:
     return None if not np.isfinite(x) else x
 
 
-def scene_numbers(results: Path, scene: str) -> dict:
+def scene_numbers(results: Path, scene: str, separations: np.ndarray | None = None) -> dict:
+    """The numbers of `scene`, at its own `separations` [m] or at those given (an unloading
+    branch adds separations of its own: the nearest loading one is taken)."""
     from asperity.io.netcdf import read_dataset
     from asperity.population.density import height_scale
 
     d = results / scene
     interface = _loading(read_dataset(d / "interface.nc"))
+    if separations is not None:
+        interface = interface.sel(separation=separations, method="nearest")
     sigma = height_scale(read_dataset(d / "surface.nc"))
     asperities = read_dataset(d / "asperities.nc")
     h = interface["separation"].values
-    out = {"sigma_um": sigma * 1e6, "separation_sigma": list(h / sigma),
-           "nominal_pressure_MPa": list(interface["nominal_pressure"].values / 1e6),
+    out = {"sigma_um": sigma * 1e6, "separation_sigma": [float(x) for x in h / sigma],
+           "nominal_pressure_MPa": [float(x) for x in interface["nominal_pressure"].values / 1e6],
            "valid": [bool(v) for v in interface["valid"].values],
            "validity": [str(v) for v in interface["validity"].values]}
     for name in INDICATORS:
@@ -70,7 +78,9 @@ def scene_numbers(results: Path, scene: str) -> dict:
     out["valid_range_sigma"] = ([float(h[valid].min() / sigma), float(h[valid].max() / sigma)]
                                 if valid.any() else None)
     out["valid_count"] = int(valid.sum())
-    cost = {k: asperities.attrs[k] for k in ("accuracy", "fe_jobs", "fe_cpu_time") if k in asperities.attrs}
+    cost = {"accuracy": str(asperities.attrs.get("accuracy", "")),
+            "fe_jobs": int(asperities.attrs.get("fe_jobs", 0)),
+            "fe_cpu_time": float(asperities.attrs.get("fe_cpu_time", np.nan))}
     cost.update({k: float(v) for k, v in asperities.attrs.items() if k.startswith("aspect_check")})
     if "aspects" in asperities.attrs:
         cost["aspects"] = [float(q) for q in np.atleast_1d(asperities.attrs["aspects"])]
@@ -78,6 +88,8 @@ def scene_numbers(results: Path, scene: str) -> dict:
     if (d / "friction.nc").exists():
         fr = read_dataset(d / "friction.nc")
         fr_load = _loading(fr)
+        if separations is not None:
+            fr_load = fr_load.sel(separation=separations, method="nearest")
         out["mu_shear"] = [_float(v) for v in fr_load["mu_shear"].values]
         out["mu"] = [_float(v) for v in fr_load["mu"].values]
         out["mu_interlocking"] = float(fr["mu_interlocking"])
@@ -93,8 +105,54 @@ def scene_numbers(results: Path, scene: str) -> dict:
     return out
 
 
+def family_against_direct(accuracy: str = "draft", aspects: int = 6, scene_name: str = "asperity_shape_coupled",
+                          samples: dict | None = None) -> dict:
+    """The family of aspects against one job per sample: the nominal pressure and contact
+    area ratio of the two over the scene's separations, the jobs and their CPU time.
+    Computed here (no pipeline). By default the elastic coupled hills of
+    asperity_shape_coupled (elastic jobs at `draft` cost about 0.3 s each); `samples`
+    replaces the scene's sample counts (a small population for inelastic hills)."""
+    import yaml
+
+    from asperity.population import samples as population
+    from asperity.stages import homogenize, surface
+    from asperity.stages import population as stage
+    sys.path.insert(0, str(REPO))
+    from tests.scene_defaults import filled_scene
+
+    raw = yaml.safe_load((REPO / "config" / "scenes" / f"{scene_name}.yaml").read_text())
+    for key in ("compare_with", "friction", "laws"):
+        raw.pop(key, None)
+    if samples:
+        raw["population"]["samples"] = {**raw["population"].get("samples", {}), **samples}
+    out = {}
+    for name, extra in (("direct", {"scaling": "none"}),
+                        ("family", {"scaling": "self_similar", "aspects": aspects, "aspect_check": False})):
+        scene = filled_scene({**raw, "asperity": {**raw["asperity"], **extra}})
+        sds = surface.surface_from_statistics(scene["surface"], scene["units"])
+        plan = stage.plan_dataset(sds, scene["population"], scene["asperity"], scene["material"],
+                                  scene.get("effects", []), scene["units"], accuracy)
+        jobs = {}
+        for r in np.flatnonzero(plan["job"].values):
+            key = str(plan["key"].values[r])
+            jobs[key] = population.solve(json.loads(str(plan["spec"].values[r])), key)
+        asp = population.gather(plan, jobs)
+        itf = homogenize.interface_dataset(asp, sds, plan, scene["population"], scene["homogenization"],
+                                           scene["units"])
+        out[name] = {"fe_jobs": len(jobs), "fe_cpu_time": float(sum(j.attrs["cpu_time"] for j in jobs.values())),
+                     "p": itf["nominal_pressure"].values, "a": itf["contact_area_ratio"].values}
+    p_ratio = out["family"]["p"] / out["direct"]["p"]
+    a_ratio = out["family"]["a"] / out["direct"]["a"]
+    return {"scene": scene_name, "samples": samples, "accuracy": accuracy, "aspects": aspects,
+            "jobs": {k: v["fe_jobs"] for k, v in out.items()},
+            "cpu_s": {k: v["fe_cpu_time"] for k, v in out.items()},
+            "pressure_family_over_direct": [float(np.nanmin(p_ratio)), float(np.nanmax(p_ratio))],
+            "area_family_over_direct": [float(np.nanmin(a_ratio)), float(np.nanmax(a_ratio))]}
+
+
 def main(argv: list[str]) -> int:
-    results = Path(argv[0]) if argv else REPO / "results"
+    args = [a for a in argv if not a.startswith("--")]
+    results = Path(args[0]) if args else REPO / "results"
     report = {"results": str(results), "scenes": {}}
     accuracy = "unknown"
     for coupled, representative in PAIRS:
@@ -102,13 +160,15 @@ def main(argv: list[str]) -> int:
             print(f"{coupled}: no {results / coupled / 'interface.nc'}; run the scene first")
             continue
         c = scene_numbers(results, coupled)
-        r = scene_numbers(results, representative) if (results / representative / "interface.nc").exists() else None
+        own = np.array(c["separation_sigma"]) * c["sigma_um"] * 1e-6
+        r = (scene_numbers(results, representative, own)
+             if (results / representative / "interface.nc").exists() else None)
         report["scenes"][coupled] = c
         if r is not None:
             report["scenes"][representative] = r
         accuracy = c["fe"].get("accuracy", accuracy)
         print(f"\n{coupled} (against {representative}), loading branch, sigma = {c['sigma_um']:.3g} um")
-        print("  h/sigma  p_coupled  p_repr  ratio  extrap.load(c/r)  large_strain  yielded  area   inter.  validity")
+        print("  h/sigma  p_coupled  p_repr  ratio  extrap.load(c/r)  large_strain(c/r)  yielded  area   inter.  validity")
         hs = np.array(c["separation_sigma"])
         step = max(1, hs.size // 10)
         for i in list(range(0, hs.size, step)) + ([hs.size - 1] if (hs.size - 1) % step else []):
@@ -120,9 +180,11 @@ def main(argv: list[str]) -> int:
                 v = c.get(name, [None] * hs.size)[i]
                 return float("nan") if v is None else v
 
+            ls_r = r.get("large_strain_fraction", [None] * hs.size)[i] if r else None
             print(f"  {hs[i]:6.3f}  {pc:9.4g}  {pr:8.4g}  {pc / pr:5.3f}  "
                   f"{100 * g('extrapolated_load_fraction'):5.1f}/{100 * el_r:5.1f} %  "
-                  f"{100 * g('large_strain_fraction'):5.1f} %  {100 * g('yielded_fraction'):5.1f} %  "
+                  f"{100 * g('large_strain_fraction'):5.1f}/{100 * (ls_r if ls_r is not None else np.nan):5.1f} %  "
+                  f"{100 * g('yielded_fraction'):5.1f} %  "
                   f"{g('contact_area_ratio'):.3g}  {g('interaction'):.3g}  {c['validity'][i] or 'valid'}")
         print(f"  valid: coupled {c['valid_count']} of {hs.size} separations {c['valid_range_sigma']} sigma; "
               f"representative {r['valid_count'] if r else '-'} {r['valid_range_sigma'] if r else ''}")
@@ -141,6 +203,16 @@ def main(argv: list[str]) -> int:
                              f"measured {x['measured_mu']}")
                 print(line)
         print(f"  FE: coupled {c['fe']}; representative {r['fe'] if r else '-'}")
+    checks = [family_against_direct()]
+    if "--inelastic" in argv:  # one Bodner-Partom job per sample of a small population: minutes
+        checks.append(family_against_direct(scene_name="rough_aluminum_coupled",
+                                            samples={"height": 8, "curvature": 4}))
+    report["family_against_direct"] = checks
+    for check in checks:
+        print(f"\n{check['scene']} ({check['accuracy']}, samples {check['samples'] or 'of the scene'}): family of "
+              f"{check['aspects']} aspects against one job per sample: jobs {check['jobs']}, CPU s "
+              f"{check['cpu_s']}, pressure ratio {check['pressure_family_over_direct']}, area ratio "
+              f"{check['area_family_over_direct']}")
     out = REPO / "benchmarks" / "results" / f"coupled_{accuracy}.json"
     out.write_text(json.dumps(report, indent=1) + "\n")
     print(f"\nwritten {out}")
