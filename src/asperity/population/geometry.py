@@ -186,8 +186,7 @@ def aspect_jobs(aspects: np.ndarray, count: int, check: bool) -> tuple[np.ndarra
     if count < 2:
         raise ValueError(f"an aspect family needs at least 2 jobs, got {count}")
     hi = hi if hi > lo else 2.0 * lo  # a single aspect: a second job above it
-    jobs = np.geomspace(lo, hi, count)
-    jobs[0], jobs[-1] = lo, hi
+    jobs = geometric_levels(lo, hi, count)  # the same numbers on every CPU: they enter the keys
     middle = (jobs.size - 1) // 2
     checked = math.sqrt(jobs[middle] * jobs[middle + 1]) if check else math.nan
     return jobs, checked

@@ -13,7 +13,6 @@ as derived.
 from __future__ import annotations
 
 import hashlib
-import math
 import json
 import math
 from typing import Any, Callable, Mapping
