@@ -29,6 +29,7 @@ pytestmark = [pytest.mark.workflow, pytest.mark.slow]
 HEIGHTS, CURVATURES = 3, 3
 LEVELS = 3            # unloading levels (asperity.unloading_levels)
 CHECK = 1             # the left-out check path of asperity.unloading_check (8.3, gamma_0)
+ASPECTS = 4           # aspect jobs of the coupled hills' family (asperity.aspects)
 
 
 def repo_scene(name: str) -> dict:
@@ -73,6 +74,12 @@ SCENES = {
     "jc_bp_elastic": (variant("rough_aluminum", effects=[], scaling=None), 1),
     # the coupled cosine hill (2.5.1) depends on its height too: one job per sample
     "jc_coupled": (variant("asperity_shape_coupled"), HEIGHTS * CURVATURES),
+    # ... or, with scaling self_similar, the family of aspects (2.5.1, 8.2.2): one job per aspect,
+    # whatever the number of samples, and the left-out check job
+    "jc_coupled_family": (variant("asperity_shape_coupled", scaling="self_similar", aspects=ASPECTS),
+                          ASPECTS),
+    "jc_coupled_family_bp": (variant("rough_aluminum_coupled", aspects=ASPECTS, aspect_check=True),
+                             ASPECTS + CHECK),
     # analytic Hertz asperities: no job at all
     "jc_hertz": (variant("asperity_shape_hertz"), 0),
 }
@@ -152,5 +159,13 @@ def test_what_each_effect_puts_in_the_job_specs(counted):
     assert all("unloading_level" not in s and "levels" in s for s in specs("jc_elastic"))
     assert all("velocity" in s for s in specs("jc_bp"))        # rate dependent: the rate is an input
     assert all("velocity" not in s for s in specs("jc_j2"))     # J2: any rate gives the same answer
+    # the family of aspects: every job the coupled hill of the reference curvature, its
+    # amplitude the aspect over it; the Bodner-Partom family's jobs know the rate
+    for name in ("jc_coupled_family", "jc_coupled_family_bp"):
+        fam = specs(name)
+        assert len({s["curvature"] for s in fam}) == 1 and len({s["height"] for s in fam}) == len(fam)
+        assert all(s["mapping"] == "coupled" for s in fam)
+    assert all("velocity" in s for s in specs("jc_coupled_family_bp"))
+    assert plans["jc_coupled_family_bp"]["left_out"].values.sum() == CHECK
     adhesive = [name for name in SCENES if any("adhesion" in s for s in specs(name))]
     assert adhesive == [name for name, (scene, _) in SCENES.items() if "adhesion" in scene.get("effects", [])]

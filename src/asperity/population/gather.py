@@ -136,6 +136,8 @@ def _curves(ds: xr.Dataset, grid: np.ndarray, scale: float = 1.0) -> dict[str, n
     out["elastic"] = (touching & (grid < lb["w_inelastic"])).astype(float)
     out["small_strain"] = (touching & (grid < lb["w_large_strain"])).astype(float)
     out["beyond"] = beyond
+    out["w_inelastic"], out["w_large_strain"] = lb["w_inelastic"], lb["w_large_strain"]
+    out["top"] = float(w[-1])
     return out
 
 
@@ -284,3 +286,135 @@ def _unloading_paths(plan: xr.Dataset, by_key: Mapping[str, xr.Dataset]) -> xr.D
         "unloading_level": ("unloading_level", np.arange(nlev), {"units": "1", "long_name": "index of the computed unloading level"}),
         "point": ("point", np.arange(npts), {"units": "1", "long_name": "point along an unloading path (0: the maximum interference)"}),
     })
+
+
+def _geometric(x0: np.ndarray, x1: np.ndarray, t: float) -> np.ndarray:
+    """x0^(1 - t) x1^t of non-negative values (x0 itself at t = 0, 0 where either is 0)."""
+    if t == 0.0:
+        return np.asarray(x0, float)
+    x0, x1 = np.maximum(x0, 0.0), np.maximum(x1, 0.0)
+    both = (x0 > 0) & (x1 > 0)
+    out = np.zeros(np.broadcast(x0, x1).shape)
+    out[both] = np.exp((1.0 - t) * np.log(x0[both]) + t * np.log(x1[both]))
+    return out
+
+
+def _threshold(w0: float, w1: float, top: float, t: float) -> float:
+    """The interference where a flag first fails, interpolated like the responses; a
+    neighbour where it never fails (inf) counts as failing at the top of the range,
+    so the interpolation errs on the side of failing early."""
+    if t == 0.0 or (math.isinf(w0) and math.isinf(w1)):
+        return w0 if t == 0.0 else math.inf
+    w0, w1 = min(w0, top), min(w1, top)
+    return float(w0 ** (1.0 - t) * w1 ** t)
+
+
+def aspect_curves(lower: xr.Dataset, upper: xr.Dataset, height: float, t: float,
+                  grid: np.ndarray) -> dict[str, np.ndarray]:
+    """The loading response on `grid` of the coupled hill of amplitude `height` whose
+    aspect lies at weight `t` in log q between the jobs `lower` and `upper` (2.5.1).
+
+    Each job's hill (amplitude C_j) is scaled by z_p / C_j, so that its response is
+    taken at the same fraction w / C of the amplitude as the sample's (both jobs
+    computed it: each goes to the same fraction of its own height), and the two scaled
+    responses are interpolated geometrically, X = X_j^(1 - t) X_(j+1)^t: linear in
+    log q of log X at fixed w / C. Exact at a job (t = 0); exact too where the
+    response is a power of q at fixed w / C, as for an elastic hill of small slope
+    (half-space theory: F = E* C / k phi(w / C), so F kappa^2 / E* = q^(3/2) phi).
+    Scaling by 1/kappa instead of by C changes every job's value by a power of
+    q_j / q, which this interpolation leaves unchanged. The interferences where the
+    hill yields and leaves small strain are interpolated likewise; ``beyond`` where
+    either job is beyond its computed range.
+    """
+    c0 = _curves(lower, grid, height / float(lower.attrs["height"]))
+    if t == 0.0:
+        c1 = c0
+    else:
+        c1 = _curves(upper, grid, height / float(upper.attrs["height"]))
+    out = {name: _geometric(c0[name], c1[name], t)
+           for name in ("force", "contact_area", "contact_radius", "stiffness")}
+    touching = grid > 0
+    top = min(c0["top"], c1["top"])
+    for flag, w in (("elastic", "w_inelastic"), ("small_strain", "w_large_strain")):
+        out[flag] = (touching & (grid < _threshold(c0[w], c1[w], top, t))).astype(float)
+    out["beyond"] = c0["beyond"] | c1["beyond"]
+    return out
+
+
+def aspect_check(plan: xr.Dataset, by_key: Mapping[str, xr.Dataset]) -> dict[str, float]:
+    """The error of the interpolation in aspect at the left-out job (`make_aspect_plan`):
+    its computed loading curve against the one interpolated from its two neighbouring
+    jobs, at its own computed levels. Force and contact area: the largest difference
+    over the job's largest value; ``..._relative``: the largest relative difference
+    from a tenth of the job's range up (below, a few nodes in contact)."""
+    left = plan["left_out"].values.astype(bool)
+    if not left.any():
+        return {}
+    row = int(np.flatnonzero(left)[0])
+    key = str(plan["key"].values[row])
+    job = by_key[key]
+    q = float(plan["aspect"].values[row])
+    fam = plan["family_job"].values.astype(bool) & ~left
+    qj = plan["aspect"].values[fam]
+    kj = plan["key"].values[fam]
+    order = np.argsort(qj)
+    qj, kj = qj[order], kj[order]
+    from asperity.population.geometry import aspect_weights
+
+    j, t = aspect_weights(np.array([q]), qj)
+    j, t = int(j[0]), float(t[0])
+    lb = loading_branch(job)
+    w = lb["interference"]
+    c = aspect_curves(by_key[str(kj[j])], by_key[str(kj[j + 1])], float(job.attrs["height"]), t, w)
+    out = {"aspect_check": q, "aspect_check_weight": t}
+    upper = w >= 0.1 * w[-1]
+    for name in ("force", "contact_area"):
+        ref = lb[name]
+        out[f"aspect_check_{name}_error"] = float(np.max(np.abs(c[name] - ref)) / np.max(ref))
+        out[f"aspect_check_{name}_relative"] = float(np.max(np.abs(c[name][upper] / ref[upper] - 1)))
+    return out
+
+
+def gather_aspects(plan: xr.Dataset, samples: Mapping[str, xr.Dataset]) -> xr.Dataset:
+    """The samples of coupled hills scaled from the family of aspects
+    (`asperity.population.plan.make_aspect_plan`) on the plan's (height, curvature,
+    interference) grid, each from its two neighbouring jobs (`aspect_curves`), and the
+    error of the interpolation at the left-out job (`aspect_check`) as attributes."""
+    by_key = samples_by_key(plan, samples)
+    heights, curvatures = plan["height"].values, plan["curvature"].values
+    grid = plan["interference"].values
+    rows = np.flatnonzero(~plan["family_job"].values.astype(bool))
+    names = list(GATHERED_ATTRS)
+    shape = (heights.size, curvatures.size, grid.size)
+    data = {name: np.empty(shape) for name in names}
+    beyond = np.empty(shape, bool)
+    ph, pk = plan["sample_height"].values, plan["sample_curvature"].values
+    for r in rows:
+        i = int(np.flatnonzero(heights == ph[r])[0])
+        k = int(np.flatnonzero(curvatures == pk[r])[0])
+        c = aspect_curves(by_key[str(plan["key"].values[r])], by_key[str(plan["upper_key"].values[r])],
+                          float(ph[r]), float(plan["aspect_weight"].values[r]), grid)
+        for name in names:
+            data[name][i, k] = c[name]
+        beyond[i, k] = c["beyond"]
+    dims = ("height", "curvature", "interference")
+    ds = xr.Dataset(
+        {name: (dims, data[name], {"units": GATHERED_ATTRS[name][0], "long_name": GATHERED_ATTRS[name][1]})
+         for name in names},
+        coords={
+            "height": ("height", heights, {"units": "m", "long_name": "asperity peak height"}),
+            "curvature": ("curvature", curvatures, {"units": "1/m", "long_name": "tip curvature"}),
+            "interference": ("interference", grid, {"units": "m", "long_name": "interference"}),
+        },
+    )
+    ds.attrs.update(fe_cost([by_key[str(k)] for k in np.unique(plan["key"].values)]))
+    ds["extrapolated"] = (dims, beyond, {
+        "units": "1", "long_name": "beyond the largest interference the FE jobs computed "
+        "(continued with the median slope of their last steps)"})
+    ds["aspect"] = (("height", "curvature"), heights[:, None] * curvatures[None, :], {
+        "units": "1", "long_name": "aspect q = kappa z_p of the coupled hill (2.5.1)"})
+    ds.attrs["aspects"] = np.asarray(plan.attrs["aspects"], float)
+    ds.attrs["interpolation"] = ("coupled hills scaled from the jobs of the two neighbouring aspects "
+                                 "at the same fraction of their amplitude, geometric in log aspect")
+    ds.attrs.update(aspect_check(plan, by_key))
+    return ds

@@ -202,3 +202,95 @@ def make_plan(
 def job_keys(plan: xr.Dataset) -> list[str]:
     """Keys of the samples that need a job of their own."""
     return [str(k) for k in plan["key"].values[plan["job"].values.astype(bool)]]
+
+
+def make_aspect_plan(
+    heights: np.ndarray,
+    curvatures: np.ndarray,
+    interferences: np.ndarray,
+    *,
+    model: str,
+    job_spec: Callable[[float, float, float], Mapping[str, Any]],
+    aspects: int,
+    check: bool,
+    reference_curvature: float,
+) -> xr.Dataset:
+    """The samples of coupled cosine hills (report 2.5.1) scaled from a family of FE
+    jobs at a few aspects (8.2.2's self-similar scaling, one job per aspect).
+
+    A sample of peak height z_p and tip curvature kappa is the hill of amplitude z_p
+    and aspect q = kappa z_p; `aspects` jobs (`asperity.population.geometry.
+    aspect_jobs`) compute the hills of aspects q_j spread over the samples' range, each
+    of tip curvature `reference_curvature` and amplitude q_j / reference_curvature. A
+    sample is derived from its two neighbouring jobs (``key`` the lower, ``upper_key``
+    the upper, ``aspect_weight`` t of the upper in log q; t = 0 at a job). With `check`
+    one more job at the geometric mean of two middle aspects is computed and left out
+    of the interpolation (``left_out``) to measure its error.
+
+    The samples come first, in (height, curvature) order, all derived (``job`` False);
+    the jobs follow as rows of their own (``family_job``), the hills they compute
+    (``sample_height`` the amplitude, ``sample_curvature`` the reference). `job_spec`
+    as for `make_plan`.
+    """
+    from asperity.population.geometry import aspect_jobs, aspect_weights
+
+    heights = np.asarray(heights, float)
+    curvatures = np.asarray(curvatures, float)
+    hh, kk = np.meshgrid(heights, curvatures, indexing="ij")
+    hh, kk = hh.ravel(), kk.ravel()
+    if np.any(hh <= 0):
+        raise ValueError("a coupled hill needs a peak height above the mean plane (2.5.1)")
+    qq = hh * kk
+    qj, qc = aspect_jobs(qq, aspects, check)
+    kref = float(reference_curvature)
+    job_q = np.append(qj, qc) if np.isfinite(qc) else qj
+    job_h = job_q / kref
+    job_specs = [spec_json(job_spec(h, kref, math.nan)) for h in job_h]
+    job_keys_ = [_digest(text) for text in job_specs]
+    j, t = aspect_weights(qq, qj)
+    n, m = hh.size, job_q.size
+    left = np.zeros(n + m, bool)
+    if np.isfinite(qc):
+        left[-1] = True
+    specs = [job_specs[i] for i in j] + job_specs
+    keys = np.array([job_keys_[i] for i in j] + job_keys_)
+    upper = np.array([job_keys_[i + 1] for i in j] + job_keys_)
+    family = np.r_[np.zeros(n, bool), np.ones(m, bool)]
+    sh, sk = np.r_[hh, job_h], np.r_[kk, np.full(m, kref)]
+    ds = xr.Dataset(
+        {
+            "sample_height": ("sample", sh, {"units": "m", "long_name": "peak height of the sample (of a job: its hill's amplitude)"}),
+            "sample_curvature": ("sample", sk, {"units": "1/m", "long_name": "mean tip curvature of the sample"}),
+            "unloading_level": ("sample", np.full(n + m, np.nan), {"units": "m", "long_name": "interference from which the sample unloads (NaN: loading only)"}),
+            "job_curvature": ("sample", np.full(n + m, kref), {"units": "1/m", "long_name": "tip curvature of the asperities the sample's jobs compute"}),
+            "scale": ("sample", kref / sk, {"units": "1", "long_name": "length scale of the sample over the hill of its aspect at the jobs' curvature"}),
+            "aspect": ("sample", sh * sk, {"units": "1", "long_name": "aspect q = kappa z_p = (k C)^2 of the coupled hill (2.5.1)"}),
+            "key": ("sample", keys, {"units": "1", "long_name": "hash of the inputs of the sample's (lower neighbouring) job"}),
+            "upper_key": ("sample", upper, {"units": "1", "long_name": "key of the upper neighbouring job in aspect"}),
+            "aspect_weight": ("sample", np.r_[t, np.zeros(m)], {"units": "1", "long_name": "weight t of the upper job: log q = (1 - t) log q_j + t log q_j+1"}),
+            "spec": ("sample", np.array(specs, dtype=object), {
+                "units": "1", "long_name": "what the sample's job depends on (JSON; its hash is the key)"}),
+            "derived_from": ("sample", np.r_[keys[:n], np.full(m, "")], {
+                "units": "1", "long_name": "key of the lower job this sample is interpolated from "
+                "(empty: computed itself)"}),
+            "job": ("sample", family, {"units": "1", "long_name": "sample needs a finite element job"}),
+            "family_job": ("sample", family, {"units": "1", "long_name": "a job of the family of aspects, not a sample of the grid"}),
+            "left_out": ("sample", left, {"units": "1", "long_name": "job computed to check the interpolation in aspect, left out of it"}),
+        },
+        coords={
+            "sample": ("sample", np.arange(n + m), {"units": "1", "long_name": "sample index"}),
+            "height": ("height", heights, {"units": "m", "long_name": "peak height grid"}),
+            "curvature": ("curvature", curvatures, {"units": "1/m", "long_name": "tip curvature grid"}),
+            "interference": ("interference", np.asarray(interferences, float), {
+                "units": "m", "long_name": "interference levels of every sample"}),
+        },
+    )
+    ds.attrs["model"] = model
+    ds.attrs["aspect_family"] = 1
+    ds.attrs["aspects"] = qj
+    ds.attrs["aspect_check"] = qc
+    ds.attrs["reference_curvature"] = kref
+    ds.attrs["derived"] = (f"{n} samples derived from {qj.size} jobs at aspects "
+                           f"{qj[0]:.3g} .. {qj[-1]:.3g} by scaling and interpolation in log aspect"
+                           + (f", one job at {qc:.3g} to check it" if np.isfinite(qc) else ""))
+    return ds

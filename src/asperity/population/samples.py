@@ -6,7 +6,9 @@ The plan lays samples on a grid over the effective support of the peak density
 (`asperity.population.kinds`) gives the interference grid, each sample's unloading
 levels and the spec of its job, whose hash is its key. Where the physics makes the
 samples one self-similar family (the same shape scaled, a scale-free body) one job
-computes the asperity of a reference curvature and the others are derived by scaling.
+computes the asperity of a reference curvature and the others are derived by scaling;
+coupled hills (2.5.1) under ``scaling: self_similar`` are scaled from a few jobs at
+fixed aspects and interpolated between them (`asperity.population.plan.make_aspect_plan`).
 """
 
 from __future__ import annotations
@@ -22,7 +24,7 @@ from asperity import peaks
 from asperity.population.density import bounds, population_density, population_stat
 from asperity.population.geometry import representative_width_to_height
 from asperity.population.kinds import Planning, SampleFailed, kind_of, kind_of_plan, kind_of_spec
-from asperity.population.plan import interference_grid, make_plan, sample_grid
+from asperity.population.plan import interference_grid, make_aspect_plan, make_plan, sample_grid
 from asperity.scene import Adhesion, Asperity, Material, Population
 from asperity.units import attrs
 
@@ -73,10 +75,25 @@ def scene_plan(surface_ds: xr.Dataset, population: Population, asperity: Asperit
         def check_of(h, k):
             return kind.levels(planning, h, k)[1]
 
-    out = make_plan(heights, curvatures, grid, model=asperity.model,
-                    job_spec=lambda h, k, level: kind.spec(planning, h, k, level),
-                    shift_invariant=asperity.shift_invariant, analytic=not kind.job,
-                    unloading_levels=levels_of, reference_curvature=reference)
+    if asperity.aspect_family and kind.job:  # coupled hills scaled from a few aspects (2.5.1, 8.2.2)
+        if "adhesion" in effects:
+            raise ValueError("effect `adhesion` has a length of its own (the range d): its coupled "
+                             "hills are no family of aspects (asperity.scaling: auto)")
+        if kind.unloads(effects):
+            raise ValueError("effect `unloading` is not available for the coupled hills' family of "
+                             "aspects (asperity.mapping coupled with scaling self_similar)")
+        reference = (asperity.reference_curvature if asperity.reference_curvature
+                     else float(np.sqrt(curvatures[0] * curvatures[-1])))
+        out = make_aspect_plan(heights, curvatures, grid, model=asperity.model,
+                               job_spec=lambda h, k, level: kind.spec(planning, h, k, level),
+                               aspects=asperity.aspects, check=asperity.aspect_check,
+                               reference_curvature=reference)
+        scaled = True
+    else:
+        out = make_plan(heights, curvatures, grid, model=asperity.model,
+                        job_spec=lambda h, k, level: kind.spec(planning, h, k, level),
+                        shift_invariant=asperity.shift_invariant, analytic=not kind.job,
+                        unloading_levels=levels_of, reference_curvature=reference)
     out.attrs["kind"] = kind.name
     if scaled and not material.rate_independent(effects):
         out.attrs["scaling_assumption"] = (

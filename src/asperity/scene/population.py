@@ -90,7 +90,8 @@ class Asperity:
     sphere; velocity [m/s] of the flat (None: not given); unloading_levels,
     unloading_smallest, unloading_check: the computed unloading paths (8.3); scaling:
     ``auto``, ``self_similar`` or ``none``; reference_curvature [1/m] of the computed
-    member of a self-similar family (None: the geometric mean of the grid).
+    member of a self-similar family (None: the geometric mean of the grid); aspects,
+    aspect_check: the FE jobs of the coupled hill's family of aspects (2.5.1, 8.2.2).
     """
 
     model: str
@@ -108,6 +109,8 @@ class Asperity:
     unloading_check: bool
     scaling: str
     reference_curvature: float | None
+    aspects: int = 6
+    aspect_check: bool = False
 
     @classmethod
     @parses("asperity")
@@ -126,12 +129,19 @@ class Asperity:
             unloading_smallest=section["unloading_smallest"],
             unloading_check=section["unloading_check"], scaling=section["scaling"],
             reference_curvature=reference / length if reference else None,
+            aspects=section.get("aspects", 6), aspect_check=section.get("aspect_check", False),
         )
 
     @property
     def coupled(self) -> bool:
         """A cosine hill whose amplitude is the sample's peak height (2.5.1)."""
         return self.geometry == "cosine" and self.mapping == "coupled"
+
+    @property
+    def aspect_family(self) -> bool:
+        """A coupled hill whose samples are scaled from FE jobs at a few aspects
+        q = kappa z_p (``scaling: self_similar``; 2.5.1, 8.2.2)."""
+        return self.coupled and self.scaling == "self_similar"
 
     @property
     def shift_invariant(self) -> bool:

@@ -108,14 +108,18 @@ class FiniteElementKind(Kind):
         """What every FE job depends on: the geometry (kind, mapping, resolved
         width-to-height ratio, the job's tip curvature; the peak height only for the
         coupled hill, whose shape depends on it), the interference range the job
-        computes (from the plan's grid, stretched over a self-similar family), and the
+        computes (from the plan's grid, stretched over a self-similar family; for a job
+        of the coupled hills' family of aspects the same fraction of its own depth), and the
         body (material in SI, effects, preset). Nothing else of the scene enters: a
         change of the population grid that leaves the range alone keeps the key."""
-        from asperity.population.geometry import job_range, sample_geometry
+        from asperity.population.geometry import aspect_job_range, job_range, sample_geometry
 
         asperity = planning.asperity
         geometry = sample_geometry(asperity, curvature, planning.width_to_height, height)
-        first, top = job_range(geometry, asperity, planning.grid, curvature, planning.family)
+        if asperity.aspect_family:  # a job of the coupled hills' family of aspects: scale free
+            first, top = aspect_job_range(geometry, asperity, planning.grid)
+        else:
+            first, top = job_range(geometry, asperity, planning.grid, curvature, planning.family)
         spec = {
             "model": "fe",
             "geometry": asperity.geometry,
@@ -134,8 +138,10 @@ class FiniteElementKind(Kind):
         return spec
 
     def gather(self, plan, samples):
-        from asperity.population.gather import gather
+        from asperity.population.gather import gather, gather_aspects
 
+        if plan.attrs.get("aspect_family"):
+            return gather_aspects(plan, samples)
         return gather(plan, samples)
 
     @staticmethod

@@ -2,7 +2,9 @@
 6.1, 7.2, 7.3 without plasticity).
 
 One job per curvature (shift invariant in height; one job in all for a self-similar
-family), except the coupled cosine hill (one per sample). A job computes ``levels``
+family), except the coupled cosine hill: one per sample, or with ``scaling:
+self_similar`` one per aspect q = kappa z_p of its family (2.5.1, 8.2.2;
+`asperity.population.plan.make_aspect_plan`). A job computes ``levels``
 geometric interferences over its range with `asperity.fe.solve_asperity`, with the
 ``contact`` model of the scene (penalty or exact).
 """

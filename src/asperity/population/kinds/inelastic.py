@@ -8,7 +8,8 @@ range, or to its unloading level and back to zero force
 (`asperity.fe.solve_asperity_history`). With unloading, every sample has one job per
 level (`asperity.population.geometry.unloading_levels`), on one mesh adapted to the
 asperity's whole range so that the loading branches of its levels coincide (the
-corners of the blend, 8.3).
+corners of the blend, 8.3). Coupled cosine hills (2.5.1) are loaded only: one job per
+sample, or per aspect of their family under ``scaling: self_similar`` (8.2.2).
 """
 
 from __future__ import annotations
