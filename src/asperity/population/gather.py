@@ -217,23 +217,35 @@ def gather(plan: xr.Dataset, samples: Mapping[str, xr.Dataset]) -> xr.Dataset:
             curves[name][u] = c[name]
         beyond[u] = c["beyond"]
     shape = (heights.size, curvatures.size, grid.size)
+    ds = _grid_dataset(plan, {name: curves[name][index].reshape(shape) for name in names},
+                       beyond[index].reshape(shape), by_key,
+                       "beyond the largest interference the FE job computed "
+                       "(continued with the median slope of its last steps)")
+    if np.isfinite(level).any():
+        ds = ds.merge(_unloading_paths(plan, by_key))
+    return ds
+
+
+def _grid_dataset(plan: xr.Dataset, data: Mapping[str, np.ndarray], beyond: np.ndarray,
+                  by_key: Mapping[str, xr.Dataset], extrapolated: str) -> xr.Dataset:
+    """The gathered responses `data` (name -> values on the plan's height x curvature x
+    interference grid) as a Dataset, with the FE cost of the jobs and the flag `beyond`
+    (long name `extrapolated`)."""
     dims = ("height", "curvature", "interference")
     ds = xr.Dataset(
-        {name: (dims, curves[name][index].reshape(shape),
-                {"units": GATHERED_ATTRS[name][0], "long_name": GATHERED_ATTRS[name][1]})
-         for name in names},
+        {name: (dims, data[name], {"units": GATHERED_ATTRS[name][0], "long_name": GATHERED_ATTRS[name][1]})
+         for name in GATHERED_ATTRS},
         coords={
-            "height": ("height", heights, {"units": "m", "long_name": "asperity peak height"}),
-            "curvature": ("curvature", curvatures, {"units": "1/m", "long_name": "tip curvature"}),
-            "interference": ("interference", grid, {"units": "m", "long_name": "interference"}),
+            "height": ("height", plan["height"].values,
+                       {"units": "m", "long_name": "asperity peak height"}),
+            "curvature": ("curvature", plan["curvature"].values,
+                          {"units": "1/m", "long_name": "tip curvature"}),
+            "interference": ("interference", plan["interference"].values,
+                             {"units": "m", "long_name": "interference"}),
         },
     )
     ds.attrs.update(fe_cost([by_key[str(k)] for k in np.unique(plan["key"].values)]))
-    ds["extrapolated"] = (dims, beyond[index].reshape(shape), {
-        "units": "1", "long_name": "beyond the largest interference the FE job computed "
-        "(continued with the median slope of its last steps)"})
-    if np.isfinite(level).any():
-        ds = ds.merge(_unloading_paths(plan, by_key))
+    ds["extrapolated"] = (dims, beyond, {"units": "1", "long_name": extrapolated})
     return ds
 
 
@@ -397,20 +409,9 @@ def gather_aspects(plan: xr.Dataset, samples: Mapping[str, xr.Dataset]) -> xr.Da
         for name in names:
             data[name][i, k] = c[name]
         beyond[i, k] = c["beyond"]
-    dims = ("height", "curvature", "interference")
-    ds = xr.Dataset(
-        {name: (dims, data[name], {"units": GATHERED_ATTRS[name][0], "long_name": GATHERED_ATTRS[name][1]})
-         for name in names},
-        coords={
-            "height": ("height", heights, {"units": "m", "long_name": "asperity peak height"}),
-            "curvature": ("curvature", curvatures, {"units": "1/m", "long_name": "tip curvature"}),
-            "interference": ("interference", grid, {"units": "m", "long_name": "interference"}),
-        },
-    )
-    ds.attrs.update(fe_cost([by_key[str(k)] for k in np.unique(plan["key"].values)]))
-    ds["extrapolated"] = (dims, beyond, {
-        "units": "1", "long_name": "beyond the largest interference the FE jobs computed "
-        "(continued with the median slope of their last steps)"})
+    ds = _grid_dataset(plan, data, beyond, by_key,
+                       "beyond the largest interference the FE jobs computed "
+                       "(continued with the median slope of their last steps)")
     ds["aspect"] = (("height", "curvature"), heights[:, None] * curvatures[None, :], {
         "units": "1", "long_name": "aspect q = kappa z_p of the coupled hill (2.5.1)"})
     ds.attrs["aspects"] = np.asarray(plan.attrs["aspects"], float)
