@@ -48,7 +48,7 @@ SCENE = "asperity_sliding"
 RESULTS = Path(__file__).with_name("results")
 OUT = Path(__file__).with_name("out") / "sliding"
 STEP = re.compile(r"step (\d+): t = (\S+) s, w = (\S+) m, delta = (\S+) m, "
-                  r"F_N = (\S+) N, F_T = (\S+) N")
+                  r"F_N = (\S+) N, F_T = (\S+) N(?:, A = (\S+) m\^2)?")
 REPORT_TRACTION = 64e6           # Pa, report 9.2
 
 
@@ -147,17 +147,21 @@ def history(preset: str, out: Path) -> dict | None:
     log = out / f"{preset}.log"
     if not log.exists():
         return None
-    rows = [tuple(float(x) for x in m.groups()[1:]) for m in map(STEP.search, log.read_text().splitlines())
-            if m]
-    dofs = re.search(r"mesh: \d+ tetrahedra, (\d+) dofs", log.read_text())
-    wall = re.findall(r"^\[\s*(\S+) s\]", log.read_text(), flags=re.M)
+    text = log.read_text()
+    rows = [tuple(float(x) if x is not None else math.nan for x in m.groups()[1:])
+            for m in map(STEP.search, text.splitlines()) if m]
+    dofs = re.search(r"mesh: \d+ tetrahedra, (\d+) dofs", text)
+    wall = re.findall(r"^\[\s*([0-9.]+)\s*s\]", text, flags=re.M)
     if not rows:
         return None
-    r = np.array([(0.0, 0.0, 0.0, 0.0, 0.0)] + rows)
-    return dict(time=r[:, 0], normal_force=r[:, 3], tangential_force=r[:, 4],
-                phase=np.where(r[:, 2] > 0, "sliding", "normal"), completed=False,
-                dofs=int(dofs.group(1)) if dofs else None, steps=len(rows),
-                wall_time_reached=float(wall[-1]) if wall else None)
+    r = np.array([(0.0, 0.0, 0.0, 0.0, 0.0, 0.0)] + rows)
+    h = dict(time=r[:, 0], normal_force=r[:, 3], tangential_force=r[:, 4],
+             phase=np.where(r[:, 2] > 0, "sliding", "normal"), completed=False,
+             dofs=int(dofs.group(1)) if dofs else None, steps=len(rows),
+             wall_time_reached=float(wall[-1]) if wall else None)
+    if np.all(np.isfinite(r[:, 5])):
+        h["contact_area"] = r[:, 5]
+    return h
 
 
 def phase_of(h, t):
