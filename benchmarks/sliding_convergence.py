@@ -65,12 +65,56 @@ def scene() -> dict:
 
 
 # ---------------------------------------------------------------------------- one preset
+def patch_diagnostics(tn, tx, cw, x, stress) -> dict:
+    """The contact patch of one step against the stresses under it.
+
+    tn, tx (nf, nq): pressure and x traction at the contact points; cw (nf, nq) their
+    weights; x (nf, nq) their undeformed x; stress (6, nf, nqv) at the volume points of
+    the elements of the contact facets.  Areas are of the whole model (twice the half).
+    """
+    on = tn > 0
+    if not on.any():
+        return dict(points=0, facets=0)
+    fac = on.any(axis=1)
+    sx, sy, sz, sxy, sxz, syz = stress[:, fac]
+    q = np.sqrt(0.5 * ((sx - sy) ** 2 + (sy - sz) ** 2 + (sz - sx) ** 2)
+                + 3.0 * (sxy ** 2 + sxz ** 2 + syz ** 2))
+    return dict(points=int(on.sum()), facets=int(fac.sum()),
+                area_of_touching_facets=2.0 * float(cw[fac].sum()),
+                largest_point_tangential_traction=float(np.abs(tx[on]).max()),
+                largest_patch_shear_stress=float(np.abs(sxz).max()),
+                largest_patch_mises_stress=float(q.max()),
+                x_touching=[float(x[on].min()), float(x[on].max())])
+
+
+def _hook_diagnostics(path: Path):
+    """Write `patch_diagnostics` of every recorded step to `path` (one JSON a line)."""
+    import asperity.fe.solid3d as s3
+
+    record = s3.SlidingModel.record
+    sink = open(path, "w")
+
+    def recorded(self, u, w, delta, out):
+        rec = record(self, u, w, delta, out)
+        m, c = self.m, out["contact"]
+        d = patch_diagnostics(c["tn"], c["txy"][0], m.cw, m.cX[0], out["stress"][:, m.ctind])
+        sink.write(json.dumps(dict(d, normal_displacement=w, tangential_displacement=delta,
+                                   tangential_force=rec["tangential_force"],
+                                   contact_area=rec["contact_area"])) + "\n")
+        sink.flush()
+        return rec
+
+    s3.SlidingModel.record = recorded
+
+
 def worker(preset: str, out: Path) -> None:
     """Run the scene at `preset`; progress lines to out/<preset>.log, the dataset to
-    out/<preset>.nc (with its CPU time)."""
+    out/<preset>.nc (with its CPU time), the contact patch of every step to
+    out/<preset>.patch.jsonl."""
     from asperity.stages.sliding import sliding_dataset
 
     sc = scene()
+    _hook_diagnostics(out / f"{preset}.patch.jsonl")
     log = open(out / f"{preset}.log", "w")
     t0, c0 = time.perf_counter(), time.process_time()
 
@@ -231,6 +275,31 @@ def sliding_summary(h: dict) -> dict:
     return d
 
 
+def patch_summary(preset: str, out: Path) -> dict:
+    """Over the sliding steps with contact: the patch in facets, the largest traction at a
+    contact point, the largest shear and Mises stress in the patch's elements, F_T over
+    the whole area of the facets that touch, where the touching points lie."""
+    path = out / f"{preset}.patch.jsonl"
+    if not path.exists():
+        return {}
+    rows = [json.loads(line) for line in path.read_text().splitlines() if line.strip()]
+    press = [r for r in rows if r["tangential_displacement"] == 0 and r["points"]]
+    slide = [r for r in rows if r["tangential_displacement"] > 0 and r["points"]]
+    if not slide:
+        return {}
+    tau_f = [r["tangential_force"] / r["area_of_touching_facets"] for r in slide]
+    return dict(
+        patch_facets_sliding=[min(r["facets"] for r in slide), max(r["facets"] for r in slide)],
+        patch_facets_pressing_end=press[-1]["facets"] if press else None,
+        largest_point_tangential_traction_sliding=max(
+            r["largest_point_tangential_traction"] for r in slide),
+        largest_patch_shear_stress_sliding=max(r["largest_patch_shear_stress"] for r in slide),
+        largest_patch_mises_stress_sliding=max(r["largest_patch_mises_stress"] for r in slide),
+        tangential_force_over_touching_facets_sliding=[min(tau_f), max(tau_f)],
+        x_touching_first_sliding_step=slide[0]["x_touching"],
+        x_touching_last_step=slide[-1]["x_touching"])
+
+
 def shear_flow_stress(sc: dict) -> dict:
     """k = q / sqrt 3 at Z = Z1 (saturated) from p_dot = (2 / sqrt 3) D0 exp[-1/2 (Z/q)^(2n)]."""
     m = sc["sliding"]["material"]
@@ -268,6 +337,7 @@ def main(argv=None) -> int:
         info = {k: v for k, v in h.items() if not isinstance(v, np.ndarray)}
         info["time_reached"] = float(h["time"][-1])
         info.update(sliding_summary(h))
+        info.update(patch_summary(p, a.out))
         res["presets"][p] = info
     done = [p for p in a.presets if runs.get(p) is not None]
     for c, f in zip(done, done[1:]):
