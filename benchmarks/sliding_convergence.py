@@ -25,6 +25,7 @@ and prints a table.  Nothing is asserted here.
     python benchmarks/sliding_convergence.py                         # draft, standard, fine
     python benchmarks/sliding_convergence.py --presets draft standard
     python benchmarks/sliding_convergence.py --reuse                 # compare the runs in --out
+    python benchmarks/sliding_convergence.py --presets draft --out /tmp/s --results /tmp/s.json
 """
 
 from __future__ import annotations
@@ -208,10 +209,6 @@ def history(preset: str, out: Path) -> dict | None:
     return h
 
 
-def phase_of(h, t):
-    return np.where(t <= 1800.0 * (1 + 1e-12), "pressing", "sliding")
-
-
 def compare(coarse: dict, fine: dict) -> dict:
     """Largest differences of the force histories (module docstring)."""
     out = {}
@@ -236,40 +233,49 @@ def compare(coarse: dict, fine: dict) -> dict:
                                     np.abs(fc).max(), np.abs(ff).max()) / scale_n))
                 continue
             out[key] = dict(
-                largest_relative_difference=float(np.abs(fc - ff).max() / peak) if peak > 0 else None,
+                largest_relative_difference=(float(np.abs(fc - ff).max() / peak)
+                                             if peak > 0 else None),
                 at_time=float(tc[sel][int(np.argmax(np.abs(fc - ff)))]),
                 mean_coarse=float(fc.mean()), mean_fine=float(ff.mean()),
-                relative_difference_of_means=float(fc.mean() / ff.mean() - 1) if ff.mean() else None,
+                relative_difference_of_means=(float(fc.mean() / ff.mean() - 1)
+                                              if ff.mean() else None),
                 compared_up_to=float(tc[sel][-1]), points=int(sel.sum()))
     return out
 
 
 def sliding_summary(h: dict) -> dict:
+    """End of pressing and the sliding phase of one run; tractions are means over the
+    sliding steps with contact of F_T / A (A the model's contact area)."""
     s = (h["phase"] == "sliding") & (h["time"] > 1800.0)
     if not s.any():
         return {}
     fn, ft = h["normal_force"][s], h["tangential_force"][s]
     press = h["time"] <= 1800.0
+
+    def step_change(f):
+        return float(np.abs(np.diff(f)).max() / max(abs(f.mean()), 1e-300)) if f.size > 1 else None
+
     d = dict(
         normal_force_end_of_pressing=float(h["normal_force"][press][-1]),
         mean_normal_force_sliding=float(fn.mean()), mean_tangential_force_sliding=float(ft.mean()),
-        largest_step_change_normal_force=float(np.abs(np.diff(fn)).max() / fn.mean()) if fn.size > 1 else None,
-        largest_step_change_tangential_force=float(np.abs(np.diff(ft)).max() / max(abs(ft.mean()), 1e-300))
-        if ft.size > 1 else None,
-        sliding_steps=int(s.sum()), steps_without_tangential_force=int(np.sum((ft == 0.0) & (fn > 0))),
+        largest_step_change_normal_force=step_change(fn),
+        largest_step_change_tangential_force=step_change(ft),
+        sliding_steps=int(s.sum()),
+        steps_without_tangential_force=int(np.sum((ft == 0.0) & (fn > 0))),
         sliding_reached=float(h["time"][s][-1]))
     if "contact_area" in h:
         a = h["contact_area"]
         on = s & (a > 0)
+        engaged = on & (h["tangential_force"] > 0)
+        tau = h["tangential_force"] / np.where(a > 0, a, 1.0)
         d.update(
             contact_area_end_of_pressing=float(a[press][-1]),
             mean_pressure_end_of_pressing=float(h["normal_force"][press][-1] / a[press][-1]),
             mean_contact_area_sliding=float(a[on].mean()),
-            mean_tangential_traction_sliding=float(np.mean(h["tangential_force"][on] / a[on])),
-            largest_tangential_traction_sliding=float(np.max(h["tangential_force"][on] / a[on])),
-            mean_tangential_traction_sliding_engaged=float(np.mean(
-                (h["tangential_force"] / np.where(a > 0, a, 1.0))[on & (h["tangential_force"] > 0)]))
-            if np.any(on & (h["tangential_force"] > 0)) else None,
+            mean_tangential_traction_sliding=float(tau[on].mean()),
+            largest_tangential_traction_sliding=float(tau[on].max()),
+            mean_tangential_traction_sliding_engaged=(float(tau[engaged].mean())
+                                                      if engaged.any() else None),
             tangential_traction_on_end_of_pressing_area=float(
                 h["tangential_force"][on].mean() / a[press][-1]))
     return d
@@ -318,6 +324,7 @@ def main(argv=None) -> int:
     ap.add_argument("--timeout", type=float, default=3 * 3600.0, help="seconds per preset")
     ap.add_argument("--jobs", type=int, default=1)
     ap.add_argument("--reuse", action="store_true", help="compare the runs already in --out")
+    ap.add_argument("--results", type=Path, default=RESULTS / "sliding-convergence.json")
     ap.add_argument("--worker", help=argparse.SUPPRESS)
     a = ap.parse_args(argv)
     a.out.mkdir(parents=True, exist_ok=True)
@@ -328,8 +335,10 @@ def main(argv=None) -> int:
         run(a.presets, a.out, a.timeout, a.jobs)
     sc = scene()
     runs = {p: history(p, a.out) for p in a.presets}
-    res = dict(scene=SCENE, report="9.2, Figs. 9.4, 9.5", report_mean_tangential_traction=REPORT_TRACTION,
-               shear_flow_stress_at_Z1_by_inelastic_rate=shear_flow_stress(sc), presets={}, comparisons={})
+    res = dict(scene=SCENE, report="9.2, Figs. 9.4, 9.5",
+               report_mean_tangential_traction=REPORT_TRACTION,
+               shear_flow_stress_at_Z1_by_inelastic_rate=shear_flow_stress(sc),
+               presets={}, comparisons={})
     for p, h in runs.items():
         if h is None:
             res["presets"][p] = dict(missing=True)
@@ -342,8 +351,8 @@ def main(argv=None) -> int:
     done = [p for p in a.presets if runs.get(p) is not None]
     for c, f in zip(done, done[1:]):
         res["comparisons"][f"{c} vs {f}"] = compare(runs[c], runs[f])
-    RESULTS.mkdir(exist_ok=True)
-    path = RESULTS / "sliding-convergence.json"
+    path = a.results
+    path.parent.mkdir(parents=True, exist_ok=True)
     path.write_text(json.dumps(res, indent=1, default=float) + "\n")
 
     print(f"{'preset':9s} {'dofs':>6s} {'steps':>5s} {'cuts':>4s} {'CPU s':>7s} {'reached s':>9s} "
@@ -365,10 +374,12 @@ def main(argv=None) -> int:
                       f"{v['largest_over_normal_force']:.1e} F_N")
                 continue
             print(f"{pair:20s} {k:28s} largest {100 * v['largest_relative_difference']:6.1f} % "
-                  f"(t = {v['at_time']:.0f} s), means {100 * v['relative_difference_of_means']:+6.1f} %, "
+                  f"(t = {v['at_time']:.0f} s), means "
+                  f"{100 * v['relative_difference_of_means']:+6.1f} %, "
                   f"up to t = {v['compared_up_to']:.0f} s")
-    print(f"shear flow stress k at Z1: " + ", ".join(
-        f"{1e-6 * v:.0f} MPa at {r} 1/s" for r, v in res["shear_flow_stress_at_Z1_by_inelastic_rate"].items()))
+    k = res["shear_flow_stress_at_Z1_by_inelastic_rate"]
+    print("shear flow stress k at Z1: "
+          + ", ".join(f"{1e-6 * v:.0f} MPa at {r} 1/s" for r, v in k.items()))
     print(f"wrote {path}")
     return 0
 
