@@ -66,21 +66,24 @@ def scene() -> dict:
 
 
 # ---------------------------------------------------------------------------- one preset
-def patch_diagnostics(tn, tx, cw, x, stress) -> dict:
+def patch_diagnostics(tn, tx, cw, x, stress, before=None) -> dict:
     """The contact patch of one step against the stresses under it.
 
     tn, tx (nf, nq): pressure and x traction at the contact points; cw (nf, nq) their
     weights; x (nf, nq) their undeformed x; stress (6, nf, nqv) at the volume points of
-    the elements of the contact facets.  Areas are of the whole model (twice the half).
+    the elements of the contact facets; before (nf, nq): which points touched in the
+    step before.  Areas are of the whole model (twice the half).
     """
     on = tn > 0
+    changes = {} if before is None else dict(entered=int(np.sum(on & ~before)),
+                                             left=int(np.sum(before & ~on)))
     if not on.any():
-        return dict(points=0, facets=0)
+        return dict(points=0, facets=0, **changes)
     fac = on.any(axis=1)
     sx, sy, sz, sxy, sxz, syz = stress[:, fac]
     q = np.sqrt(0.5 * ((sx - sy) ** 2 + (sy - sz) ** 2 + (sz - sx) ** 2)
                 + 3.0 * (sxy ** 2 + sxz ** 2 + syz ** 2))
-    return dict(points=int(on.sum()), facets=int(fac.sum()),
+    return dict(points=int(on.sum()), facets=int(fac.sum()), **changes,
                 area_of_touching_facets=2.0 * float(cw[fac].sum()),
                 largest_point_tangential_traction=float(np.abs(tx[on]).max()),
                 largest_patch_shear_stress=float(np.abs(sxz).max()),
@@ -94,11 +97,14 @@ def _hook_diagnostics(path: Path):
 
     record = s3.SlidingModel.record
     sink = open(path, "w")
+    last = {}
 
     def recorded(self, u, w, delta, out):
         rec = record(self, u, w, delta, out)
         m, c = self.m, out["contact"]
-        d = patch_diagnostics(c["tn"], c["txy"][0], m.cw, m.cX[0], out["stress"][:, m.ctind])
+        d = patch_diagnostics(c["tn"], c["txy"][0], m.cw, m.cX[0], out["stress"][:, m.ctind],
+                              last.get("touching"))
+        last["touching"] = c["tn"] > 0
         sink.write(json.dumps(dict(d, normal_displacement=w, tangential_displacement=delta,
                                    tangential_force=rec["tangential_force"],
                                    contact_area=rec["contact_area"])) + "\n")
@@ -294,7 +300,11 @@ def patch_summary(preset: str, out: Path) -> dict:
     if not slide:
         return {}
     tau_f = [r["tangential_force"] / r["area_of_touching_facets"] for r in slide]
+    moved = [r for r in slide if r.get("entered", 0) + r.get("left", 0) > 0]
     return dict(
+        sliding_steps_with_points_entering_or_leaving=len(moved) if "entered" in slide[0]
+        else None,
+        contact_points_sliding=[min(r["points"] for r in slide), max(r["points"] for r in slide)],
         patch_facets_sliding=[min(r["facets"] for r in slide), max(r["facets"] for r in slide)],
         patch_facets_pressing_end=press[-1]["facets"] if press else None,
         largest_point_tangential_traction_sliding=max(
