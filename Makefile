@@ -8,7 +8,7 @@ CORES ?= 2
 export OPENBLAS_NUM_THREADS = 1
 export OMP_NUM_THREADS = 1
 
-.PHONY: all reproduce test test-fast bench time-scenes time-jobs time-adhesion time-plane-strain time-reference time-surface compare-results figures clean-results
+.PHONY: all reproduce test test-fast bench time-scenes time-jobs time-adhesion time-plane-strain time-reference time-surface time-sliding compare-results figures clean-results
 
 all: reproduce
 
@@ -64,6 +64,14 @@ time-plane-strain: $(STAMP)
 # benchmarks/results/reference-draft.json.
 time-reference: $(STAMP)
 	$(BIN)/python benchmarks/reference_cost.py --accuracy draft --cores $(CORES)
+
+# The sliding study (asperity_sliding, report 9.2) at draft, standard and fine, one core
+# each (fine alone takes hours): force histories compared between presets, the mean
+# tangential traction; writes benchmarks/results/sliding-convergence.json.
+# Fewer presets or a time limit: make time-sliding SLIDING_ARGS="--presets draft standard"
+SLIDING_ARGS ?=
+time-sliding: $(STAMP)
+	$(BIN)/python benchmarks/sliding_convergence.py $(SLIDING_ARGS)
 
 # Form removal, statistics and peaks of a 2048 x 2048 map with 10 % undefined points,
 # beside SurfaceTopography's rms height, gradient and curvature of the same map;

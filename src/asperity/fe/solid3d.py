@@ -1088,6 +1088,7 @@ def solve_sliding(geometry, material, motion: FlatMotion, friction: FrictionLaw,
                            _largest_deformation(model, u, w, state, a_ref))
         say(f"step {n}: t = {t:.6g} s, w = {w:.4g} m, delta = {delta:.4g} m, "
             f"F_N = {rec['normal_force']:.4g} N, F_T = {rec['tangential_force']:.4g} N, "
+            f"A = {rec['contact_area']:.4g} m^2, "
             f"{iterations} Newton iterations, {cuts} cuts")
         if iterations <= FAST and cuts == 0:
             dt = GROWTH * h

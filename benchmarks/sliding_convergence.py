@@ -1,0 +1,398 @@
+"""Convergence of the sliding study `asperity_sliding` (`make time-sliding`).
+
+Runs the scene's 3-D asperity (report 9.2: pressed 0.125 um in 0-1800 s, slid 1.0 um
+in 1800-4000 s with a friction coefficient of 20) at the sliding presets, one process
+per preset (one BLAS thread, `nice`), and compares:
+
+* the normal and tangential force histories of each preset with the next finer one:
+  the finer history interpolated (linearly in time) onto the coarser one's step times,
+  over the pressing phase (0 < t <= 1800 s) and the sliding phase (t > 1800 s), and
+  the largest difference divided by the largest force of the finer run in that phase
+  ("largest relative difference"); also the difference of the phase means;
+* what each run costs (dofs, steps, cuts, Newton iterations, CPU time);
+* the mean tangential traction while sliding, F_T / A, A the contact area of the
+  model (quadrature weights of the contact points with a positive pressure), next to
+  the shear flow stress k = q / sqrt 3 of the Bodner-Partom steel at its saturated
+  hardness Z1, which bounds any shear traction the bulk can carry, and to the
+  report's 64 MPa;
+* how the forces scatter while sliding: the step-to-step changes, and the steps
+  whose tangential force is zero although the flat touches (the junction released).
+
+A preset that did not finish within ``--timeout`` is compared over the part of the
+history it reached (from its log).  Writes benchmarks/results/sliding-convergence.json
+and prints a table.  Nothing is asserted here.
+
+    python benchmarks/sliding_convergence.py                         # draft, standard, fine
+    python benchmarks/sliding_convergence.py --presets draft standard
+    python benchmarks/sliding_convergence.py --reuse                 # compare the runs in --out
+    python benchmarks/sliding_convergence.py --presets draft --out /tmp/s --results /tmp/s.json
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import os
+import re
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+import xarray as xr
+
+ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT))  # run as a script: `benchmarks` importable
+SCENE = "asperity_sliding"
+RESULTS = Path(__file__).with_name("results")
+OUT = Path(__file__).with_name("out") / "sliding"
+STEP = re.compile(r"step (\d+): t = (\S+) s, w = (\S+) m, delta = (\S+) m, "
+                  r"F_N = (\S+) N, F_T = (\S+) N(?:, A = (\S+) m\^2)?")
+REPORT_TRACTION = 64e6           # Pa, report 9.2
+
+
+def scene() -> dict:
+    """The scene, validated against the workflow's schema (defaults filled in)."""
+    import yaml
+    from snakemake.utils import validate
+
+    sc = yaml.safe_load((ROOT / "config" / "scenes" / f"{SCENE}.yaml").read_text())
+    config = {"scenes": [SCENE], "accuracy": "draft", "results": "results",
+              "scene_dir": str(ROOT / "config" / "scenes"), "scene_definitions": {SCENE: sc}}
+    validate(config, str(ROOT / "config" / "schema.yaml"))
+    return sc
+
+
+# ---------------------------------------------------------------------------- one preset
+def patch_diagnostics(tn, tx, cw, x, stress, before=None) -> dict:
+    """The contact patch of one step against the stresses under it.
+
+    tn, tx (nf, nq): pressure and x traction at the contact points; cw (nf, nq) their
+    weights; x (nf, nq) their undeformed x; stress (6, nf, nqv) at the volume points of
+    the elements of the contact facets; before (nf, nq): which points touched in the
+    step before.  Areas are of the whole model (twice the half).
+    """
+    on = tn > 0
+    changes = {} if before is None else dict(entered=int(np.sum(on & ~before)),
+                                             left=int(np.sum(before & ~on)))
+    if not on.any():
+        return dict(points=0, facets=0, **changes)
+    fac = on.any(axis=1)
+    sx, sy, sz, sxy, sxz, syz = stress[:, fac]
+    q = np.sqrt(0.5 * ((sx - sy) ** 2 + (sy - sz) ** 2 + (sz - sx) ** 2)
+                + 3.0 * (sxy ** 2 + sxz ** 2 + syz ** 2))
+    return dict(points=int(on.sum()), facets=int(fac.sum()), **changes,
+                area_of_touching_facets=2.0 * float(cw[fac].sum()),
+                largest_point_tangential_traction=float(np.abs(tx[on]).max()),
+                largest_patch_shear_stress=float(np.abs(sxz).max()),
+                largest_patch_mises_stress=float(q.max()),
+                x_touching=[float(x[on].min()), float(x[on].max())])
+
+
+def _hook_diagnostics(path: Path):
+    """Write `patch_diagnostics` of every recorded step to `path` (one JSON a line)."""
+    import asperity.fe.solid3d as s3
+
+    record = s3.SlidingModel.record
+    sink = open(path, "w")
+    last = {}
+
+    def recorded(self, u, w, delta, out):
+        rec = record(self, u, w, delta, out)
+        m, c = self.m, out["contact"]
+        d = patch_diagnostics(c["tn"], c["txy"][0], m.cw, m.cX[0], out["stress"][:, m.ctind],
+                              last.get("touching"))
+        last["touching"] = c["tn"] > 0
+        sink.write(json.dumps(dict(d, normal_displacement=w, tangential_displacement=delta,
+                                   tangential_force=rec["tangential_force"],
+                                   contact_area=rec["contact_area"])) + "\n")
+        sink.flush()
+        return rec
+
+    s3.SlidingModel.record = recorded
+
+
+def worker(preset: str, out: Path) -> None:
+    """Run the scene at `preset`; progress lines to out/<preset>.log, the dataset to
+    out/<preset>.nc (with its CPU time), the contact patch of every step to
+    out/<preset>.patch.jsonl."""
+    from asperity.stages.sliding import sliding_dataset
+
+    sc = scene()
+    _hook_diagnostics(out / f"{preset}.patch.jsonl")
+    log = open(out / f"{preset}.log", "w")
+    t0, c0 = time.perf_counter(), time.process_time()
+
+    def say(s):
+        log.write(f"[{time.perf_counter() - t0:9.1f} s] {s}\n")
+        log.flush()
+
+    ds = sliding_dataset(SCENE, sc["sliding"], sc["units"], preset, progress=say)
+    ds.attrs["cpu_time"] = time.process_time() - c0
+    ds.attrs["wall_time"] = time.perf_counter() - t0
+    say(f"done: {ds.attrs['cpu_time']:.1f} s CPU")
+    save(ds, out / f"{preset}.nc")
+
+
+def save(ds: xr.Dataset, path: Path) -> None:
+    """The dataset as netCDF (the step phases as strings, no booleans or None)."""
+    ds = ds.copy()
+    ds["phase"] = ds["phase"].astype(str)
+    for k, v in list(ds.attrs.items()):
+        if isinstance(v, (bool, np.bool_)):
+            ds.attrs[k] = int(v)
+        elif v is None:
+            del ds.attrs[k]
+    ds.to_netcdf(path)
+
+
+def run(presets, out: Path, timeout: float, jobs: int) -> None:
+    """The presets in child processes, at most `jobs` at a time, finest first (it
+    has the most time); a child past `timeout` seconds is stopped (its log stays)."""
+    env = dict(os.environ, OPENBLAS_NUM_THREADS="1", OMP_NUM_THREADS="1",
+               PYTHONPATH=str(ROOT / "src") + os.pathsep + os.environ.get("PYTHONPATH", ""))
+    order = sorted(presets, key=lambda p: -["draft", "standard", "fine"].index(p)
+                   if p in ("draft", "standard", "fine") else 0)
+    running: list[tuple[str, subprocess.Popen, float]] = []
+    while order or running:
+        while order and len(running) < jobs:
+            p = order.pop(0)
+            (out / f"{p}.nc").unlink(missing_ok=True)
+            cmd = ["nice", "-n", "15", sys.executable, __file__, "--worker", p, "--out", str(out)]
+            running.append((p, subprocess.Popen(cmd, env=env), time.perf_counter()))
+        time.sleep(2.0)
+        for item in list(running):
+            p, proc, t0 = item
+            if proc.poll() is not None:
+                running.remove(item)
+                if proc.returncode:
+                    print(f"{p}: exited with {proc.returncode} (see {out / (p + '.log')})")
+            elif time.perf_counter() - t0 > timeout:
+                proc.terminate()
+                proc.wait()
+                running.remove(item)
+                print(f"{p}: stopped after {timeout:.0f} s; compared over what it reached")
+
+
+# ------------------------------------------------------------------------------ compare
+def history(preset: str, out: Path) -> dict | None:
+    """A run's history: from its dataset when it finished, else from its log."""
+    nc = out / f"{preset}.nc"
+    if nc.exists():
+        with xr.open_dataset(nc) as ds:
+            ds = ds.load()
+        h = {k: ds[k].values.astype(float) for k in
+             ("time", "normal_force", "tangential_force", "contact_area", "newton_iterations",
+              "step_cuts")}
+        h["phase"] = ds["phase"].values.astype(str)
+        a = ds.attrs
+        h.update(completed=bool(a["completed"]), dofs=int(a["dofs"]), steps=int(a["steps"]),
+                 cuts=int(a["total_step_cuts"]), newton=int(a["total_newton_iterations"]),
+                 cpu_time=float(a["cpu_time"]), contact_facets=int(a["contact_facets"]),
+                 tip_element_size=float(a["tip_element_size"]),
+                 largest_deformation=str(a["largest_deformation"]),
+                 largest_inelastic_strain=float(ds["max_inelastic_strain"].values[-1]))
+        return h
+    log = out / f"{preset}.log"
+    if not log.exists():
+        return None
+    text = log.read_text()
+    rows = [tuple(float(x) if x is not None else math.nan for x in m.groups()[1:])
+            for m in map(STEP.search, text.splitlines()) if m]
+    dofs = re.search(r"mesh: \d+ tetrahedra, (\d+) dofs", text)
+    wall = re.findall(r"^\[\s*([0-9.]+)\s*s\]", text, flags=re.M)
+    if not rows:
+        return None
+    r = np.array([(0.0, 0.0, 0.0, 0.0, 0.0, 0.0)] + rows)
+    h = dict(time=r[:, 0], normal_force=r[:, 3], tangential_force=r[:, 4],
+             phase=np.where(r[:, 2] > 0, "sliding", "normal"), completed=False,
+             dofs=int(dofs.group(1)) if dofs else None, steps=len(rows),
+             wall_time_reached=float(wall[-1]) if wall else None)
+    if np.all(np.isfinite(r[:, 5])):
+        h["contact_area"] = r[:, 5]
+    return h
+
+
+def compare(coarse: dict, fine: dict) -> dict:
+    """Largest differences of the force histories (module docstring)."""
+    out = {}
+    t_end = fine["time"][-1]
+    for name in ("normal_force", "tangential_force"):
+        for ph, lo, hi in (("pressing", 0.0, 1800.0), ("sliding", 1800.0, math.inf)):
+            tc = coarse["time"]
+            sel = (tc > lo) & (tc <= min(hi, t_end) * (1 + 1e-12))
+            tf = fine["time"]
+            fsel = (tf > lo - 1e-9) & (tf <= hi)
+            if not sel.any() or fsel.sum() < 2:
+                continue
+            ff = np.interp(tc[sel], tf, fine[name])
+            fc = coarse[name][sel]
+            peak = float(np.abs(fine[name][fsel & (tf > lo)]).max())
+            key = f"{name}_{ph}"
+            scale_n = float(np.abs(fine["normal_force"][fsel & (tf > lo)]).max())
+            if name == "tangential_force" and peak < 1e-4 * scale_n:
+                # zero by symmetry while pressing: its size against the normal force
+                out[key] = dict(zero_by_symmetry=True,
+                                largest_over_normal_force=float(max(
+                                    np.abs(fc).max(), np.abs(ff).max()) / scale_n))
+                continue
+            out[key] = dict(
+                largest_relative_difference=(float(np.abs(fc - ff).max() / peak)
+                                             if peak > 0 else None),
+                at_time=float(tc[sel][int(np.argmax(np.abs(fc - ff)))]),
+                mean_coarse=float(fc.mean()), mean_fine=float(ff.mean()),
+                relative_difference_of_means=(float(fc.mean() / ff.mean() - 1)
+                                              if ff.mean() else None),
+                compared_up_to=float(tc[sel][-1]), points=int(sel.sum()))
+    return out
+
+
+def sliding_summary(h: dict) -> dict:
+    """End of pressing and the sliding phase of one run; tractions are means over the
+    sliding steps with contact of F_T / A (A the model's contact area)."""
+    s = (h["phase"] == "sliding") & (h["time"] > 1800.0)
+    if not s.any():
+        return {}
+    fn, ft = h["normal_force"][s], h["tangential_force"][s]
+    press = h["time"] <= 1800.0
+
+    def step_change(f):
+        return float(np.abs(np.diff(f)).max() / max(abs(f.mean()), 1e-300)) if f.size > 1 else None
+
+    d = dict(
+        normal_force_end_of_pressing=float(h["normal_force"][press][-1]),
+        mean_normal_force_sliding=float(fn.mean()), mean_tangential_force_sliding=float(ft.mean()),
+        largest_step_change_normal_force=step_change(fn),
+        largest_step_change_tangential_force=step_change(ft),
+        sliding_steps=int(s.sum()),
+        steps_without_tangential_force=int(np.sum((ft == 0.0) & (fn > 0))),
+        sliding_reached=float(h["time"][s][-1]))
+    if "contact_area" in h:
+        a = h["contact_area"]
+        on = s & (a > 0)
+        engaged = on & (h["tangential_force"] > 0)
+        tau = h["tangential_force"] / np.where(a > 0, a, 1.0)
+        d.update(
+            contact_area_end_of_pressing=float(a[press][-1]),
+            mean_pressure_end_of_pressing=float(h["normal_force"][press][-1] / a[press][-1]),
+            mean_contact_area_sliding=float(a[on].mean()),
+            mean_tangential_traction_sliding=float(tau[on].mean()),
+            largest_tangential_traction_sliding=float(tau[on].max()),
+            mean_tangential_traction_sliding_engaged=(float(tau[engaged].mean())
+                                                      if engaged.any() else None),
+            tangential_traction_on_end_of_pressing_area=float(
+                h["tangential_force"][on].mean() / a[press][-1]))
+    return d
+
+
+def patch_summary(preset: str, out: Path) -> dict:
+    """Over the sliding steps with contact: the patch in facets, the largest traction at a
+    contact point, the largest shear and Mises stress in the patch's elements, F_T over
+    the whole area of the facets that touch, where the touching points lie."""
+    path = out / f"{preset}.patch.jsonl"
+    if not path.exists():
+        return {}
+    rows = [json.loads(line) for line in path.read_text().splitlines() if line.strip()]
+    press = [r for r in rows if r["tangential_displacement"] == 0 and r["points"]]
+    slide = [r for r in rows if r["tangential_displacement"] > 0 and r["points"]]
+    if not slide:
+        return {}
+    tau_f = [r["tangential_force"] / r["area_of_touching_facets"] for r in slide]
+    moved = [r for r in slide if r.get("entered", 0) + r.get("left", 0) > 0]
+    return dict(
+        sliding_steps_with_points_entering_or_leaving=len(moved) if "entered" in slide[0]
+        else None,
+        contact_points_sliding=[min(r["points"] for r in slide), max(r["points"] for r in slide)],
+        patch_facets_sliding=[min(r["facets"] for r in slide), max(r["facets"] for r in slide)],
+        patch_facets_pressing_end=press[-1]["facets"] if press else None,
+        largest_point_tangential_traction_sliding=max(
+            r["largest_point_tangential_traction"] for r in slide),
+        largest_patch_shear_stress_sliding=max(r["largest_patch_shear_stress"] for r in slide),
+        largest_patch_mises_stress_sliding=max(r["largest_patch_mises_stress"] for r in slide),
+        tangential_force_over_touching_facets_sliding=[min(tau_f), max(tau_f)],
+        x_touching_first_sliding_step=slide[0]["x_touching"],
+        x_touching_last_step=slide[-1]["x_touching"])
+
+
+def shear_flow_stress(sc: dict) -> dict:
+    """k = q / sqrt 3 at Z = Z1 (saturated) from p_dot = (2 / sqrt 3) D0 exp[-1/2 (Z/q)^(2n)]."""
+    m = sc["sliding"]["material"]
+    D0, n, Z1 = float(m["D0"]), float(m["n"]), float(m["Z1"]) * 1e6
+    out = {}
+    for rate in (1e-4, 1e-3, 1e-2, 1e-1, 1.0):
+        q = Z1 / (2.0 * math.log(2.0 / math.sqrt(3.0) * D0 / rate)) ** (1.0 / (2.0 * n))
+        out[f"{rate:g}"] = q / math.sqrt(3.0)
+    return out
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--presets", nargs="+", default=["draft", "standard", "fine"])
+    ap.add_argument("--out", type=Path, default=OUT)
+    ap.add_argument("--timeout", type=float, default=3 * 3600.0, help="seconds per preset")
+    ap.add_argument("--jobs", type=int, default=1)
+    ap.add_argument("--reuse", action="store_true", help="compare the runs already in --out")
+    ap.add_argument("--results", type=Path, default=RESULTS / "sliding-convergence.json")
+    ap.add_argument("--worker", help=argparse.SUPPRESS)
+    a = ap.parse_args(argv)
+    a.out.mkdir(parents=True, exist_ok=True)
+    if a.worker:
+        worker(a.worker, a.out)
+        return 0
+    if not a.reuse:
+        run(a.presets, a.out, a.timeout, a.jobs)
+    sc = scene()
+    runs = {p: history(p, a.out) for p in a.presets}
+    res = dict(scene=SCENE, report="9.2, Figs. 9.4, 9.5",
+               report_mean_tangential_traction=REPORT_TRACTION,
+               shear_flow_stress_at_Z1_by_inelastic_rate=shear_flow_stress(sc),
+               presets={}, comparisons={})
+    for p, h in runs.items():
+        if h is None:
+            res["presets"][p] = dict(missing=True)
+            continue
+        info = {k: v for k, v in h.items() if not isinstance(v, np.ndarray)}
+        info["time_reached"] = float(h["time"][-1])
+        info.update(sliding_summary(h))
+        info.update(patch_summary(p, a.out))
+        res["presets"][p] = info
+    done = [p for p in a.presets if runs.get(p) is not None]
+    for c, f in zip(done, done[1:]):
+        res["comparisons"][f"{c} vs {f}"] = compare(runs[c], runs[f])
+    path = a.results
+    path.parent.mkdir(parents=True, exist_ok=True)
+    path.write_text(json.dumps(res, indent=1, default=float) + "\n")
+
+    print(f"{'preset':9s} {'dofs':>6s} {'steps':>5s} {'cuts':>4s} {'CPU s':>7s} {'reached s':>9s} "
+          f"{'F_N press mN':>12s} {'F_T slide mN':>12s} {'tau MPa':>8s} {'F_T=0 steps':>11s}")
+    for p, i in res["presets"].items():
+        if i.get("missing"):
+            print(f"{p:9s} missing")
+            continue
+        print(f"{p:9s} {i.get('dofs') or 0:6d} {i['steps']:5d} {i.get('cuts', 0):4d} "
+              f"{i.get('cpu_time', float('nan')):7.0f} {i['time_reached']:9.0f} "
+              f"{1e3 * i.get('normal_force_end_of_pressing', float('nan')):12.3f} "
+              f"{1e3 * i.get('mean_tangential_force_sliding', float('nan')):12.3f} "
+              f"{1e-6 * i.get('mean_tangential_traction_sliding', float('nan')):8.0f} "
+              f"{i.get('steps_without_tangential_force', 0):11d}")
+    for pair, cmp_ in res["comparisons"].items():
+        for k, v in cmp_.items():
+            if v.get("zero_by_symmetry"):
+                print(f"{pair:20s} {k:28s} zero by symmetry: |F_T| <= "
+                      f"{v['largest_over_normal_force']:.1e} F_N")
+                continue
+            print(f"{pair:20s} {k:28s} largest {100 * v['largest_relative_difference']:6.1f} % "
+                  f"(t = {v['at_time']:.0f} s), means "
+                  f"{100 * v['relative_difference_of_means']:+6.1f} %, "
+                  f"up to t = {v['compared_up_to']:.0f} s")
+    k = res["shear_flow_stress_at_Z1_by_inelastic_rate"]
+    print("shear flow stress k at Z1: "
+          + ", ".join(f"{1e-6 * v:.0f} MPa at {r} 1/s" for r, v in k.items()))
+    print(f"wrote {path}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
