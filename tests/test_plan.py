@@ -55,3 +55,14 @@ def test_height_dependent_model_gets_a_job_per_sample():
                       model="fe", job_spec=spec_of({**JOB, "accuracy": "fine"}, False),
                       shift_invariant=False, analytic=False)
     assert set(other["key"].values).isdisjoint(plan["key"].values)
+
+
+def test_geometric_levels_are_numpys_geomspace_and_refuse_non_positive_ends():
+    from asperity.population.plan import geometric_levels
+
+    levels = geometric_levels(3.7e-10, 2.9e-5, 240)
+    np.testing.assert_allclose(levels, np.geomspace(3.7e-10, 2.9e-5, 240), rtol=4e-16, atol=0)
+    assert levels[0] == 3.7e-10 and levels[-1] == 2.9e-5
+    for start, stop in ((0.0, 1.0), (-1.0, 1.0), (1.0, 0.0)):
+        with pytest.raises(ValueError, match="start, stop > 0"):
+            geometric_levels(start, stop, 4)

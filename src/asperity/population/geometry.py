@@ -18,7 +18,7 @@ Sphere, paraboloid and the representative hill respond to the interference alone
 one job per (height, curvature), or, with ``scaling: self_similar``, a family of
 aspects: its shape in units of 1/kappa depends on the aspect q = kappa z_p = (k C)^2
 alone, so a few jobs at aspects q_j give every sample by the scaling of 8.2.2 and an
-interpolation in log q (`aspect_family`, `aspect_jobs`). An FE job computes the
+interpolation in log q (`aspect_jobs`, `aspect_weights`). An FE job computes the
 interferences up to the largest the geometry admits (`max_interference`).
 """
 
@@ -154,21 +154,6 @@ def unloading_levels(top: float, asperity: Asperity) -> tuple[np.ndarray, float]
     check = math.sqrt(levels[1] * levels[2]) if asperity.unloading_check and count >= 3 \
         else math.nan
     return levels, check
-
-
-def aspect_family(asperity: Asperity) -> bool:
-    """Whether the coupled hills of a scene are scaled from a few FE jobs at fixed
-    aspects (`aspect_jobs`) rather than computed one job per sample.
-
-    A coupled hill z = C cos(k r) with tip curvature kappa = C k^2 (2.5.1) has the
-    dimensionless aspect q = kappa C = (k C)^2: two hills of equal q are the same shape
-    scaled by 1/kappa. For a scale-free body (or under the report's assumption of 8.2.2
-    for a rate-dependent one, ``scaling: self_similar``) their responses are scaled
-    copies. The family is asked for by ``scaling: self_similar``: between two computed
-    aspects the response is interpolated, an approximation of its own, so ``auto``
-    keeps one exact job per sample.
-    """
-    return asperity.aspect_family
 
 
 def aspect_jobs(aspects: np.ndarray, count: int, check: bool) -> tuple[np.ndarray, float]:

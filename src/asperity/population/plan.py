@@ -69,7 +69,7 @@ def geometric_levels(start: float, stop: float, count: int) -> np.ndarray:
     every machine: numpy's vectorized ``power`` and ``log10`` take other code paths on
     CPUs with AVX-512 and differ there in the last bit.
     """
-    if not 0 < start and 0 < stop:
+    if not (start > 0 and stop > 0):
         raise ValueError(f"geometric levels need start, stop > 0, got {start:g}, {stop:g}")
     exponents = np.linspace(math.log10(start), math.log10(stop), count)
     out = np.array([10.0 ** e for e in exponents.tolist()])

@@ -58,8 +58,9 @@ def scene_plan(surface_ds: xr.Dataset, population: Population, asperity: Asperit
     if asperity.geometry == "cosine" and asperity.width_to_height is None:
         width_to_height = representative_width_to_height(population_stat(surface_ds, "sigma_slope"))
     scaled = kind.scalable(asperity, material, effects) and curvatures.size > 1
+    family = asperity.aspect_family and kind.job  # coupled hills scaled from a few aspects
     reference = None
-    if scaled:
+    if scaled or family:
         reference = (asperity.reference_curvature if asperity.reference_curvature
                      else float(np.sqrt(curvatures[0] * curvatures[-1])))
     planning = Planning(asperity=asperity, material=material, effects=effects, accuracy=accuracy,
@@ -75,15 +76,13 @@ def scene_plan(surface_ds: xr.Dataset, population: Population, asperity: Asperit
         def check_of(h, k):
             return kind.levels(planning, h, k)[1]
 
-    if asperity.aspect_family and kind.job:  # coupled hills scaled from a few aspects (2.5.1, 8.2.2)
+    if family:  # (2.5.1, 8.2.2)
         if "adhesion" in effects:
             raise ValueError("effect `adhesion` has a length of its own (the range d): its coupled "
                              "hills are no family of aspects (asperity.scaling: auto)")
         if kind.unloads(effects):
             raise ValueError("effect `unloading` is not available for the coupled hills' family of "
                              "aspects (asperity.mapping coupled with scaling self_similar)")
-        reference = (asperity.reference_curvature if asperity.reference_curvature
-                     else float(np.sqrt(curvatures[0] * curvatures[-1])))
         out = make_aspect_plan(heights, curvatures, grid, model=asperity.model,
                                job_spec=lambda h, k, level: kind.spec(planning, h, k, level),
                                aspects=asperity.aspects, check=asperity.aspect_check,
