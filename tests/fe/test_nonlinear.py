@@ -1,0 +1,122 @@
+"""The shared Newton iteration (`asperity.fe.nonlinear`) against the previous code.
+
+Before the four drivers (elastic, adhesive, inelastic, 3-D sliding) were
+put on the one Newton routine, a small fast case of each was run and its
+per-step Newton iterations, step cuts, forces and contact areas recorded
+in tests/data/nonlinear_reference.json (with the commit they came from;
+regenerate with ``python tests/fe/test_nonlinear.py``, only on purpose).
+On the same mesh and steps the routine must do exactly what the four
+loops did: iteration counts and cuts equal, forces and areas to 1e-10
+relative.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from asperity.fe import (BodnerPartom, FlatMotion, FrictionLaw, History, J2Plasticity,
+                         LennardJones, LinearElastic, Paraboloid, CosineHill, ShearResistance,
+                         solve_asperity, solve_asperity_adhesive, solve_asperity_history,
+                         solve_sliding)
+
+DATA = Path(__file__).resolve().parents[1] / "data" / "nonlinear_reference.json"
+#: what the record keeps per case: counters (exact) and results (1e-10 relative)
+COUNTS = ("newton_iterations", "step_cuts")
+RTOL = 1e-10
+
+
+def _elastic(**kw):
+    return solve_asperity(Paraboloid(1.0), LinearElastic(1000.0, 0.3),
+                          [0.001, 0.002, 0.005, 0.01, 0.02], **{"accuracy": "draft", **kw})
+
+
+def _adhesive():
+    # the compliant small-R case of tests/fe/test_adhesion.py (Tabor parameter 1,
+    # jump-in and jump-off), approached to d
+    d, radius, nu, mu = 0.3e-9, 15e-6, 0.3, 1.0
+    e_star = math.sqrt(radius / d**3) / mu**1.5
+    return solve_asperity_adhesive(Paraboloid(radius), LinearElastic(e_star * (1 - nu**2), nu),
+                                   LennardJones(1.0, d), w_max=d, accuracy="draft")
+
+
+def _j2():
+    return solve_asperity_history(Paraboloid(1.0), J2Plasticity(1000.0, 0.3, 30.0, H=50.0),
+                                  History.load_unload(0.01, 1.0), accuracy="draft")
+
+
+def _bodner_partom():
+    hill = CosineHill.from_tip(0.042e6, 2 * math.pi**2 / (13.4**2 * 0.042e6))
+    return solve_asperity_history(hill, BodnerPartom.sae_1020(),
+                                  History.load_unload(0.01e-6, 0.25e-6), accuracy="draft")
+
+
+def _sliding():
+    from asperity.fe.solid3d import MeshSpec
+
+    a = math.sqrt(0.005)
+    spec = MeshSpec(half_width=8 * a, depth=8 * a, coarse_size=8 * a / 3, tip_size=a,
+                    grading=1.0, refine_radius=1.1 * a)
+    motion = FlatMotion.press_and_slide(0.005, 0.5 * a, (0.0, 1.0), (1.0, 2.0))
+    return solve_sliding(Paraboloid(1.0), LinearElastic(1000.0, 0.3), motion,
+                         FrictionLaw(ShearResistance.coulomb(0.3), 1e-3 * a),
+                         accuracy="draft", mesh=spec, contact_radius=3 * a)
+
+
+CASES = {
+    "elastic": (_elastic, ("interference", "force", "contact_area", "normal_stiffness")),
+    "elastic_exact": (lambda: _elastic(contact="exact"),
+                      ("interference", "force", "contact_area", "normal_stiffness")),
+    # few iterations allowed: the steps are cut
+    "elastic_cuts": (lambda: _elastic(accuracy=dict(base="draft", max_iterations=3)),
+                     ("interference", "force", "contact_area", "normal_stiffness")),
+    "adhesive": (_adhesive, ("interference", "force", "contact_force", "adhesive_force",
+                             "contact_area")),
+    "j2": (_j2, ("time", "interference", "force", "contact_area")),
+    "bodner_partom": (_bodner_partom, ("time", "interference", "force", "contact_area")),
+    "sliding": (_sliding, ("time", "normal_force", "tangential_force", "contact_area")),
+}
+
+
+def _record(name):
+    run, results = CASES[name]
+    ds = run()
+    out = {k: [int(x) for x in ds[k].values] for k in COUNTS}
+    out.update({k: [float(x) for x in ds[k].values] for k in results})
+    return out
+
+
+@pytest.fixture(scope="module")
+def reference():
+    return json.loads(DATA.read_text())
+
+
+@pytest.mark.parametrize("name", list(CASES))
+def test_same_iterations_and_results_as_the_previous_loops(reference, name):
+    ref = reference["cases"][name]
+    got = _record(name)
+    for key in COUNTS:
+        assert got[key] == ref[key], (key, got[key], ref[key])
+    for key in CASES[name][1]:
+        np.testing.assert_allclose(got[key], ref[key], rtol=RTOL, atol=0.0, err_msg=key)
+
+
+if __name__ == "__main__":
+    import time
+
+    commit = subprocess.run(["git", "rev-parse", "HEAD"], capture_output=True, text=True,
+                            cwd=DATA.parent, check=True).stdout.strip()
+    cases = {}
+    for name in (sys.argv[1:] or CASES):
+        t0 = time.process_time()
+        cases[name] = _record(name)
+        print(name, f"{time.process_time() - t0:.1f} s CPU", len(cases[name]["step_cuts"]),
+              "steps", sum(cases[name]["newton_iterations"]), "iterations",
+              sum(cases[name]["step_cuts"]), "cuts")
+    DATA.write_text(json.dumps(dict(commit=commit, cases=cases), indent=1) + "\n")
