@@ -90,11 +90,12 @@ from scipy.interpolate import PchipInterpolator
 from .adhesion import LennardJones, adhesion_zone
 from .assembly import CondensedStiffness, Discretization
 from .contact import PENALTY_FACTOR, C1Penalty, ContactZone, contact_edge
-from .errors import ContactZoneError, ConvergenceError
+from .errors import ContactZoneError, ConvergenceError, StepFailed
 from .geometry import CosineHill, Profile
 from .material import equivalent_strain, von_mises
 from .mesh import AsperityMesh, MeshSpec
 from .newton import ROUNDOFF_FACTOR, _penalty_energy
+from .nonlinear import EnergySearch, Problem, newton
 from .presets import PLANE_STRAIN_DOMAIN, resolve
 from .solve import PLANE_STRAIN_UNITS, _describe
 
@@ -125,6 +126,9 @@ JUMP_ITERATION_FACTOR = 15
 #: decrease of the residual instead (accepting real energy increases lets
 #: Newton cycle between the kinks of the contact set)
 ENERGY_ROUNDOFF = 1e-10
+#: backtracking on Pi (Armijo), trial points projected if the full step fails
+#: (`AdhesiveNewton.project`), the residual where Pi drowns in round-off
+LINE_SEARCH = EnergySearch(halvings=50, projected=True, roundoff=ENERGY_ROUNDOFF)
 #: halvings of one requested step (failed Newton or discontinuity) before giving up
 MAX_HALVINGS = 60
 
@@ -150,12 +154,6 @@ def resolve_adhesive(accuracy) -> dict:
         raise ValueError(f"unknown accuracy keys: {sorted(unknown)}")
     fe.update(extra)
     return fe
-
-
-class _NotConverged(Exception):
-    def __init__(self, message: str, iterations: int = 0):
-        super().__init__(message)
-        self.iterations = iterations
 
 
 class _Overflow(Exception):
@@ -415,7 +413,7 @@ class AdhesiveNewton:
             out += np.linalg.norm(zone.nodal(np.abs(dt) * da))
         return out
 
-    def _direction(self, T: _Tangent, R):
+    def direction(self, T: _Tangent, R, iteration: int = 0):
         """Newton direction; J shifted by tau diag K on A until positive definite."""
         if T.factor():
             return T.solve(-R)
@@ -425,72 +423,30 @@ class AdhesiveNewton:
                 self._tau = max(tau / 4.0, 1e-8)
                 return T.solve(-R)
             tau *= 4.0
-        raise _NotConverged("no positive definite shift of the tangent")
+        raise StepFailed("no positive definite shift of the tangent", iteration)
 
     def solve(self, w: float, u0: np.ndarray, max_iterations: int | None = None):
-        """A stable minimum near u0: returns (u, parts, tangent, iterations)."""
+        """A stable minimum near u0 (`nonlinear.newton` with `LINE_SEARCH`):
+        returns (u, parts, tangent, iterations)."""
         limit = self.max_iterations if max_iterations is None else max_iterations
-        u = np.array(u0, dtype=float)
-        R, scale, parts = self.residual(u, w)
-        escapes = 0
-        for it in range(limit + 1):
-            rn = np.linalg.norm(R)
-            if not np.isfinite(rn):
-                raise _NotConverged("non-finite residual", it)
-            tp, dtp, ta, dta = parts
-            T = self.tangent(dtp, dta, u, w)
-            if rn <= max(self.tolerance * scale, ROUNDOFF_FACTOR * self.floor(u, w, dtp, dta)):
-                if T.factor():
-                    return u, parts, T, it
-                # a saddle: leave it along the most negative curvature
-                escapes += 1
-                if escapes > 3:
-                    raise _NotConverged("converged to an unstable equilibrium", it)
-                v = T.lowest_mode()
-                v *= 0.1 * self.adhesion.d / max(np.max(np.abs(v)), np.finfo(float).tiny)
-                u = u + v if self.energy(u + v, w) <= self.energy(u - v, w) else u - v
-                R, scale, parts = self.residual(u, w)
-                continue
-            if it == limit:
-                break
-            u = self._line_search(u, w, self._direction(T, R), R, rn)
-            R, scale, parts = self.residual(u, w)
-        raise _NotConverged(f"no convergence in {limit} iterations", limit)
+        level = _Level(self, w)
+        u, (scale, parts), its = newton(level, u0, self.tolerance, limit, LINE_SEARCH)
+        return u, parts, level.tangent, its
 
-    def _line_search(self, u, w, d, R, rn):
-        """Backtracking on Pi (Armijo), or on ||R|| where Pi drowns in round-off.
+    def project(self, trial, u, w):
+        """The trial point with no node deeper in the flat than now or than
+        the penetration q_max / kappa at which the penalty balances the peak
+        adhesive pressure.
 
-        (`ENERGY_ROUNDOFF`).
-
-        If the full step fails, the trial points are projected so that no
-        node penetrates the flat deeper than it does now or than the
-        penetration q_max / kappa at which the penalty balances the peak
-        adhesive pressure: a Newton step computed with the current contact
-        set would push the nodes it does not hold deep into the flat, and
-        plain backtracking then lets the contact grow by about one node per
-        iteration (the zipping of a jump-in: measured 570 iterations against
-        18 with the projection at mu = 3); projected, it grows at once.
+        A Newton step computed with the current contact set would push the
+        nodes it does not hold deep into the flat, and plain backtracking
+        then lets the contact grow by about one node per iteration (the
+        zipping of a jump-in: measured 570 iterations against 18 with the
+        projection at mu = 3); projected, it grows at once.
         """
-        e0 = self.energy(u, w)
-        trial = u + d
-        if self.energy(trial, w) <= e0 + 1e-4 * (R @ d):
-            return trial
         zone = self.zone
         cap = np.maximum(zone.node_penetration(u, w), self.adhesion.peak_pressure / self.node_kappa)
-        alpha = 1.0
-        for _ in range(50):
-            trial = u + alpha * d
-            trial = trial - np.maximum(zone.node_penetration(trial, w) - cap, 0.0)
-            e1 = self.energy(trial, w)
-            if e1 <= e0 + 1e-4 * (R @ (trial - u)):
-                return trial
-            # near the solution energy differences drown in round-off: there,
-            # and only there, a decrease of the residual will do
-            if e1 - e0 <= ENERGY_ROUNDOFF * abs(e0) and \
-                    np.linalg.norm(self.residual(trial, w)[0]) <= (1 - 1e-4 * alpha) * rn:
-                return trial
-            alpha *= 0.5
-        return trial
+        return trial - np.maximum(zone.node_penetration(trial, w) - cap, 0.0)
 
     def state(self, w, u, parts, T: _Tangent, iterations=0, cuts=0) -> AdhesiveState:
         """The converged state with du/dw (J du/dw = -int t' N W) and dF/dw."""
@@ -503,6 +459,51 @@ class AdhesiveNewton:
             k += zone.total(dt * da)
         return AdhesiveState(w, u, dudw, self.zone.total(tp), self.azone.total(ta), k,
                              self.energy(u, w), iterations, cuts)
+
+
+class _Level(Problem):
+    """Pi(u; w) stationary at flat position w, a stable minimum (module docstring)."""
+
+    def __init__(self, solver: AdhesiveNewton, w: float):
+        self.solver, self.w = solver, w
+        self.escapes = 0
+        self.tangent = None
+
+    def evaluate(self, u):
+        R, scale, parts = self.solver.residual(u, self.w)
+        return R, (scale, parts)
+
+    def scale(self, u, data):
+        return data[0]
+
+    def floor(self, u, data):
+        tp, dtp, ta, dta = data[1]
+        return ROUNDOFF_FACTOR * self.solver.floor(u, self.w, dtp, dta)
+
+    def linearize(self, u, data):
+        tp, dtp, ta, dta = data[1]
+        self.tangent = self.solver.tangent(dtp, dta, u, self.w)
+        return self.tangent
+
+    def direction(self, u, R, data, tangent, iteration):
+        return self.solver.direction(tangent, R, iteration)
+
+    def settle(self, u, data, tangent, iteration):
+        """A saddle is left along the most negative curvature of the tangent."""
+        if tangent.factor():
+            return None
+        self.escapes += 1
+        if self.escapes > 3:
+            raise StepFailed("converged to an unstable equilibrium", iteration)
+        v = tangent.lowest_mode()
+        v *= 0.1 * self.solver.adhesion.d / max(np.max(np.abs(v)), np.finfo(float).tiny)
+        return u + v if self.merit(u + v) <= self.merit(u - v) else u - v
+
+    def merit(self, u):
+        return self.solver.energy(u, self.w)
+
+    def project(self, trial, u):
+        return self.solver.project(trial, u, self.w)
 
 
 # --- the model -----------------------------------------------------------------------
@@ -744,7 +745,7 @@ def _advance(model: AdhesiveModel, state: AdhesiveState, target: float, pre: dic
             u, parts, T, its = newton.solve(
                 goal, pred, JUMP_ITERATION_FACTOR * newton.max_iterations if small else None)
             iterations += its
-        except _NotConverged as exc:
+        except StepFailed as exc:
             iterations += exc.iterations
             halvings += 1
             if small or halvings > MAX_HALVINGS:
@@ -778,7 +779,7 @@ def _trace(model: AdhesiveModel, path, pre: dict, label: str = "") -> list[_Reco
     t0 = time.perf_counter()
     try:
         u, parts, T, its = newton.solve(float(path[0]), np.zeros(model.zone.ndofs))
-    except _NotConverged as exc:
+    except StepFailed as exc:
         raise ConvergenceError(0, float(path[0]), math.nan, 0, f"{who}{exc}") from None
     state = newton.state(float(path[0]), u, parts, T, its)
     state.wall_time = time.perf_counter() - t0

@@ -36,16 +36,3 @@ class StepFailed(Exception):
         super().__init__(message)
         self.iterations = iterations
 
-
-def check_iterate(residual_free, state, iteration: int) -> float:
-    """Norm of a Newton iterate's free residual, or StepFailed when it is not
-    finite or the constitutive update at some point did not converge."""
-    import numpy as np
-
-    rn = float(np.linalg.norm(residual_free))
-    if not np.isfinite(rn):
-        raise StepFailed("non-finite residual", iteration)
-    conv = getattr(state, "converged", None)
-    if conv is not None and not np.all(conv):
-        raise StepFailed("local constitutive update did not converge", iteration)
-    return rn

@@ -147,8 +147,9 @@ import scipy.sparse.linalg as spl
 import xarray as xr
 
 from .contact import PENALTY_FACTOR, C1Penalty, ContactZone, contact_edge_pressure
-from .errors import ContactZoneError, ConvergenceError, StepFailed, check_iterate
+from .errors import ContactZoneError, ConvergenceError, StepFailed
 from .material import METRIC, LinearElastic, equivalent_strain, von_mises
+from .nonlinear import Problem, ResidualSearch, check_local_update, newton
 from .presets import resolve
 from .solve import _check_levels, _dataset, adapted_model
 
@@ -179,6 +180,8 @@ MESH_LEVELS, MESH_RANGE = 6, 0.01
 #: geometric intersection radius at the largest interference (plastic
 #: pile-up may lift the surface beyond it); grown if reached.
 INELASTIC_CANDIDATE_FACTOR = 1.5
+#: Newton's line search: the residual norm, halved at most this many times
+LINE_SEARCH = ResidualSearch(halvings=6)
 #: what the solver does when a point ruptures
 ON_RUPTURE = ("continue", "stop", "raise")
 #: time integration of a rate-dependent material
@@ -466,42 +469,8 @@ class InelasticModel:
         penalty) does not inflate the scale; or at the round-off level of
         the internal forces.
         """
-        free = self.free
-        u = np.array(u0, float)
-        R, out = self.evaluate(u, w, state, dt)
-        top = 0.0
-        for it in range(self.max_iterations + 1):
-            Rf = R[free]
-            rn = check_iterate(Rf, out["state"], it)
-            fc = float(np.linalg.norm(self.zone.nodal(out["traction"])))
-            top = max(top, fc)
-            scale = max(fc, min(top, 2.0 * reference))
-            # round-off of the internal forces (sum of |terms|)
-            floor = 1e3 * np.finfo(float).eps * float(np.linalg.norm(
-                (self._absBT @ np.abs(out["stress"].ravel() * self.W4))[free]))
-            if rn <= max(self.tolerance * scale, floor) or (scale == 0.0 and rn <= floor):
-                return u, out, it
-            if it == self.max_iterations:
-                break
-            try:
-                d = self.newton_correction(out, Rf)
-            except RuntimeError as exc:  # singular
-                raise StepFailed(f"linear solve failed: {exc}", it) from None
-            if not np.all(np.isfinite(d)):
-                raise StepFailed("non-finite Newton correction", it)
-            # backtracking on the residual norm (a few halvings at most)
-            alpha = 1.0
-            for _ in range(6):
-                trial = u.copy()
-                trial[free] += alpha * d
-                R1, out1 = self.evaluate(trial, w, state, dt)
-                r1 = np.linalg.norm(R1[free])
-                if np.isfinite(r1) and r1 < rn:
-                    break
-                alpha *= 0.5
-            u, R, out = trial, R1, out1
-        raise StepFailed(f"no convergence in {self.max_iterations} iterations",
-                          self.max_iterations)
+        return newton(_Step(self, w, state, dt, reference), u0, self.tolerance,
+                      self.max_iterations, LINE_SEARCH)
 
     # --- outputs -------------------------------------------------------------
     def point_position(self, index) -> tuple:
@@ -540,6 +509,42 @@ class InelasticModel:
             ruptured_points=0 if ruptured is None else int(np.count_nonzero(ruptured)),
             overflow=bool(np.any(t[-1] > 0)),
         )
+
+
+class _Step(Problem):
+    """Equilibrium at the end of a step (`InelasticModel.solve_step`)."""
+
+    def __init__(self, model: InelasticModel, w, state, dt, reference: float):
+        self.model, self.w, self.state, self.dt = model, w, state, dt
+        self.reference = reference
+        self.top = 0.0  # the largest contact force norm of the iterations
+
+    def evaluate(self, u):
+        R, out = self.model.evaluate(u, self.w, self.state, self.dt)
+        return R[self.model.free], out
+
+    def check(self, out, iteration):
+        check_local_update(out["state"], iteration)
+
+    def scale(self, u, out):
+        fc = float(np.linalg.norm(self.model.zone.nodal(out["traction"])))
+        self.top = max(self.top, fc)
+        return max(fc, min(self.top, 2.0 * self.reference))
+
+    def floor(self, u, out):
+        """Round-off of the internal forces (sum of |terms|)."""
+        m = self.model
+        return 1e3 * np.finfo(float).eps * float(np.linalg.norm(
+            (m._absBT @ np.abs(out["stress"].ravel() * m.W4))[m.free]))
+
+    def direction(self, u, Rf, out, tangent, iteration):
+        try:
+            d = self.model.newton_correction(out, Rf)
+        except RuntimeError as exc:  # singular
+            raise StepFailed(f"linear solve failed: {exc}", iteration) from None
+        full = np.zeros_like(u)
+        full[self.model.free] = d
+        return full
 
 
 # --- time integration and its error ---------------------------------------------

@@ -29,7 +29,8 @@ import numpy as np
 import scipy.linalg as sla
 
 from .contact import AugmentedPenalty, C1Penalty, ContactZone
-from .errors import ConvergenceError
+from .errors import ConvergenceError, StepFailed
+from .nonlinear import EnergySearch, Problem, newton
 
 
 #: Newton stops once the residual is below this multiple of its round-off
@@ -41,10 +42,9 @@ ROUNDOFF_FACTOR = 10.0
 EXACT_TANGENT_SCALE = 1e6
 
 
-class _NotConverged(Exception):
-    def __init__(self, message: str, iterations: int = 0):
-        super().__init__(message)
-        self.iterations = iterations
+#: backtracking on the convex energy (Armijo) or, where energy differences
+#: drown in round-off near the solution, on the residual
+LINE_SEARCH = EnergySearch(halvings=40)
 
 
 def _penalty_energy(law, a):
@@ -109,45 +109,10 @@ class ContactNewton:
         return self.K @ u + f, f, t, dt
 
     def solve(self, law, w: float, u0: np.ndarray):
-        """Newton iterations from u0; returns (u, t, dt, iterations)."""
-        u = np.array(u0, dtype=float)
-        R, f, t, dt = self.residual(law, u, w)
-        r0 = np.linalg.norm(R)
-        for it in range(self.max_iterations + 1):
-            rn = np.linalg.norm(R)
-            if not np.isfinite(rn):
-                raise _NotConverged("non-finite residual", it)
-            if rn <= max(self.tolerance * np.linalg.norm(f), ROUNDOFF_FACTOR * self.floor(u, w, dt)):
-                return u, t, dt, it
-            if rn == 0.0:
-                return u, t, dt, it
-            if rn > self.divergence * max(r0, np.finfo(float).tiny):
-                raise _NotConverged("diverging residual", it)
-            if it == self.max_iterations:
-                break
-            J = self.K + self.zone.matrix(dt)
-            try:
-                d = sla.cho_solve(sla.cho_factor(J, check_finite=True), -R)
-            except (np.linalg.LinAlgError, ValueError) as exc:
-                raise _NotConverged(f"tangent not positive definite: {exc}", it) from None
-            # backtracking line search: accept a step that decreases the
-            # convex energy (Armijo) or, where energy differences drown in
-            # round-off near the solution, one that decreases the residual
-            e0 = self._energy(law, u, w)
-            slope = R @ d
-            alpha = 1.0
-            for _ in range(40):
-                trial = u + alpha * d
-                e1 = self._energy(law, trial, w)
-                if e1 <= e0 + 1e-4 * alpha * slope:
-                    break
-                if np.linalg.norm(self.residual(law, trial, w)[0]) <= (1 - 1e-4 * alpha) * rn:
-                    break
-                alpha *= 0.5
-            u = trial
-            R, f, t, dt = self.residual(law, u, w)
-        raise _NotConverged(f"no convergence in {self.max_iterations} iterations",
-                            self.max_iterations)
+        """Newton iterations from u0 (`nonlinear.newton`); returns (u, t, dt, iterations)."""
+        u, (f, t, dt), its = newton(_Level(self, law, w), u0, self.tolerance, self.max_iterations,
+                                    LINE_SEARCH, self.divergence)
+        return u, t, dt, its
 
     def tangent(self, dt: np.ndarray) -> np.ndarray:
         """du/dw at a converged state: J du/dw = -int t' N W."""
@@ -163,6 +128,33 @@ class ContactNewton:
         da = np.einsum("jf,jg->fg", dudw[zone.facet_nodes], zone.N) + 1.0
         return LevelState(w, u, dudw, t, zone.total(t), zone.total(dt * da),
                           iterations, cuts)
+
+
+class _Level(Problem):
+    """R(u) = 0 at interference w with penalty law `law` (module docstring)."""
+
+    def __init__(self, solver: ContactNewton, law, w: float):
+        self.solver, self.law, self.w = solver, law, w
+
+    def evaluate(self, u):
+        R, f, t, dt = self.solver.residual(self.law, u, self.w)
+        return R, (f, t, dt)
+
+    def scale(self, u, data):
+        return np.linalg.norm(data[0])
+
+    def floor(self, u, data):
+        return ROUNDOFF_FACTOR * self.solver.floor(u, self.w, data[2])
+
+    def direction(self, u, R, data, tangent, iteration):
+        J = self.solver.K + self.solver.zone.matrix(data[2])
+        try:
+            return sla.cho_solve(sla.cho_factor(J, check_finite=True), -R)
+        except (np.linalg.LinAlgError, ValueError) as exc:
+            raise StepFailed(f"tangent not positive definite: {exc}", iteration) from None
+
+    def merit(self, u):
+        return self.solver._energy(self.law, u, self.w)
 
 
 def untouched(zone: ContactZone, w: float = 0.0) -> LevelState:
@@ -187,8 +179,8 @@ def solve_uzawa(newton: ContactNewton, kappa: np.ndarray, w: float, u0: np.ndarr
         law = AugmentedPenalty(kappa, lam)
         try:
             u, t, dt, its = newton.solve(law, w, u)
-        except _NotConverged as exc:
-            raise _NotConverged(str(exc), total + exc.iterations) from None
+        except StepFailed as exc:
+            raise StepFailed(str(exc), total + exc.iterations) from None
         total += its
         a = newton.zone.penetration(u, w)
         force = newton.zone.total(t)
@@ -200,7 +192,7 @@ def solve_uzawa(newton: ContactNewton, kappa: np.ndarray, w: float, u0: np.ndarr
                 abs(force - force_old) <= tolerance * abs(force):
             return u, t, dt, total, lam
         force_old = force
-    raise _NotConverged(f"Uzawa updates did not reach the tolerance in {max_updates}", total)
+    raise StepFailed(f"Uzawa updates did not reach the tolerance in {max_updates}", total)
 
 
 def continuation(newton: ContactNewton, law: C1Penalty, levels, max_cuts: int = 8,
@@ -243,7 +235,7 @@ def continuation(newton: ContactNewton, law: C1Penalty, levels, max_cuts: int = 
                         newton, law.kappa, goal, u0, lam, exact_tolerance)
                     iterations += its
                     lam = lam_new
-            except _NotConverged as exc:
+            except StepFailed as exc:
                 iterations += exc.iterations
                 cuts += 1
                 if cuts > max_cuts:

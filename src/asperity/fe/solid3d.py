@@ -105,8 +105,9 @@ import xarray as xr
 from skfem import Basis, ElementTetP2, ElementVector, FacetBasis, MeshTet, MeshTet2
 
 from .contact import SMOOTHING, C1Penalty
-from .errors import ContactZoneError, ConvergenceError, StepFailed, check_iterate
+from .errors import ContactZoneError, ConvergenceError, StepFailed
 from .material import METRIC6, equivalent_strain, von_mises
+from .nonlinear import Problem, ResidualSearch, check_local_update, newton
 from .sliding import FrictionLaw, ShearResistance, contact_tangent, drag_anchor
 
 #: the 6 edges of a tetrahedron (local vertex pairs)
@@ -796,46 +797,8 @@ class SlidingModel:
 
     def solve_step(self, u0, w, delta, state, iface, dt):
         """Newton from u0 for the step ending at (w, delta); returns (u, out, its)."""
-        m = self.m
-        free = m.free
-        u = np.array(u0, float)
-        R, out = self.evaluate(u, w, delta, state, iface, dt)
-        scale = 0.0
-        for it in range(self.max_iterations + 1):
-            Rf = R[free]
-            rn = check_iterate(Rf, out["state"], it)
-            fc = out["contact"]["fc"]
-            scale = max(scale, float(np.sqrt(np.sum(fc**2))))
-            floor = 1e3 * np.finfo(float).eps * float(np.linalg.norm(
-                (m._absBT @ np.abs(out["stress"].ravel() * m.MW))[free]))
-            if self.trace is not None:
-                c = out["contact"]
-                self.trace.append((it, rn, scale, int(np.sum(c["tn"] > 0)),
-                                   int(np.sum((c["tn"] > 0) & (np.hypot(*c["b"]) >= self.friction.slip_regularization)))))
-            if rn <= max(self.tolerance * scale, floor) or (scale == 0.0 and rn <= floor):
-                return u, out, it
-            if it == self.max_iterations:
-                break
-            K = self.jacobian(out)
-            try:
-                d = self.linear.solve(K, -Rf)
-            except Exception as exc:                          # singular factorization
-                self.linear.reset()
-                raise StepFailed(f"linear solve failed: {exc}", it) from None
-            if not np.all(np.isfinite(d)):
-                self.linear.reset()
-                raise StepFailed("non-finite Newton correction", it)
-            alpha = 1.0
-            for _ in range(self.line_search):
-                trial = u.copy()
-                trial[free] += alpha * d
-                R1, out1 = self.evaluate(trial, w, delta, state, iface, dt)
-                r1 = float(np.linalg.norm(R1[free]))
-                if np.isfinite(r1) and r1 < rn:
-                    break
-                alpha *= 0.5
-            u, R, out = trial, R1, out1
-        raise StepFailed(f"no convergence in {self.max_iterations} iterations", self.max_iterations)
+        return newton(_Step(self, w, delta, state, iface, dt), u0, self.tolerance,
+                      self.max_iterations, ResidualSearch(self.line_search))
 
     def release_separated(self, u, out, w, delta, state, iface: "Interface", dt,
                           max_rounds: int = 10):
@@ -916,6 +879,52 @@ VARIABLES = {
     "time_step": ("s", "time step of the accepted step"),
     "wall_time": ("s", "wall time of the step, including its rejected tries"),
 }
+
+
+class _Step(Problem):
+    """Equilibrium at the end of a step (`SlidingModel.solve_step`)."""
+
+    def __init__(self, sm: SlidingModel, w, delta, state, iface, dt):
+        self.sm, self.w, self.delta, self.state, self.iface, self.dt = sm, w, delta, state, iface, dt
+        self.top = 0.0  # the largest contact force norm of the iterations
+
+    def evaluate(self, u):
+        R, out = self.sm.evaluate(u, self.w, self.delta, self.state, self.iface, self.dt)
+        return R[self.sm.m.free], out
+
+    def check(self, out, iteration):
+        check_local_update(out["state"], iteration)
+
+    def scale(self, u, out):
+        fc = out["contact"]["fc"]
+        self.top = max(self.top, float(np.sqrt(np.sum(fc**2))))
+        return self.top
+
+    def floor(self, u, out):
+        m = self.sm.m
+        return 1e3 * np.finfo(float).eps * float(np.linalg.norm(
+            (m._absBT @ np.abs(out["stress"].ravel() * m.MW))[m.free]))
+
+    def monitor(self, iteration, rn, scale, out):
+        sm = self.sm
+        if sm.trace is not None:
+            c = out["contact"]
+            slip = np.hypot(*c["b"]) >= sm.friction.slip_regularization
+            sm.trace.append((iteration, float(rn), scale, int(np.sum(c["tn"] > 0)),
+                             int(np.sum((c["tn"] > 0) & slip))))
+
+    def direction(self, u, Rf, out, tangent, iteration):
+        sm = self.sm
+        try:
+            d = sm.linear.solve(sm.jacobian(out), -Rf)
+        except Exception as exc:                          # singular factorization
+            sm.linear.reset()
+            raise StepFailed(f"linear solve failed: {exc}", iteration) from None
+        if not np.all(np.isfinite(d)):
+            sm.linear.reset()  # newton raises
+        full = np.zeros_like(u)
+        full[sm.m.free] = d
+        return full
 
 
 def _describe(obj) -> str:

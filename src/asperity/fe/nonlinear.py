@@ -1,0 +1,195 @@
+"""The one Newton iteration of the finite element drivers (report 3.5).
+
+Every driver solves its equilibrium R(x) = 0 at a load step by the same
+loop (`newton`); what differs is passed in as a `Problem`:
+
+* the residual R and the data the rest needs (`Problem.evaluate`), the
+  force scale and the round-off floor of the convergence test
+  ||R|| <= max(tolerance * scale, floor), and a check of the data
+  (a constitutive update that did not converge at some point);
+* the Newton direction, each problem with its own linear algebra: the
+  dense Cholesky of the condensed stiffness (`newton`), the Schur
+  complement on the active surface nodes (`adhesive._Tangent`), SuperLU
+  (`inelastic`), SuperLU reused as a GMRES preconditioner (`solid3d`);
+* the line search: backtracking on an energy (`EnergySearch`: Armijo,
+  with a decrease of the residual accepted where energy differences drown
+  in round-off, and trial points optionally projected, `Problem.project`)
+  or on the residual norm (`ResidualSearch`, a few halvings);
+* a hook at convergence (`Problem.settle`: the adhesive solver leaves a
+  saddle along its lowest mode) and a monitor of the iterations.
+
+A try that fails (non-finite values, a diverging or stalled residual, a
+failed linear solve) raises `errors.StepFailed` with the iterations it
+took; the drivers cut the step and retry, and raise
+`errors.ConvergenceError` when the cuts run out.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from .errors import StepFailed
+
+#: Armijo's sufficient decrease: merit(x + d) <= merit(x) + ARMIJO R.d
+ARMIJO = 1e-4
+
+
+@dataclass(frozen=True)
+class EnergySearch:
+    """Backtracking on the problem's energy (`Problem.merit`, gradient R).
+
+    A step is accepted if the energy decreases by Armijo's rule or, where
+    energy differences drown in round-off near the solution, if the
+    residual norm decreases by the same factor: anywhere (``roundoff``
+    None, a convex energy) or only where the energy rose by at most
+    ``roundoff`` |energy| (a non-convex one, where accepting real increases
+    lets Newton cycle between kinks).  With ``projected``, a full step that
+    fails Armijo is retried with the trial points passed through
+    `Problem.project`.  After ``halvings`` failures the last trial is taken.
+    """
+
+    halvings: int
+    projected: bool = False
+    roundoff: float | None = None
+
+    def __call__(self, problem, x, R, rn, d):
+        e0 = problem.merit(x)
+        slope = R @ d
+        if self.projected:
+            trial = x + d
+            if problem.merit(trial) <= e0 + ARMIJO * slope:
+                return trial, None
+        alpha = 1.0
+        for _ in range(self.halvings):
+            trial = x + alpha * d
+            if self.projected:
+                trial = problem.project(trial, x)
+                # the projection changes the step: its own directional derivative
+                drop = ARMIJO * (R @ (trial - x))
+            else:
+                drop = ARMIJO * alpha * slope
+            e1 = problem.merit(trial)
+            if e1 <= e0 + drop:
+                return trial, None
+            if self.roundoff is None or e1 - e0 <= self.roundoff * abs(e0):
+                evaluated = problem.evaluate(trial)
+                if np.linalg.norm(evaluated[0]) <= (1 - ARMIJO * alpha) * rn:
+                    return trial, evaluated
+            alpha *= 0.5
+        return trial, None
+
+
+@dataclass(frozen=True)
+class ResidualSearch:
+    """Backtracking on the residual norm: the step is halved until ||R||
+    decreases, at most ``halvings`` times; then the last trial is taken."""
+
+    halvings: int
+
+    def __call__(self, problem, x, R, rn, d):
+        alpha = 1.0
+        for _ in range(self.halvings):
+            trial = x + alpha * d
+            evaluated = problem.evaluate(trial)
+            r1 = np.linalg.norm(evaluated[0])
+            if np.isfinite(r1) and r1 < rn:
+                break
+            alpha *= 0.5
+        return trial, evaluated
+
+
+class Problem:
+    """What `newton` asks of a problem; subclasses override the methods.
+
+    ``data`` is whatever `evaluate` returns beside the residual (tractions,
+    stresses, material states); `newton` only passes it on.
+    """
+
+    def evaluate(self, x):
+        """(R, data): the residual whose norm converges, and its data."""
+        raise NotImplementedError
+
+    def scale(self, x, data) -> float:
+        """Force scale of the convergence test ||R|| <= tolerance * scale."""
+        raise NotImplementedError
+
+    def floor(self, x, data) -> float:
+        """Round-off level below which ||R|| counts as converged."""
+        raise NotImplementedError
+
+    def check(self, data, iteration: int) -> None:
+        """Raise `StepFailed` if the data are not admissible."""
+
+    def linearize(self, x, data):
+        """Called once per iteration before the convergence test; what it
+        returns (e.g. a tangent) goes to `direction` and `settle`."""
+        return None
+
+    def direction(self, x, R, data, tangent, iteration: int) -> np.ndarray:
+        """The Newton correction d (J d = -R); raise `StepFailed` if there is none."""
+        raise NotImplementedError
+
+    def settle(self, x, data, tangent, iteration: int):
+        """At convergence: None to accept x, or a new start to iterate from."""
+        return None
+
+    def monitor(self, iteration: int, rn: float, scale: float, data) -> None:
+        """Sees every iteration's residual norm and scale (traces)."""
+
+    def merit(self, x) -> float:
+        """Energy whose gradient is R (for `EnergySearch`)."""
+        raise NotImplementedError
+
+    def project(self, trial, x):
+        """Trial point of a projected `EnergySearch`."""
+        return trial
+
+
+def check_local_update(state, iteration: int) -> None:
+    """`StepFailed` if the constitutive update of a material state did not
+    converge at some point (its ``converged`` flags, if it has them)."""
+    conv = getattr(state, "converged", None)
+    if conv is not None and not np.all(conv):
+        raise StepFailed("local constitutive update did not converge", iteration)
+
+
+def newton(problem: Problem, x0, tolerance: float, max_iterations: int, search,
+           divergence: float | None = None):
+    """Newton iterations from x0; returns (x, data, iterations).
+
+    Converged when ||R|| <= max(tolerance * scale, floor) (and `settle`
+    accepts).  Raises `StepFailed` (with the iterations done) on a
+    non-finite residual or correction, a residual grown beyond
+    ``divergence`` times the first, a failed direction, or no convergence
+    in `max_iterations`.
+    """
+    x = np.array(x0, dtype=float)
+    R, data = problem.evaluate(x)
+    r0 = np.linalg.norm(R)
+    for it in range(max_iterations + 1):
+        rn = np.linalg.norm(R)
+        if not np.isfinite(rn):
+            raise StepFailed("non-finite residual", it)
+        problem.check(data, it)
+        tangent = problem.linearize(x, data)
+        scale = problem.scale(x, data)
+        problem.monitor(it, rn, scale, data)
+        if rn <= max(tolerance * scale, problem.floor(x, data)):
+            moved = problem.settle(x, data, tangent, it)
+            if moved is None:
+                return x, data, it
+            x = moved
+            R, data = problem.evaluate(x)
+            continue
+        if divergence is not None and rn > divergence * max(r0, np.finfo(float).tiny):
+            raise StepFailed("diverging residual", it)
+        if it == max_iterations:
+            break
+        d = problem.direction(x, R, data, tangent, it)
+        if not np.all(np.isfinite(d)):
+            raise StepFailed("non-finite Newton correction", it)
+        x, evaluated = search(problem, x, R, rn, d)
+        R, data = problem.evaluate(x) if evaluated is None else evaluated
+    raise StepFailed(f"no convergence in {max_iterations} iterations", max_iterations)
