@@ -25,6 +25,30 @@ class ConvergenceError(RuntimeError):
         super().__init__(msg)
 
 
+class RuptureError(ConvergenceError):
+    """A material point ruptured (report 3.2.2: w -> 1) in a history solved
+    with ``on_rupture="raise"``.
+
+    Attributes as `ConvergenceError` (`step`, `interference` and `reached`
+    the interference of the rupture step, `cuts` 0) plus `time` [s] and
+    `position` (r or x, depth below the surface) [m] of the first ruptured
+    point and `count` (ruptured points).
+    """
+
+    def __init__(self, step: int, interference: float, time_: float, position, count: int):
+        self.step = step
+        self.interference = interference
+        self.reached = interference
+        self.cuts = 0
+        self.time = time_
+        self.position = tuple(position)
+        self.count = count
+        RuntimeError.__init__(
+            self, f"material ruptured at step {step} (time {time_:.6g} s, interference "
+                  f"{interference:.6g} m): {count} point(s), the first at r = {position[0]:.6g} m, "
+                  f"{position[1]:.6g} m below the surface")
+
+
 class ContactZoneError(RuntimeError):
     """The contact reached the edge of the zone allowed to touch the flat."""
 

@@ -147,7 +147,7 @@ import scipy.sparse.linalg as spl
 import xarray as xr
 
 from .contact import PENALTY_FACTOR, C1Penalty, ContactZone, contact_edge_pressure
-from .errors import ContactZoneError, ConvergenceError, StepFailed
+from .errors import ContactZoneError, ConvergenceError, RuptureError, StepFailed
 from .material import METRIC, LinearElastic, equivalent_strain, von_mises
 from .nonlinear import Problem, ResidualSearch, check_local_update, newton
 from .presets import resolve
@@ -249,30 +249,6 @@ class History:
 def elastic_part(material) -> LinearElastic:
     """The elastic constants of an inelastic material, for meshing."""
     return LinearElastic(material.E, material.nu)
-
-
-class RuptureError(ConvergenceError):
-    """A material point ruptured (report 3.2.2: w -> 1) in a history solved
-    with ``on_rupture="raise"``.
-
-    Attributes as `ConvergenceError` (`step`, `interference` and `reached`
-    the interference of the rupture step, `cuts` 0) plus `time` [s] and
-    `position` (r or x, depth below the surface) [m] of the first ruptured
-    point and `count` (ruptured points).
-    """
-
-    def __init__(self, step: int, interference: float, time_: float, position, count: int):
-        self.step = step
-        self.interference = interference
-        self.reached = interference
-        self.cuts = 0
-        self.time = time_
-        self.position = tuple(position)
-        self.count = count
-        RuntimeError.__init__(
-            self, f"material ruptured at step {step} (time {time_:.6g} s, interference "
-                  f"{interference:.6g} m): {count} point(s), the first at r = {position[0]:.6g} m, "
-                  f"{position[1]:.6g} m below the surface")
 
 
 class InelasticModel:
