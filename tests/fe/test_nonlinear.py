@@ -120,3 +120,20 @@ if __name__ == "__main__":
               "steps", sum(cases[name]["newton_iterations"]), "iterations",
               sum(cases[name]["step_cuts"]), "cuts")
     DATA.write_text(json.dumps(dict(commit=commit, cases=cases), indent=1) + "\n")
+
+
+def test_convergence_error_names_the_sample_and_the_step():
+    """The sample is told to the error after the fact (the stage layer knows it);
+    the message then names it first, once; a RuptureError likewise."""
+    from asperity.fe import ConvergenceError, RuptureError
+
+    err = ConvergenceError(4, 2e-7, 1e-7, 8, "no convergence in 40 iterations")
+    assert str(err).startswith("Newton iterations did not converge at step 4 ")
+    err.sample = "k12 (curvature 1e+06 1/m)"
+    assert str(err).startswith("sample k12 (curvature 1e+06 1/m): Newton iterations did not "
+                               "converge at step 4 (interference 2e-07 m) after 8 step cuts")
+    assert str(err).count("k12") == 1
+    rup = RuptureError(7, 3e-8, 12.5, (1e-6, 2e-7), 2)
+    assert isinstance(rup, ConvergenceError) and (rup.step, rup.reached, rup.cuts) == (7, 3e-8, 0)
+    rup.sample = "k3"
+    assert str(rup).startswith("sample k3: material ruptured at step 7 (time 12.5 s")

@@ -695,14 +695,8 @@ class _Record:
     step: int
 
 
-class _Failed(Exception):
-    def __init__(self, detail: str, reached: float, halvings: int):
-        super().__init__(detail)
-        self.reached = reached
-        self.halvings = halvings
-
-
-def _advance(model: AdhesiveModel, state: AdhesiveState, target: float, pre: dict):
+def _advance(model: AdhesiveModel, state: AdhesiveState, target: float, pre: dict,
+             step: int = 0):
     """From a converged state to the flat position `target`, with step control.
 
     A step that fails to converge, or is discontinuous
@@ -713,8 +707,8 @@ def _advance(model: AdhesiveModel, state: AdhesiveState, target: float, pre: dic
     position reached continuously after all (a steep stretch) is dropped
     and the bracket reopens to the next one, never to the target.  Returns (final state,
     [(state before, state after) of each jump], iterations, halvings);
-    raises `_Failed` (with the last position reached) when a step fails
-    even at the smallest size.
+    raises `ConvergenceError` (naming `step` and the last position reached)
+    when a step fails even at the smallest size.
     """
     newton, d = model.newton, model.adhesion.d
     smallest = pre["min_step"] * d
@@ -749,7 +743,8 @@ def _advance(model: AdhesiveModel, state: AdhesiveState, target: float, pre: dic
             iterations += exc.iterations
             halvings += 1
             if small or halvings > MAX_HALVINGS:
-                raise _Failed(f"{exc} (at w = {goal:.6g} m)", state.w, halvings - 1) from None
+                raise ConvergenceError(step, target, state.w, halvings - 1,
+                                       f"{exc} (at w = {goal:.6g} m)") from None
             bads.append(goal)
             goals = [target]
             continue
@@ -758,7 +753,8 @@ def _advance(model: AdhesiveModel, state: AdhesiveState, target: float, pre: dic
             if not small:
                 halvings += 1
                 if halvings > MAX_HALVINGS:
-                    raise _Failed("the path stays discontinuous", state.w, halvings - 1)
+                    raise ConvergenceError(step, target, state.w, halvings - 1,
+                                           "the path stays discontinuous")
                 bads.append(goal)
                 goals = [target]
                 continue
@@ -775,12 +771,11 @@ def _trace(model: AdhesiveModel, path, pre: dict, label: str = "") -> list[_Reco
     """States along the path with step control and jumps (module docstring)."""
     newton = model.newton
     branches = _branches(path)
-    who = f"sample {label}: " if label else ""
     t0 = time.perf_counter()
     try:
         u, parts, T, its = newton.solve(float(path[0]), np.zeros(model.zone.ndofs))
     except StepFailed as exc:
-        raise ConvergenceError(0, float(path[0]), math.nan, 0, f"{who}{exc}") from None
+        raise ConvergenceError(0, float(path[0]), math.nan, 0, str(exc), label) from None
     state = newton.state(float(path[0]), u, parts, T, its)
     state.wall_time = time.perf_counter() - t0
     records = [_Record(state, branches[0], False, True, 0)]
@@ -788,9 +783,10 @@ def _trace(model: AdhesiveModel, path, pre: dict, label: str = "") -> list[_Reco
         target, branch = float(path[n]), branches[n]
         t0 = time.perf_counter()
         try:
-            state, jumps, iterations, halvings = _advance(model, state, target, pre)
-        except _Failed as exc:
-            raise ConvergenceError(n, target, exc.reached, exc.halvings, f"{who}{exc}") from None
+            state, jumps, iterations, halvings = _advance(model, state, target, pre, n)
+        except ConvergenceError as exc:
+            exc.sample = label
+            raise
         for before, after in jumps:
             if records[-1].state is not before:
                 records.append(_Record(before, branch, False, False, n))
@@ -867,7 +863,7 @@ def _refine_pull_off(model: AdhesiveModel, records: list, pre: dict, resolution:
             mid = 0.5 * (records[j].state.w + src.w)
             try:
                 new, jumps, its, cuts = _advance(model, src, mid, pre)
-            except (_Failed, _Overflow):
+            except (ConvergenceError, _Overflow):
                 continue
             if jumps:  # not on the branch of the minimum
                 continue

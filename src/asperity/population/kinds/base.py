@@ -146,8 +146,15 @@ class FiniteElementKind(Kind):
 
     @staticmethod
     def failed(key: str, curvature: float, err: Exception, detail: str = "") -> SampleFailed:
-        """The `SampleFailed` of sample `key` (curvature, `detail`) from the solver's error."""
-        return SampleFailed(f"sample {key} (curvature {curvature:.6g} 1/m{detail}): {err}")
+        """The `SampleFailed` of sample `key` (curvature, `detail`) from the solver's error
+        (a `ConvergenceError` is told the sample, so that it names it wherever it goes)."""
+        from asperity.fe import ConvergenceError
+
+        who = f"{key} (curvature {curvature:.6g} 1/m{detail})"
+        if isinstance(err, ConvergenceError):
+            err.sample = who
+            return SampleFailed(str(err))
+        return SampleFailed(f"sample {who}: {err}")
 
     @staticmethod
     def record(ds: xr.Dataset, spec: Config, key: str, geometry, level: float, cpu: float) -> xr.Dataset:
