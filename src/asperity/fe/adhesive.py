@@ -96,24 +96,8 @@ from .material import equivalent_strain, von_mises
 from .mesh import AsperityMesh, MeshSpec
 from .newton import ROUNDOFF_FACTOR, _penalty_energy
 from .nonlinear import EnergySearch, Problem, newton
-from .presets import PLANE_STRAIN_DOMAIN, resolve
+from .presets import ADHESIVE_ACCURACY, PLANE_STRAIN_DOMAIN, resolve
 from .solve import PLANE_STRAIN_UNITS, _describe
-
-#: numerical parameters of the adhesive solver, on top of an FE preset (`base`)
-ADHESIVE_ACCURACY: dict[str, dict] = {
-    "draft": dict(base="draft", process_zone_elements=1.5, ring_elements=4.0, grading=0.5,
-                  gauss_points=5, subdivisions=2, steps_per_d=3.0, far_steps=8,
-                  jump_tolerance=0.25, energy_tolerance=0.03, min_step=2e-3,
-                  max_band_facets=1500),
-    "standard": dict(base="standard", process_zone_elements=3.0, ring_elements=8.0, grading=0.3,
-                     gauss_points=5, subdivisions=2, steps_per_d=6.0, far_steps=16,
-                     jump_tolerance=0.25, energy_tolerance=0.02, min_step=1e-3,
-                     max_band_facets=3000),
-    "fine": dict(base="fine", process_zone_elements=6.0, ring_elements=16.0, grading=0.2,
-                 gauss_points=5, subdivisions=4, steps_per_d=10.0, far_steps=24,
-                 jump_tolerance=0.25, energy_tolerance=0.01, min_step=5e-4,
-                 max_band_facets=6000),
-}
 
 #: Newton iterations of a step attempt are the preset's ``max_iterations``
 #: (40): a continuous step converges in 4-20; one that does not is halved

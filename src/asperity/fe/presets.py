@@ -117,6 +117,42 @@ ACCURACY: dict[str, dict] = {
 }
 
 
+#: numerical parameters of the adhesive solver, on top of an FE preset (`base`)
+ADHESIVE_ACCURACY: dict[str, dict] = {
+    "draft": dict(base="draft", process_zone_elements=1.5, ring_elements=4.0, grading=0.5,
+                  gauss_points=5, subdivisions=2, steps_per_d=3.0, far_steps=8,
+                  jump_tolerance=0.25, energy_tolerance=0.03, min_step=2e-3,
+                  max_band_facets=1500),
+    "standard": dict(base="standard", process_zone_elements=3.0, ring_elements=8.0, grading=0.3,
+                     gauss_points=5, subdivisions=2, steps_per_d=6.0, far_steps=16,
+                     jump_tolerance=0.25, energy_tolerance=0.02, min_step=1e-3,
+                     max_band_facets=3000),
+    "fine": dict(base="fine", process_zone_elements=6.0, ring_elements=16.0, grading=0.2,
+                 gauss_points=5, subdivisions=4, steps_per_d=10.0, far_steps=24,
+                 jump_tolerance=0.25, energy_tolerance=0.01, min_step=5e-4,
+                 max_band_facets=6000),
+}
+
+#: accuracy presets of the sliding model: mesh sizes relative to the
+#: contact radius estimate r (the geometric intersection radius at the
+#: largest approach): the longest element edge ``tip_fraction`` r within
+#: ``refine_fraction`` r of the apex, growing by ``grading`` per unit
+#: distance, at most ``coarse_fraction`` x the footprint radius; time steps
+#: per segment of the motion (caps: cuts may add steps); Newton tolerance;
+#: the largest change of the equivalent inelastic strain in a step.
+SLIDING_ACCURACY: dict[str, dict] = {
+    "draft": dict(tip_fraction=1.0, refine_fraction=0.5, grading=0.7, coarse_fraction=0.5,
+                  normal_steps=6, tangential_steps=12, tolerance=1e-6, max_iterations=40,
+                  max_cuts=10, max_inelastic_step=0.3),
+    "standard": dict(tip_fraction=0.75, refine_fraction=0.5, grading=0.7, coarse_fraction=0.5,
+                     normal_steps=8, tangential_steps=16, tolerance=1e-7, max_iterations=40,
+                     max_cuts=10, max_inelastic_step=1.0),
+    "fine": dict(tip_fraction=0.5, refine_fraction=0.8, grading=0.5, coarse_fraction=0.35,
+                 normal_steps=16, tangential_steps=32, tolerance=1e-8, max_iterations=40,
+                 max_cuts=10, max_inelastic_step=0.1),
+}
+
+
 def resolve(accuracy: str | dict) -> dict:
     """A preset by name, or a dict overriding 'standard' (or its 'base' key)."""
     if isinstance(accuracy, str):

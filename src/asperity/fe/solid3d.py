@@ -108,6 +108,7 @@ from .contact import SMOOTHING, C1Penalty
 from .errors import ContactZoneError, ConvergenceError, StepFailed
 from .material import METRIC6, equivalent_strain, von_mises
 from .nonlinear import Problem, ResidualSearch, check_local_update, newton
+from .presets import SLIDING_ACCURACY
 from .sliding import FrictionLaw, ShearResistance, contact_tangent, drag_anchor
 
 #: the 6 edges of a tetrahedron (local vertex pairs)
@@ -130,26 +131,6 @@ INELASTIC_THRESHOLD = 1e-8
 #: "at the junction": the largest inelastic strain lies less than this
 #: fraction of the equivalent contact radius sqrt(A / pi) below the flat
 JUNCTION_DEPTH_FRACTION = 0.25
-
-#: accuracy presets of the sliding model: mesh sizes relative to the
-#: contact radius estimate r (the geometric intersection radius at the
-#: largest approach): the longest element edge ``tip_fraction`` r within
-#: ``refine_fraction`` r of the apex, growing by ``grading`` per unit
-#: distance, at most ``coarse_fraction`` x the footprint radius; time steps
-#: per segment of the motion (caps: cuts may add steps); Newton tolerance;
-#: the largest change of the equivalent inelastic strain in a step.
-SLIDING_ACCURACY: dict[str, dict] = {
-    "draft": dict(tip_fraction=1.0, refine_fraction=0.5, grading=0.7, coarse_fraction=0.5,
-                  normal_steps=6, tangential_steps=12, tolerance=1e-6, max_iterations=40,
-                  max_cuts=10, max_inelastic_step=0.3),
-    "standard": dict(tip_fraction=0.75, refine_fraction=0.5, grading=0.7, coarse_fraction=0.5,
-                     normal_steps=8, tangential_steps=16, tolerance=1e-7, max_iterations=40,
-                     max_cuts=10, max_inelastic_step=1.0),
-    "fine": dict(tip_fraction=0.5, refine_fraction=0.8, grading=0.5, coarse_fraction=0.35,
-                 normal_steps=16, tangential_steps=32, tolerance=1e-8, max_iterations=40,
-                 max_cuts=10, max_inelastic_step=0.1),
-}
-
 
 def sliding_preset(accuracy) -> dict:
     """A sliding preset by name, or a dict overriding 'standard' (or its 'base')."""
