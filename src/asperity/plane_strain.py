@@ -84,7 +84,8 @@ def plane_strain_study(geometry, body, elastic, history, meshes: Mapping[str, di
     history
         `asperity.fe.History`: the loading of the flat (interference against time).
     meshes
-        mesh name -> accuracy preset (a dict `asperity.fe.presets.resolve` takes).
+        mesh name -> accuracy preset (a dict `asperity.fe.presets.resolve` takes for
+        "elastic").
     points
         interference levels of the elastic body, evenly spaced to the largest of the
         history; they also drive the meshing of both bodies.

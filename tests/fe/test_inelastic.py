@@ -272,7 +272,7 @@ def plastic_point():
     from asperity.fe.presets import resolve
     from asperity.fe.solve import adapted_model
 
-    pre = resolve("draft")
+    pre = resolve("inelastic", "draft")
     mat = J2Plasticity(E, NU, 5.0, H=0.1 * E)
     em, _ = adapted_model(Paraboloid(1.0), elastic_part(mat), [0.005, W_MAX], pre)
     model = InelasticModel(em.disc, Paraboloid(1.0), mat, pre, 0.2)

@@ -34,7 +34,7 @@ def test_converged_residual_is_small():
     from asperity.fe.presets import resolve
     from asperity.fe.solve import adapted_model
 
-    model, _ = adapted_model(HILL, MAT, W, resolve("draft"))
+    model, _ = adapted_model(HILL, MAT, W, resolve("elastic", "draft"))
     law = C1Penalty.for_zone(model.zone, MAT.contact_modulus)
     newton = ContactNewton(model.cond.stiffness, model.zone, 1e-10)
     states = continuation(newton, law, W)

@@ -11,11 +11,12 @@ import pytest
 from asperity.fe import LinearElastic
 from asperity.fe.bodner_partom import BodnerPartom
 from asperity.fe.errors import ConvergenceError
+from asperity.fe.presets import resolve
 from asperity.fe.geometry import CosineHill, Paraboloid
 from asperity.fe.material import equivalent_strain, von_mises
 from asperity.fe.sliding import FrictionLaw, ShearResistance
 from asperity.fe.solid3d import (FlatMotion, HalfModel, MeshSpec, SlidingModel, build_mesh,
-                                 sliding_preset, solve_prescribed, solve_sliding)
+                                 solve_prescribed, solve_sliding)
 from asperity.references.hertz import hertz_response
 
 MPA = 1e6
@@ -96,7 +97,7 @@ def test_elasticity_and_invariants_in_six_components():
 @pytest.fixture(scope="module")
 def hill_model():
     r = float(HILL.intersection_radius(np.array([0.125e-6]))[0])
-    spec = MeshSpec.for_hill(HILL, r, sliding_preset("draft"))
+    spec = MeshSpec.for_hill(HILL, r, resolve("sliding", "draft"))
     return HalfModel(HILL, build_mesh(HILL, spec), 2.5 * r)
 
 

@@ -96,7 +96,7 @@ from .material import equivalent_strain, von_mises
 from .mesh import AsperityMesh, MeshSpec
 from .newton import ROUNDOFF_FACTOR, _penalty_energy
 from .nonlinear import EnergySearch, Problem, newton
-from .presets import ADHESIVE_ACCURACY, PLANE_STRAIN_DOMAIN, resolve
+from .presets import PLANE_STRAIN_DOMAIN, resolve
 from .solve import PLANE_STRAIN_UNITS, _describe
 
 #: Newton iterations of a step attempt are the preset's ``max_iterations``
@@ -115,29 +115,6 @@ ENERGY_ROUNDOFF = 1e-10
 LINE_SEARCH = EnergySearch(halvings=50, projected=True, roundoff=ENERGY_ROUNDOFF)
 #: halvings of one requested step (failed Newton or discontinuity) before giving up
 MAX_HALVINGS = 60
-
-
-def resolve_adhesive(accuracy) -> dict:
-    """Preset by name, or a dict overriding one (key 'base', default 'standard')."""
-    if isinstance(accuracy, dict) and "base" not in accuracy and \
-            set(resolve("standard")) | set(ADHESIVE_ACCURACY["standard"]) - {"base"} <= set(accuracy):
-        return dict(accuracy)  # already resolved
-    if isinstance(accuracy, str):
-        try:
-            extra = dict(ADHESIVE_ACCURACY[accuracy])
-        except KeyError:
-            raise ValueError(f"unknown accuracy {accuracy!r}; known: "
-                             f"{', '.join(ADHESIVE_ACCURACY)}") from None
-    else:
-        extra = dict(accuracy)
-        name = extra.pop("base", "standard")
-        extra = {**ADHESIVE_ACCURACY[name], **extra}
-    fe = resolve(extra.pop("base"))
-    unknown = set(extra) - set(fe) - set(ADHESIVE_ACCURACY["standard"])
-    if unknown:
-        raise ValueError(f"unknown accuracy keys: {sorted(unknown)}")
-    fe.update(extra)
-    return fe
 
 
 class _Overflow(Exception):
@@ -616,7 +593,7 @@ def adhesive_model(geometry: Profile, material, adhesion: LennardJones, w_max: f
                    accuracy="standard", penalty_factor: float | None = None,
                    band_factor: float = 1.0) -> AdhesiveModel:
     """The mesh and operators for a path up to the interference w_max."""
-    pre = resolve_adhesive(accuracy)
+    pre = resolve("adhesive", accuracy)
     factor = PENALTY_FACTOR if penalty_factor is None else float(penalty_factor)
     scales = _scales(geometry, material, adhesion, float(w_max), pre, band_factor)
     return AdhesiveModel(geometry, material, adhesion, scales, pre, factor)
@@ -903,7 +880,8 @@ def solve_asperity_adhesive(geometry: Profile, material, adhesion: LennardJones,
         deepest interference and the retraction's end for the default path
         (w_max default: twice the JKR interference at zero load, at least 4 d).
     accuracy
-        "draft", "standard", "fine" (`ADHESIVE_ACCURACY`) or a dict of overrides.
+        "draft", "standard", "fine" (`presets.ADHESIVE_ACCURACY` on top of
+        `presets.ACCURACY`) or a dict of overrides.
     label
         a name for error messages (e.g. the pipeline's sample key).
 
@@ -919,7 +897,7 @@ def solve_asperity_adhesive(geometry: Profile, material, adhesion: LennardJones,
     the step (and `label`).
     """
     t_start = time.perf_counter()
-    pre = resolve_adhesive(accuracy)
+    pre = resolve("adhesive", accuracy)
     factor = PENALTY_FACTOR if penalty_factor is None else float(penalty_factor)
     R = tip_radius(geometry)
     Es = material.contact_modulus

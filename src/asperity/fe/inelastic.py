@@ -748,7 +748,7 @@ def solve_asperity_history(geometry, material, history: History, accuracy="stand
     step fails ``max_cuts`` times.
     """
     t_start = time.perf_counter()
-    preset = resolve(accuracy)
+    preset = resolve("inelastic", accuracy)
     factor = PENALTY_FACTOR if penalty_factor is None else float(penalty_factor)
     rate_dependent = hasattr(material, "rates")
     if time_tolerance is None:

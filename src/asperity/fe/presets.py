@@ -1,4 +1,5 @@
-"""Accuracy presets of the finite element model: one dict, documented values.
+"""Accuracy presets of the finite element models: the tables of each kind,
+documented values, and `resolve(kind, accuracy)`.
 
 Each preset sets the numerical parameters only; the model (geometry,
 material, contact law) is the same, except that the cut-off distance of a
@@ -58,6 +59,16 @@ time_tolerance
     far smaller).  What each preset's tolerance costs and how far its
     results are from tighter ones: `make bench` (benchmarks/run.py, README
     "Inelastic histories").
+
+Adhesive presets (`ADHESIVE_ACCURACY`, `adhesive.solve_asperity_adhesive`)
+add to the elastic preset of the same name: the mesh of the adhesive band
+(process_zone_elements, ring_elements, grading, max_band_facets), the
+surface rule (gauss_points, subdivisions), the path (steps_per_d,
+far_steps) and its step control (jump_tolerance, energy_tolerance,
+min_step); the adhesive module docstring says what each does.  Sliding
+presets (`SLIDING_ACCURACY`, `solid3d.solve_sliding`) are a table of their
+own (comment at the table).  `resolve(kind, accuracy)` gives the preset of
+each kind of model (`KINDS`).
 """
 
 from __future__ import annotations
@@ -153,18 +164,36 @@ SLIDING_ACCURACY: dict[str, dict] = {
 }
 
 
-def resolve(accuracy: str | dict) -> dict:
-    """A preset by name, or a dict overriding 'standard' (or its 'base' key)."""
+#: the tables of each kind of model: the inelastic histories mesh and solve with
+#: the elastic tables (and read ``time_tolerance`` from them); the adhesive
+#: presets add their keys to the elastic preset of the same name
+KINDS = ("elastic", "inelastic", "adhesive", "sliding")
+
+
+def preset(kind: str, name: str) -> dict:
+    """The preset `name` of a kind of model (`KINDS`), a new dict."""
+    table = {"elastic": ACCURACY, "inelastic": ACCURACY, "adhesive": ADHESIVE_ACCURACY,
+             "sliding": SLIDING_ACCURACY}.get(kind)
+    if table is None:
+        raise ValueError(f"unknown kind of model {kind!r}; known: {', '.join(KINDS)}")
+    if name not in table:
+        raise ValueError(f"unknown accuracy {name!r}; known: {', '.join(table)}")
+    if kind == "adhesive":
+        extra = dict(table[name])
+        return {**ACCURACY[extra.pop("base")], **extra}
+    return dict(table[name])
+
+
+def resolve(kind: str, accuracy: str | dict) -> dict:
+    """The numerical parameters of a kind of model (`KINDS`): a preset by name,
+    or a dict overriding 'standard' (or its 'base' key).  A resolved dict
+    resolves to itself."""
     if isinstance(accuracy, str):
-        try:
-            return dict(ACCURACY[accuracy])
-        except KeyError:
-            raise ValueError(
-                f"unknown accuracy {accuracy!r}; known: {', '.join(ACCURACY)}") from None
+        return preset(kind, accuracy)
     extra = dict(accuracy)
-    base = resolve(extra.pop("base", "standard"))
+    base = preset(kind, extra.pop("base", "standard"))
     unknown = set(extra) - set(base)
     if unknown:
-        raise ValueError(f"unknown accuracy keys: {sorted(unknown)}")
+        raise ValueError(f"unknown accuracy keys of the {kind} model: {sorted(unknown)}")
     base.update(extra)
     return base

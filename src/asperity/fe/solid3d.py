@@ -108,7 +108,7 @@ from .contact import SMOOTHING, C1Penalty
 from .errors import ContactZoneError, ConvergenceError, StepFailed
 from .material import METRIC6, equivalent_strain, von_mises
 from .nonlinear import Problem, ResidualSearch, check_local_update, newton
-from .presets import SLIDING_ACCURACY
+from .presets import resolve
 from .sliding import FrictionLaw, ShearResistance, contact_tangent, drag_anchor
 
 #: the 6 edges of a tetrahedron (local vertex pairs)
@@ -131,23 +131,6 @@ INELASTIC_THRESHOLD = 1e-8
 #: "at the junction": the largest inelastic strain lies less than this
 #: fraction of the equivalent contact radius sqrt(A / pi) below the flat
 JUNCTION_DEPTH_FRACTION = 0.25
-
-def sliding_preset(accuracy) -> dict:
-    """A sliding preset by name, or a dict overriding 'standard' (or its 'base')."""
-    if isinstance(accuracy, str):
-        try:
-            return dict(SLIDING_ACCURACY[accuracy])
-        except KeyError:
-            raise ValueError(f"unknown accuracy {accuracy!r}; known: "
-                             f"{', '.join(SLIDING_ACCURACY)}") from None
-    extra = dict(accuracy)
-    base = sliding_preset(extra.pop("base", "standard"))
-    unknown = set(extra) - set(base)
-    if unknown:
-        raise ValueError(f"unknown sliding accuracy keys: {sorted(unknown)}")
-    base.update(extra)
-    return base
-
 
 # ----------------------------------------------------------------------------- mesh
 @dataclass(frozen=True)
@@ -186,7 +169,7 @@ class MeshSpec:
         """Default block of a hill: L = 1.4 x its footprint radius, D = its
         footprint radius, the finest elements within the preset's
         ``refine_fraction`` x the contact radius estimate of the apex."""
-        p = sliding_preset("standard") if preset is None else preset
+        p = resolve("sliding", "standard") if preset is None else preset
         ext = float(geometry.extent)
         return cls(half_width=1.4 * ext, depth=ext, coarse_size=p["coarse_fraction"] * ext,
                    tip_size=p["tip_fraction"] * contact_radius, grading=p["grading"],
@@ -964,7 +947,7 @@ def solve_sliding(geometry, material, motion: FlatMotion, friction: FrictionLaw,
     the mesh, the solver and where the largest deformation sits.
     """
     t_start = time.perf_counter()
-    preset = sliding_preset(accuracy)
+    preset = resolve("sliding", accuracy)
     w_knots = np.asarray(motion.normal, float)
     d_knots = np.asarray(motion.tangential, float)
     w_max = float(w_knots.max())

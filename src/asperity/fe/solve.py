@@ -384,7 +384,7 @@ def solve_asperity(geometry: Profile, material, interferences, accuracy="standar
     """
     t_start = time.perf_counter()
     w = _check_levels(geometry, interferences)
-    preset = resolve(accuracy)
+    preset = resolve("elastic", accuracy)
     factor = PENALTY_FACTOR if penalty_factor is None else float(penalty_factor)
     if not factor > 0:
         raise ValueError("penalty_factor must be positive")
@@ -425,7 +425,7 @@ def penalty_error(geometry: Profile, material, interferences, accuracy="standard
     and the largest penetration relative to the interference.
     """
     w = _check_levels(geometry, interferences)
-    preset = resolve(accuracy)
+    preset = resolve("elastic", accuracy)
     model, _ = adapted_model(geometry, material, w, preset, "exact")
     exact_states, exact_ev = model.solve(w)
     F0 = np.array([s.force for s in exact_states])

@@ -92,11 +92,11 @@ class Sliding:
         return FrictionLaw(law, self.slip_regularization)
 
     def preset(self, accuracy: str) -> dict:
-        """The sliding preset `accuracy` (`asperity.fe.solid3d.sliding_preset`) with the
+        """The sliding preset `accuracy` (`asperity.fe.presets.resolve("sliding", ...)`) with the
         section's steps, mesh sizes and inelastic step limit instead of the preset's."""
-        from asperity.fe.solid3d import sliding_preset
+        from asperity.fe.presets import resolve
 
-        preset = sliding_preset(accuracy)
+        preset = resolve("sliding", accuracy)
         if self.normal_steps is not None:
             preset["normal_steps"] = self.normal_steps
         if self.tangential_steps is not None:

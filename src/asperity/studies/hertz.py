@@ -135,8 +135,8 @@ def hertz_accuracy_study(radius: float = 1.0, youngs_modulus: float = 1000.0,
     refinement = DEFAULT_REFINEMENT if refinement is None else tuple(refinement)
     presets = tuple(presets)
     for p in presets:
-        resolve(p)  # unknown names fail before any run
-    members = [resolve(m) for m in refinement]
+        resolve("elastic", p)  # unknown names fail before any run
+    members = [resolve("elastic", m) for m in refinement]
     labels = list(presets) + [f"refine-{i + 1}" for i in range(len(members))]
     if len(set(labels)) != len(labels):
         raise ValueError(f"run labels must be unique, got {labels}")
@@ -162,7 +162,7 @@ def hertz_accuracy_study(radius: float = 1.0, youngs_modulus: float = 1000.0,
     ref = hertz(radius, material, w)
     force_error = force / ref["force"] - 1
     radius_error = contact_radius / ref["contact_radius"] - 1
-    parameters = [repr(resolve(acc)) for _, acc in runs]
+    parameters = [repr(resolve("elastic", acc)) for _, acc in runs]
 
     def var(dims, values, units, long_name):
         return (dims, np.asarray(values), dict(units=units, long_name=long_name))
@@ -228,7 +228,7 @@ def hertz_accuracy_study(radius: float = 1.0, youngs_modulus: float = 1000.0,
         )
         coords[pf] = (pf, factors, dict(units="1", long_name="penalty factor c in kappa = c E' / h"))
         penalty_attrs = dict(penalty_accuracy=penalty_accuracy if isinstance(penalty_accuracy, str)
-                             else repr(resolve(penalty_accuracy)),
+                             else repr(resolve("elastic", penalty_accuracy)),
                              penalty_dofs=int(pe.attrs["dofs"]))
     else:
         penalty_attrs = {}
