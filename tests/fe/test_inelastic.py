@@ -10,7 +10,7 @@ import pytest
 from asperity.fe import CosineHill, Cylinder, LinearElastic, Paraboloid, solve_asperity
 from asperity.fe import ConvergenceError
 from asperity.fe.bodner_partom import BodnerPartom
-from asperity.fe.inelastic import VARIABLES, History, solve_asperity_history
+from asperity.fe.inelastic import OUTPUTS, History, solve_asperity_history
 from asperity.fe.j2 import J2Plasticity
 
 E, NU = 1000.0, 0.3
@@ -110,7 +110,7 @@ def test_no_yield_unloads_along_the_loading_path(j2_elastic):
 
 def test_outputs_have_units_and_names(j2_elastic):
     ds = j2_elastic
-    for name in VARIABLES:
+    for name in OUTPUTS:
         assert name in ds
         assert ds[name].attrs["units"] and ds[name].attrs["long_name"]
     assert ds.attrs["steps"] == ds.sizes["step"] - 1

@@ -4,14 +4,18 @@ import numpy as np
 import pytest
 
 from asperity.fe import CosineHill, Cylinder, LinearElastic, solve_asperity
-from asperity.fe.solve import VARIABLES
+from asperity.fe.outputs import VARIABLES
 
 from .conftest import HERTZ_W
 
 
 def test_every_variable_has_units_and_long_name(hertz_standard):
     ds = hertz_standard
-    assert set(VARIABLES) <= set(ds.data_vars)
+    assert set(ds.data_vars) <= set(VARIABLES)
+    assert set(ds.data_vars) == {
+        "interference", "force", "contact_area", "contact_radius", "normal_stiffness",
+        "max_equivalent_strain", "max_von_mises", "elastic", "estimated_error", "dofs",
+        "newton_iterations", "step_cuts", "wall_time"}
     for name, var in ds.variables.items():
         assert var.attrs.get("units"), name
         assert var.attrs.get("long_name"), name

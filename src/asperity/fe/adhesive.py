@@ -96,8 +96,8 @@ from .material import equivalent_strain, von_mises
 from .mesh import AsperityMesh, MeshSpec
 from .newton import ROUNDOFF_FACTOR, _penalty_energy
 from .nonlinear import EnergySearch, Problem, newton
+from .outputs import dataset, describe
 from .presets import PLANE_STRAIN_DOMAIN, resolve
-from .solve import PLANE_STRAIN_UNITS, _describe
 
 #: Newton iterations of a step attempt are the preset's ``max_iterations``
 #: (40): a continuous step converges in 4-20; one that does not is halved
@@ -760,36 +760,6 @@ def _trace(model: AdhesiveModel, path, pre: dict, label: str = "") -> list[_Reco
 
 
 # --- outputs -------------------------------------------------------------------------
-VARIABLES = {
-    "interference": ("m", "position of the rigid flat from first touch (negative: gap before touching)"),
-    "force": ("N", "total normal force on the asperity, compressive positive (adhesion negative)"),
-    "contact_force": ("N", "compressive part of the force (penalty contact, >= 0)"),
-    "adhesive_force": ("N", "adhesive part of the force (Lennard-Jones attraction, <= 0)"),
-    "contact_area": ("m^2", "real contact area pi a^2 (separation <= d)"),
-    "contact_radius": ("m", "contact radius a (edge located between nodes)"),
-    "normal_stiffness": ("N/m", "dF/dw along the branch (consistent tangent)"),
-    "tip_separation": ("m", "separation of the apex from the flat (d in contact)"),
-    "max_equivalent_strain": ("1", "largest von Mises equivalent strain at the quadrature points"),
-    "max_von_mises": ("Pa", "largest von Mises stress at the quadrature points"),
-    "elastic": ("1", "von Mises stress below the yield stress everywhere"),
-    "branch": ("1", "'approach' or 'retract' segment of the path"),
-    "jump": ("1", "reached by a jump (discontinuity) from the previous step"),
-    "requested": ("1", "a level of the requested path (else a state before a jump)"),
-    "dofs": ("1", "degrees of freedom (unknown displacement components)"),
-    "newton_iterations": ("1", "Newton iterations of the step, including cut steps and "
-                               "the states added before it"),
-    "step_cuts": ("1", "times the step to this level was halved (failures and discontinuities)"),
-    "wall_time": ("s", "wall time of the step, including its share of meshing and factorization"),
-}
-
-ADHESIVE_PLANE_STRAIN = {
-    "contact_force": ("N/m", "compressive part of the force per unit length (>= 0)"),
-    "adhesive_force": ("N/m", "adhesive part of the force per unit length (<= 0)"),
-    "force": ("N/m", "total normal force per unit length, compressive positive (adhesion negative)"),
-    "normal_stiffness": ("N/m^2", "dF/dw per unit length along the branch"),
-}
-
-
 def _retract_indices(branch: np.ndarray) -> np.ndarray:
     """Records of the retraction, with the turning point (the deepest state) first."""
     idx = np.nonzero(branch == "retract")[0]
@@ -885,7 +855,7 @@ def solve_asperity_adhesive(geometry: Profile, material, adhesion: LennardJones,
     label
         a name for error messages (e.g. the pipeline's sample key).
 
-    Returns a Dataset on dim ``step`` (`VARIABLES`; the states before a
+    Returns a Dataset on dim ``step`` (`outputs.dataset`; the states before a
     jump and those bisecting the path around the pull-off are added to the
     requested levels, ``requested`` False) with attributes
     ``pull_off_force``, ``pull_off_interference``, ``tabor_parameter``,
@@ -956,24 +926,10 @@ def solve_asperity_adhesive(geometry: Profile, material, adhesion: LennardJones,
         step_cuts=np.array([s.cuts for s in states]),
         wall_time=own + (total - own.sum()) / len(states),
     )
-    data = {}
-    for name, values in rec.items():
-        units, long_name = VARIABLES[name]
-        if not axi:
-            units, long_name = ADHESIVE_PLANE_STRAIN.get(name, PLANE_STRAIN_UNITS.get(
-                name, (units, long_name)))
-        data[name] = ("step", np.asarray(values), dict(units=units, long_name=long_name))
-    ds = xr.Dataset(data, coords=dict(step=("step", np.arange(len(states)),
-                                            dict(units="1", long_name="path step index"))))
     pull, where = _pull_off(w, F, branch)
     sc = model.scales
-    ds.attrs.update(
-        geometry=_describe(geometry),
-        material=_describe(material),
-        adhesion=_describe(adhesion),
-        symmetry="axisymmetric" if axi else "plane strain (per unit length)",
-        accuracy=accuracy if isinstance(accuracy, str) else "custom",
-        accuracy_parameters=repr(pre),
+    return dataset(rec, geometry, material, accuracy, pre, "path step index", dict(
+        adhesion=describe(adhesion),
         contact="penalty",
         penalty_factor=factor,
         sign_convention="force compressive positive; adhesion (attraction) negative",
@@ -994,8 +950,7 @@ def solve_asperity_adhesive(geometry: Profile, material, adhesion: LennardJones,
         band_facets=int(model.zone.nfacets),
         resolution_capped=int(sc.capped),
         total_wall_time=total,
-    )
-    return ds
+    ))
 
 
 # --- interpolation for the pipeline --------------------------------------------------
@@ -1143,7 +1098,7 @@ def smooth_aluminum_curves(radii=(15.4e-6, 30e-6, 60e-6), d: float = 0.3e-9,
                                 dict(units="N", long_name="DMT pull-off 2 pi R W_c(d)"))
     ds["pull_off_force_jkr"] = ("radius", 1.5 * np.pi * radii * W,
                                 dict(units="N", long_name="JKR pull-off 3/2 pi R W_c(d)"))
-    ds.attrs.update(material=_describe(mat), adhesion=_describe(law), report="7.3, Fig. 7.6",
+    ds.attrs.update(material=describe(mat), adhesion=describe(law), report="7.3, Fig. 7.6",
                     geometry="Paraboloid (shallow: half space with a paraboloidal gap)",
                     accuracy=accuracy if isinstance(accuracy, str) else "custom",
                     w_max=float(w_max),

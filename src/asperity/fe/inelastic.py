@@ -150,16 +150,12 @@ from .contact import PENALTY_FACTOR, C1Penalty, ContactZone, contact_edge_pressu
 from .errors import ContactZoneError, ConvergenceError, RuptureError, StepFailed
 from .material import METRIC, LinearElastic, equivalent_strain, von_mises
 from .nonlinear import Problem, ResidualSearch, check_local_update, newton
+from .outputs import INELASTIC_THRESHOLD, SMALL_STRAIN_LIMIT, dataset
 from .presets import resolve
-from .solve import _check_levels, _dataset, adapted_model
+from .solve import adapted_model, check_levels, run_attrs
 
-#: a point counts as having yielded once its equivalent inelastic strain
-#: exceeds this
-INELASTIC_THRESHOLD = 1e-8
 #: on unloading, a force below this fraction of the largest force counts as zero
 ZERO_FORCE = 1e-6
-#: small strain limit of report 7.3 (largest principal strain magnitude)
-SMALL_STRAIN_LIMIT = 0.08
 #: Newton: the next time step does not grow after more than FAST iterations,
 #: and shrinks by SHRINK after SLOW or more
 FAST, SLOW, SHRINK = 4, 10, 0.7
@@ -628,30 +624,12 @@ def _zero_force_crossing(rows) -> float:
     return float(np.clip(est, lo, hi))
 
 
-VARIABLES = {
-    "time": ("s", "time"),
-    "interference": ("m", "interference of the rigid flat (approach from first touch)"),
-    "force": ("N", "total contact force"),
-    "contact_area": ("m^2", "real contact area pi a^2"),
-    "contact_radius": ("m", "contact radius a (edge located between nodes)"),
-    "max_equivalent_strain": ("1", "largest von Mises equivalent total strain at the quadrature points"),
-    "max_inelastic_strain": ("1", "largest von Mises equivalent inelastic strain at the quadrature points"),
-    "max_von_mises": ("Pa", "largest von Mises stress at the quadrature points"),
-    "max_damage": ("1", "largest damage w at the quadrature points (0 without damage)"),
-    "ruptured_points": ("1", "quadrature points ruptured so far (report 3.2.2: w -> 1)"),
-    "elastic": ("1", f"no equivalent inelastic strain above {INELASTIC_THRESHOLD:g} anywhere"),
-    "small_strain": ("1", f"largest principal strain magnitude below {SMALL_STRAIN_LIMIT:g} everywhere (report 7.3)"),
-    "branch": ("1", "'loading' or 'unloading' segment of the history"),
-    "newton_iterations": ("1", "Newton iterations of the step, including those of rejected tries"),
-    "step_cuts": ("1", "times the step was rejected and retried with a smaller time step"),
-    "time_step": ("s", "time step of the accepted step"),
-    "integration_order": ("1", "time integration of the step: 1 backward Euler, 2 BDF2 (0: initial state)"),
-    "time_error": ("1", "estimated local time-integration error of the step: nodal forces of the "
-                        "stress error relative to the contact forces, or damage error relative "
-                        "to rupture (NaN: not estimated, rate-independent material)"),
-    "dofs": ("1", "degrees of freedom (unknown displacement components)"),
-    "wall_time": ("s", "wall time of the step, including its rejected tries"),
-}
+#: the variables of `solve_asperity_history` (units and long names:
+#: `outputs.VARIABLES`)
+OUTPUTS = ("time", "interference", "force", "contact_area", "contact_radius",
+           "max_equivalent_strain", "max_inelastic_strain", "max_von_mises", "max_damage",
+           "ruptured_points", "elastic", "small_strain", "branch", "newton_iterations",
+           "step_cuts", "time_step", "integration_order", "time_error", "dofs", "wall_time")
 
 
 def solve_asperity_history(geometry, material, history: History, accuracy="standard",
@@ -732,7 +710,7 @@ def solve_asperity_history(geometry, material, history: History, accuracy="stand
         ``"continue"`` (default), ``"stop"`` or ``"raise"`` (`RuptureError`)
         when a material point ruptures (module docstring).
 
-    Returns an `xarray.Dataset` on dim ``step`` (variables in `VARIABLES`,
+    Returns an `xarray.Dataset` on dim ``step`` (variables `OUTPUTS`,
     step 0 the initial untouched state) with attributes including
     ``residual_interference`` (NaN if the force never returned to zero),
     ``steps``, ``total_step_cuts``, ``total_factorizations``,
@@ -764,14 +742,14 @@ def solve_asperity_history(geometry, material, history: History, accuracy="stand
     w_max = float(knots_w.max())
     if not w_max > 0:
         raise ValueError("the history never presses the flat onto the asperity (max w <= 0)")
-    _check_levels(geometry, [w_max])
+    check_levels(geometry, [w_max])
     if not hasattr(material, "update"):
         raise TypeError("material must have initial_state/update (an inelastic material)")
 
     # --- mesh: adapted once to the elastic solution at the largest w --------
     if mesh_levels is None:
         mesh_levels = np.geomspace(MESH_RANGE * w_max, w_max, MESH_LEVELS)
-    mesh_levels = _check_levels(geometry, mesh_levels)
+    mesh_levels = check_levels(geometry, mesh_levels)
     emodel, _ = adapted_model(geometry, elastic_part(material), mesh_levels, preset, "penalty",
                               factor)
     rg = float(geometry.intersection_radius(np.array([w_max]))[0])
@@ -954,7 +932,7 @@ def solve_asperity_history(geometry, material, history: History, accuracy="stand
     if not done and not stop_reason:
         stop_reason = f"max_steps ({max_steps}) reached at time {t:.6g} s"
     rec = {}
-    for name in VARIABLES:
+    for name in OUTPUTS:
         if name == "dofs":
             rec[name] = np.full(k, model.dofs)
         elif name == "elastic":
@@ -994,7 +972,7 @@ def solve_asperity_history(geometry, material, history: History, accuracy="stand
         extra.update(rupture_step=rupture["step"], rupture_time=rupture["time"],
                      rupture_interference=rupture["interference"],
                      rupture_position=rupture["position"], rupture_depth=rupture["depth"])
-    return _dataset(
-        rec, geometry, material, accuracy, preset, "penalty", factor,
-        "fixed, adapted once to the elastic solution at the largest interference",
-        variables=VARIABLES, step_name="time step index", methods=False, extra_attrs=extra)
+    return dataset(rec, geometry, material, accuracy, preset, "time step index", {
+        **run_attrs("penalty", factor,
+                    "fixed, adapted once to the elastic solution at the largest interference"),
+        **extra})

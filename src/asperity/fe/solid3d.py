@@ -108,6 +108,7 @@ from .contact import SMOOTHING, C1Penalty
 from .errors import ContactZoneError, ConvergenceError, StepFailed
 from .material import METRIC6, equivalent_strain, von_mises
 from .nonlinear import Problem, ResidualSearch, check_local_update, newton
+from .outputs import INELASTIC_THRESHOLD, dataset, describe
 from .presets import resolve
 from .sliding import FrictionLaw, ShearResistance, contact_tangent, drag_anchor
 
@@ -126,8 +127,6 @@ SMOOTHING_3D = SMOOTHING
 TANGENT_ELASTIC_TOL = 1e-10
 #: time step growth after an easy step (<= FAST Newton iterations)
 GROWTH, FAST = 1.5, 5
-#: a point has yielded once its equivalent inelastic strain exceeds this
-INELASTIC_THRESHOLD = 1e-8
 #: "at the junction": the largest inelastic strain lies less than this
 #: fraction of the equivalent contact radius sqrt(A / pi) below the flat
 JUNCTION_DEPTH_FRACTION = 0.25
@@ -821,28 +820,11 @@ class SlidingModel:
         )
 
 
-VARIABLES = {
-    "time": ("s", "time"),
-    "normal_displacement": ("m", "approach w of the rigid flat from first touch at the apex"),
-    "tangential_displacement": ("m", "tangential (sliding) displacement delta of the rigid flat along x"),
-    "normal_force": ("N", "normal contact force on the asperity (whole body, twice the half model)"),
-    "tangential_force": ("N", "tangential contact force on the asperity along the sliding direction x"),
-    "contact_area": ("m^2", "real contact area: the quadrature weights of the contact points "
-                     "with a positive pressure (3 points per facet)"),
-    "tangential_force_off_contact": ("N", "part of the tangential force from contact points "
-                                     "without pressure (lagged friction: separated during the step)"),
-    "mean_pressure": ("Pa", "normal force / contact area"),
-    "mean_tangential_traction": ("Pa", "tangential force / contact area (report 9.2: about 64 MPa)"),
-    "max_pressure": ("Pa", "largest contact pressure at the contact quadrature points"),
-    "slip_fraction": ("1", "share of the touching area (quadrature points) whose slip |b| reached eps_b"),
-    "max_inelastic_strain": ("1", "largest von Mises equivalent inelastic strain at the quadrature points"),
-    "max_von_mises": ("Pa", "largest von Mises stress at the quadrature points"),
-    "phase": ("1", "'normal' (pressing), 'sliding' or 'hold' segment of the motion"),
-    "newton_iterations": ("1", "Newton iterations of the step, including those of rejected tries"),
-    "step_cuts": ("1", "times the step was rejected and its time step halved"),
-    "time_step": ("s", "time step of the accepted step"),
-    "wall_time": ("s", "wall time of the step, including its rejected tries"),
-}
+#: the variables of `solve_sliding` (units and long names: `outputs.VARIABLES`)
+OUTPUTS = ("time", "normal_displacement", "tangential_displacement", "normal_force",
+           "tangential_force", "contact_area", "tangential_force_off_contact", "mean_pressure",
+           "mean_tangential_traction", "max_pressure", "slip_fraction", "max_inelastic_strain",
+           "max_von_mises", "phase", "newton_iterations", "step_cuts", "time_step", "wall_time")
 
 
 class _Step(Problem):
@@ -891,13 +873,6 @@ class _Step(Problem):
         return full
 
 
-def _describe(obj) -> str:
-    name = getattr(obj, "name", None)
-    fields_ = getattr(obj, "__dataclass_fields__", {})
-    parts = [f"{k}={getattr(obj, k)!r}" for k in fields_ if k != "name"]
-    return f"{type(obj).__name__}({', '.join(parts)})" + (f" [{name}]" if name else "")
-
-
 def _snapshot(model: HalfModel, u, state) -> dict:
     nd = model.node_displacements(u)[:, model.plane_nodes]
     ep = model.nodal_average(equivalent_strain(state.inelastic_strain))[model.plane_nodes]
@@ -942,7 +917,7 @@ def solve_sliding(geometry, material, motion: FlatMotion, friction: FrictionLaw,
         optional callable(str) for progress lines.
 
     Returns an `xarray.Dataset`: per step (dim ``step``) the variables of
-    `VARIABLES`; the symmetry-plane section (dims ``plane_node``,
+    `OUTPUTS`; the symmetry-plane section (dims ``plane_node``,
     ``plane_triangle``, ``corner``, ``snapshot``); attributes describing
     the mesh, the solver and where the largest deformation sits.
     """
@@ -1071,12 +1046,11 @@ def solve_sliding(geometry, material, motion: FlatMotion, friction: FrictionLaw,
             dt = min(dt, h * max(0.5, 0.8 * max_inel / step_inel))
 
     total = time.perf_counter() - t_start
-    return _sliding_dataset(rows, model, sm, u, w, state, snap, dict(
-        geometry=_describe(geometry), material=_describe(material),
-        friction=_describe(friction.resistance),
+    head = dataset({name: np.array([r[name] for r in rows]) for name in OUTPUTS}, geometry,
+                   material, accuracy, preset, "time step index")
+    return _sliding_dataset(head, rows, model, sm, u, w, state, snap, dict(
+        friction=describe(friction.resistance),
         slip_regularization=float(friction.slip_regularization),
-        accuracy=accuracy if isinstance(accuracy, str) else "custom",
-        accuracy_parameters=repr(preset),
         mesh=repr(spec),
         symmetry="half model y >= 0 (plane of symmetry y = 0 contains the sliding direction x)",
         elements=int(model.shape[0]), element_type="10-node tetrahedra (P2, isoparametric), "
@@ -1131,14 +1105,10 @@ def _largest_deformation(model: HalfModel, u, w, state, a_ref: float) -> dict:
     )
 
 
-def _sliding_dataset(rows, model: HalfModel, sm: SlidingModel, u, w, state, snap, attrs):
-    k = len(rows)
-    data = {}
-    for name, (units, long_name) in VARIABLES.items():
-        vals = np.array([r[name] for r in rows])
-        data[name] = ("step", vals, dict(units=units, long_name=long_name))
-    ds = xr.Dataset(data, coords=dict(step=("step", np.arange(k),
-                                            dict(units="1", long_name="time step index"))))
+def _sliding_dataset(ds: xr.Dataset, rows, model: HalfModel, sm: SlidingModel, u, w, state,
+                     snap, attrs):
+    """The per-step Dataset `ds` with the symmetry-plane sections, the profile
+    below the apex and the attributes."""
     # symmetry-plane section (Fig. 9.5)
     X = model.hm.mesh.doflocs[:, model.plane_nodes]
     names = list(snap)

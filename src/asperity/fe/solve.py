@@ -17,10 +17,10 @@ Mesh strategy (``adapt=``):
   solved from first touch).  Each level gets a mesh tuned to its own
   contact edge.
 
-Outputs per step (`xarray.Dataset` on dim ``step``) are listed in
-`VARIABLES`; `normal_stiffness` is dF/dw from the consistent tangent of
-the converged state (one extra solve with the converged Newton matrix),
-the contact radius is located between nodes by `contact.contact_edge`.
+Outputs per step (`xarray.Dataset` on dim ``step``, `outputs.dataset`):
+those of `_records`; `normal_stiffness` is dF/dw from the consistent
+tangent of the converged state (one extra solve with the converged Newton
+matrix), the contact radius is located between nodes by `contact.contact_edge`.
 Quantities of a plane-strain section are per unit length of the ridge
 (both halves of the symmetric section).
 """
@@ -29,8 +29,6 @@ from __future__ import annotations
 
 import math
 import time
-from dataclasses import asdict, is_dataclass
-
 import numpy as np
 import xarray as xr
 
@@ -43,6 +41,7 @@ from .geometry import Profile
 from .material import equivalent_strain, von_mises
 from .mesh import AsperityMesh, MeshSpec
 from .newton import ContactNewton, continuation
+from .outputs import dataset, describe
 from .presets import PLANE_STRAIN_DOMAIN, resolve
 
 #: the zone of surface nodes allowed to touch the flat extends to this
@@ -250,31 +249,6 @@ def adapted_model(geometry: Profile, material, levels, preset: dict,
 
 
 # --- public API -------------------------------------------------------------------
-VARIABLES = {
-    "interference": ("m", "interference of the rigid flat (approach from first touch)"),
-    "force": ("N", "total contact force"),
-    "contact_area": ("m^2", "real contact area pi a^2"),
-    "contact_radius": ("m", "contact radius a (edge located between nodes)"),
-    "normal_stiffness": ("N/m", "normal contact stiffness dF/dw (consistent tangent)"),
-    "max_equivalent_strain": ("1", "largest von Mises equivalent strain at the quadrature points"),
-    "max_von_mises": ("Pa", "largest von Mises stress at the quadrature points"),
-    "elastic": ("1", "von Mises stress below the yield stress everywhere"),
-    "estimated_error": ("1", "ZZ estimate of the relative energy-norm error of the stress"),
-    "dofs": ("1", "degrees of freedom (unknown displacement components)"),
-    "newton_iterations": ("1", "Newton iterations, including those of cut steps"),
-    "step_cuts": ("1", "times the step to this level was cut in half"),
-    "wall_time": ("s", "wall time of the level, including its share of meshing, "
-                       "assembly, factorization and adaptivity"),
-}
-
-PLANE_STRAIN_UNITS = {
-    "force": ("N/m", "contact force per unit length of the ridge"),
-    "contact_area": ("m", "contact width 2 a per unit length of the ridge (area per length)"),
-    "contact_radius": ("m", "contact half width a (edge located between nodes)"),
-    "normal_stiffness": ("N/m^2", "normal contact stiffness dF/dw per unit length (consistent tangent)"),
-}
-
-
 def _records(model: Model, states, ev) -> dict[str, np.ndarray]:
     k = len(states)
     a = ev["contact_radius"]
@@ -298,47 +272,18 @@ def _records(model: Model, states, ev) -> dict[str, np.ndarray]:
     )
 
 
-def _describe(obj) -> str:
-    if is_dataclass(obj):
-        fields = ", ".join(f"{k}={v!r}" for k, v in asdict(obj).items())
-        return f"{type(obj).__name__}({fields})"
-    return repr(obj)
-
-
-def _dataset(rec: dict, geometry, material, accuracy, preset, contact, penalty_factor,
-             strategy, extra_attrs=None, variables=None, step_name="load step index",
-             methods=True) -> xr.Dataset:
-    """The per-step Dataset of an FE run (units and long names from `variables`)."""
-    variables = VARIABLES if variables is None else variables
-    axi = geometry.axisymmetric
-    data = {}
-    for name, values in rec.items():
-        units, long_name = variables[name]
-        if not axi and name in PLANE_STRAIN_UNITS:
-            units, long_name = PLANE_STRAIN_UNITS[name]
-        data[name] = ("step", np.asarray(values), dict(units=units, long_name=long_name))
-    n = len(rec["force"])
-    ds = xr.Dataset(data, coords=dict(step=("step", np.arange(n),
-                                            dict(units="1", long_name=step_name))))
-    ds.attrs.update(
-        geometry=_describe(geometry),
-        material=_describe(material),
-        symmetry="axisymmetric" if axi else "plane strain (per unit length)",
-        accuracy=accuracy if isinstance(accuracy, str) else "custom",
-        accuracy_parameters=repr(preset),
+def run_attrs(contact: str, penalty_factor: float, strategy: str) -> dict:
+    """The attributes of an axisymmetric or plane-strain run (elastic or
+    inelastic) beside those of `outputs.dataset`."""
+    return dict(
         contact=contact,
         penalty_factor=float(penalty_factor),
         mesh_strategy=strategy,
         contact_edge_method="gap (3/2 power fit) between last node in contact and first out",
     )
-    if methods:
-        ds.attrs["normal_stiffness_method"] = "consistent tangent of the converged state"
-    if extra_attrs:
-        ds.attrs.update(extra_attrs)
-    return ds
 
 
-def _check_levels(geometry, interferences) -> np.ndarray:
+def check_levels(geometry, interferences) -> np.ndarray:
     w = np.atleast_1d(np.asarray(interferences, dtype=float))
     if w.ndim != 1 or w.size == 0:
         raise ValueError("interferences must be a non-empty 1-D sequence")
@@ -383,7 +328,7 @@ def solve_asperity(geometry: Profile, material, interferences, accuracy="standar
     level cannot be reached even with step cutting.
     """
     t_start = time.perf_counter()
-    w = _check_levels(geometry, interferences)
+    w = check_levels(geometry, interferences)
     preset = resolve("elastic", accuracy)
     factor = PENALTY_FACTOR if penalty_factor is None else float(penalty_factor)
     if not factor > 0:
@@ -412,7 +357,10 @@ def solve_asperity(geometry: Profile, material, interferences, accuracy="standar
         extra = dict(total_wall_time=time.perf_counter() - t_start)
     else:
         raise ValueError(f"adapt must be 'shared' or 'per_level', got {adapt!r}")
-    return _dataset(rec, geometry, material, accuracy, preset, contact, factor, adapt, extra)
+    return dataset(rec, geometry, material, accuracy, preset, "load step index",
+                   {**run_attrs(contact, factor, adapt),
+                    "normal_stiffness_method": "consistent tangent of the converged state",
+                    **extra})
 
 
 def penalty_error(geometry: Profile, material, interferences, accuracy="standard",
@@ -424,7 +372,7 @@ def penalty_error(geometry: Profile, material, interferences, accuracy="standard
     of force, contact radius and stiffness on dims (penalty_factor, step)
     and the largest penetration relative to the interference.
     """
-    w = _check_levels(geometry, interferences)
+    w = check_levels(geometry, interferences)
     preset = resolve("elastic", accuracy)
     model, _ = adapted_model(geometry, material, w, preset, "exact")
     exact_states, exact_ev = model.solve(w)
@@ -464,7 +412,7 @@ def penalty_error(geometry: Profile, material, interferences, accuracy="standard
             step=("step", np.arange(len(w)), dict(units="1", long_name="load step index")),
         ),
     )
-    ds.attrs.update(geometry=_describe(geometry), material=_describe(material), dofs=model.dofs)
+    ds.attrs.update(geometry=describe(geometry), material=describe(material), dofs=model.dofs)
     return ds
 
 
