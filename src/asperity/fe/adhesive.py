@@ -94,7 +94,7 @@ from .errors import ContactZoneError, ConvergenceError, StepFailed
 from .geometry import CosineHill, Profile
 from .material import equivalent_strain, von_mises
 from .mesh import AsperityMesh, MeshSpec
-from .newton import ROUNDOFF_FACTOR, _penalty_energy
+from .newton import ROUNDOFF_FACTOR
 from .nonlinear import EnergySearch, Problem, newton
 from .outputs import dataset, describe
 from .presets import PLANE_STRAIN_DOMAIN, resolve
@@ -326,7 +326,7 @@ class AdhesiveNewton:
         ap = self.zone.penetration(u, w)
         aa = self.azone.penetration(u, w)
         return float(0.5 * u @ self.K @ u
-                     + np.sum(_penalty_energy(self.law, ap) * self.zone.weights)
+                     + np.sum(self.law.potential(ap) * self.zone.weights)
                      + np.sum(self.adhesion.potential(aa) * self.azone.weights))
 
     def tangent(self, dtp, dta, u=None, w=None) -> _Tangent:

@@ -191,6 +191,13 @@ class C1Penalty:
         dt = np.broadcast_to(dt, a.shape)
         return t, dt
 
+    def potential(self, a: np.ndarray) -> np.ndarray:
+        """Phi(a) with Phi' = t_N (the energy of the line search)."""
+        k = self.kappa[:, None]
+        eps = self.smoothing_pressure / k
+        return np.where(a >= eps, k * (0.5 * a**2 - 0.5 * eps * a + eps**2 / 6),
+                        np.where(a >= 0, k * a**3 / (6 * eps), 0.0))
+
 
 @dataclass(frozen=True)
 class AugmentedPenalty:
@@ -204,6 +211,12 @@ class AugmentedPenalty:
         x = self.multipliers + k * a
         on = x > 0
         return np.where(on, x, 0.0), np.where(on, np.broadcast_to(k, a.shape), 0.0)
+
+    def potential(self, a: np.ndarray) -> np.ndarray:
+        """Phi(a) with Phi' = t_N (the energy of the line search)."""
+        k = self.kappa[:, None]
+        x = np.maximum(self.multipliers + k * a, 0.0)
+        return 0.5 * x**2 / k
 
 
 def _last_in_contact(r: np.ndarray, touching: np.ndarray) -> tuple[int, float | None]:

@@ -47,17 +47,6 @@ EXACT_TANGENT_SCALE = 1e6
 LINE_SEARCH = EnergySearch(halvings=40)
 
 
-def _penalty_energy(law, a):
-    """Phi(a) with Phi' = t_N, for the line search."""
-    k = law.kappa[:, None]
-    if isinstance(law, AugmentedPenalty):
-        x = np.maximum(law.multipliers + k * a, 0.0)
-        return 0.5 * x**2 / k
-    eps = law.smoothing_pressure / k
-    return np.where(a >= eps, k * (0.5 * a**2 - 0.5 * eps * a + eps**2 / 6),
-                    np.where(a >= 0, k * a**3 / (6 * eps), 0.0))
-
-
 @dataclass
 class LevelState:
     """A converged state at interference w."""
@@ -84,9 +73,10 @@ class ContactNewton:
         self.max_iterations = max_iterations
         self.divergence = divergence
 
-    def _energy(self, law, u, w):
+    def energy(self, law, u, w):
+        """The convex energy 1/2 u^T K_S u + int Phi(a) W ds (module docstring)."""
         a = self.zone.penetration(u, w)
-        return 0.5 * u @ self.K @ u + np.sum(_penalty_energy(law, a) * self.zone.weights)
+        return 0.5 * u @ self.K @ u + np.sum(law.potential(a) * self.zone.weights)
 
     def floor(self, u, w, dt) -> float:
         """Round-off level of the residual: below it no iteration can go.
@@ -154,7 +144,7 @@ class _Level(Problem):
             raise StepFailed(f"tangent not positive definite: {exc}", iteration) from None
 
     def merit(self, u):
-        return self.solver._energy(self.law, u, self.w)
+        return self.solver.energy(self.law, u, self.w)
 
 
 def untouched(zone: ContactZone, w: float = 0.0) -> LevelState:

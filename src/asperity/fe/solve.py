@@ -33,7 +33,7 @@ import numpy as np
 import xarray as xr
 
 from .adapt import StressRecovery, mark, relative_indicator
-from .analytic import hertz as _hertz
+from . import analytic
 from .assembly import CondensedStiffness, Discretization
 from .contact import PENALTY_FACTOR, C1Penalty, ContactZone, contact_edge
 from .errors import ContactZoneError
@@ -418,4 +418,4 @@ def penalty_error(geometry: Profile, material, interferences, accuracy="standard
 
 def hertz(radius: float, material, interference) -> dict[str, np.ndarray]:
     """Hertz's solution for `material` (see `analytic.hertz`)."""
-    return _hertz(radius, material.E, material.nu, interference)
+    return analytic.hertz(radius, material.E, material.nu, interference)
