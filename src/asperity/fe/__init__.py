@@ -17,10 +17,14 @@ Drivers: `solve_asperity` (elastic), `solve_asperity_history`
 sliding).  Modules: `geometry` (profiles), `mesh` (graded curved meshes,
 refinement), `material`, `j2`, `bodner_partom` (stress and tangent at
 quadrature points), `assembly` (P2 fields, stiffness, condensation onto the
-surface), `contact` (penalty law, contact points, contact edge), `newton`
-(Newton, step control, Uzawa), `adapt` (ZZ estimator, marking), `presets`
-(accuracy), `solve`, `inelastic`, `adhesion` and `adhesive`, `sliding` and
-`solid3d` (drivers and their laws), `analytic` (Hertz), `errors`.
+surface), `contact` (penalty law, contact points, contact edge),
+`nonlinear` (the one Newton iteration of every driver, line searches),
+`newton` (the elastic contact problem, step control, Uzawa), `adapt` (ZZ
+estimator, marking), `presets` (accuracy of every kind of model),
+`outputs` (the variables of every driver's Dataset), `solve`,
+`inelastic`, `adhesion` and `adhesive`, `sliding` and `solid3d` (drivers
+and their laws), `analytic` (Hertz), `errors` (`StepFailed`: one try of a
+step; `ConvergenceError`: a step after its cuts).
 
     >>> from asperity.fe import solve_asperity, Paraboloid, LinearElastic
     >>> ds = solve_asperity(Paraboloid(1.0), LinearElastic(1000.0, 0.3),
@@ -30,11 +34,11 @@ surface), `contact` (penalty law, contact points, contact edge), `newton`
 from .adhesion import LennardJones
 from .adhesive import interpolate_adhesive, smooth_aluminum_curves, solve_asperity_adhesive
 from .bodner_partom import BodnerPartom
-from .errors import ContactZoneError, ConvergenceError
+from .errors import ContactZoneError, ConvergenceError, RuptureError, StepFailed
 from .geometry import CosineHill, Cylinder, Paraboloid, Profile, Sphere, TruncatedV
-from .inelastic import History, RuptureError, solve_asperity_history
+from .inelastic import History, solve_asperity_history
 from .j2 import J2Plasticity
-from .material import LinearElastic
+from .material import IsotropicElasticity, LinearElastic
 from .presets import ACCURACY
 from .sliding import FrictionLaw, ShearResistance
 from .solid3d import FlatMotion, solve_sliding
@@ -50,6 +54,7 @@ __all__ = [
     "FlatMotion",
     "FrictionLaw",
     "History",
+    "IsotropicElasticity",
     "J2Plasticity",
     "LennardJones",
     "LinearElastic",
@@ -58,6 +63,7 @@ __all__ = [
     "RuptureError",
     "ShearResistance",
     "Sphere",
+    "StepFailed",
     "TruncatedV",
     "hertz",
     "interpolate_adhesive",

@@ -1,0 +1,50 @@
+"""`asperity.fe` exports every geometry, material and driver; its modules share
+only public names."""
+
+import ast
+import importlib
+import inspect
+import pkgutil
+from pathlib import Path
+
+import asperity.fe as fe
+from asperity.fe.geometry import Profile
+from asperity.fe.material import IsotropicElasticity
+
+FE = Path(fe.__file__).parent
+
+
+def _modules():
+    return [importlib.import_module(f"asperity.fe.{m.name}") for m in pkgutil.iter_modules([str(FE)])]
+
+
+def test_every_geometry_material_and_driver_is_exported():
+    wanted = set()
+    for mod in _modules():
+        for name, obj in vars(mod).items():
+            if getattr(obj, "__module__", None) != mod.__name__ or name.startswith("_"):
+                continue
+            if inspect.isclass(obj) and issubclass(obj, (Profile, IsotropicElasticity)):
+                wanted.add(name)
+            # drivers: solve_* returning a Dataset
+            if inspect.isfunction(obj) and name.startswith("solve_") and \
+                    "Dataset" in str(inspect.signature(obj).return_annotation):
+                wanted.add(name)
+    # the laws of the surface: adhesion and friction
+    wanted |= {"LennardJones", "FrictionLaw", "ShearResistance"}
+    assert {"Paraboloid", "BodnerPartom", "J2Plasticity", "solve_asperity",
+            "solve_asperity_history", "solve_asperity_adhesive", "solve_sliding"} <= wanted
+    missing = wanted - set(fe.__all__)
+    assert not missing, sorted(missing)
+    for name in fe.__all__:
+        assert getattr(fe, name) is not None
+
+
+def test_no_module_imports_a_private_name_of_another():
+    offenders = []
+    for path in sorted(FE.glob("*.py")):
+        for node in ast.walk(ast.parse(path.read_text())):
+            if isinstance(node, ast.ImportFrom) and node.level >= 1:
+                offenders += [f"{path.name}: {a.name}" for a in node.names
+                              if a.name.startswith("_")]
+    assert not offenders, offenders
