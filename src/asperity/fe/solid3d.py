@@ -900,7 +900,7 @@ def solve_sliding(geometry, material, motion: FlatMotion, friction: FrictionLaw,
     friction
         `FrictionLaw` (3.21, 3.24, 3.25).
     accuracy
-        `SLIDING_ACCURACY` preset name or dict: mesh sizes, steps per segment
+        `presets.SLIDING_ACCURACY` preset name or dict: mesh sizes, steps per segment
         (caps), Newton tolerance, inelastic step limit.
     mesh
         override the block and grading (`MeshSpec`); default
