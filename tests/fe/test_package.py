@@ -15,7 +15,8 @@ FE = Path(fe.__file__).parent
 
 
 def _modules():
-    return [importlib.import_module(f"asperity.fe.{m.name}") for m in pkgutil.iter_modules([str(FE)])]
+    return [importlib.import_module(f"asperity.fe.{m.name}")
+            for m in pkgutil.iter_modules([str(FE)])]
 
 
 def test_every_geometry_material_and_driver_is_exported():

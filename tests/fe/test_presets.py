@@ -35,7 +35,8 @@ def test_overrides_of_a_base():
 def test_unknown_names_keys_and_kinds_are_refused():
     with pytest.raises(ValueError, match="unknown accuracy 'rough'; known: draft, standard, fine"):
         resolve("sliding", "rough")
-    with pytest.raises(ValueError, match=r"unknown accuracy keys of the elastic model: \['min_step'\]"):
+    with pytest.raises(ValueError,
+                       match=r"unknown accuracy keys of the elastic model: \['min_step'\]"):
         resolve("elastic", dict(min_step=1e-3))  # an adhesive key
     with pytest.raises(ValueError, match="unknown accuracy keys of the sliding model"):
         resolve("sliding", dict(base="draft", sweeps=2))

@@ -87,6 +87,7 @@ import scipy.linalg as sla
 import xarray as xr
 from scipy.interpolate import PchipInterpolator
 
+from . import nonlinear
 from .adhesion import LennardJones, adhesion_zone
 from .assembly import CondensedStiffness, Discretization
 from .contact import PENALTY_FACTOR, C1Penalty, ContactZone, contact_edge
@@ -95,7 +96,7 @@ from .geometry import CosineHill, Profile
 from .material import equivalent_strain, von_mises
 from .mesh import AsperityMesh, MeshSpec
 from .newton import ROUNDOFF_FACTOR
-from .nonlinear import EnergySearch, Problem, newton
+from .nonlinear import EnergySearch, Problem
 from .outputs import dataset, describe
 from .presets import PLANE_STRAIN_DOMAIN, resolve
 
@@ -391,7 +392,7 @@ class AdhesiveNewton:
         returns (u, parts, tangent, iterations)."""
         limit = self.max_iterations if max_iterations is None else max_iterations
         level = _Level(self, w)
-        u, (scale, parts), its = newton(level, u0, self.tolerance, limit, LINE_SEARCH)
+        u, (scale, parts), its = nonlinear.newton(level, u0, self.tolerance, limit, LINE_SEARCH)
         return u, parts, level.tangent, its
 
     def project(self, trial, u, w):

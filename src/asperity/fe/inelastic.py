@@ -146,10 +146,11 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as spl
 import xarray as xr
 
+from . import nonlinear
 from .contact import PENALTY_FACTOR, C1Penalty, ContactZone, contact_edge_pressure
 from .errors import ContactZoneError, ConvergenceError, RuptureError, StepFailed
 from .material import METRIC, LinearElastic, equivalent_strain, von_mises
-from .nonlinear import Problem, ResidualSearch, check_local_update, newton
+from .nonlinear import Problem, ResidualSearch, check_local_update
 from .outputs import INELASTIC_THRESHOLD, SMALL_STRAIN_LIMIT, dataset
 from .presets import resolve
 from .solve import adapted_model, check_levels, run_attrs
@@ -441,8 +442,8 @@ class InelasticModel:
         penalty) does not inflate the scale; or at the round-off level of
         the internal forces.
         """
-        return newton(_Step(self, w, state, dt, reference), u0, self.tolerance,
-                      self.max_iterations, LINE_SEARCH)
+        return nonlinear.newton(_Step(self, w, state, dt, reference), u0, self.tolerance,
+                                self.max_iterations, LINE_SEARCH)
 
     # --- outputs -------------------------------------------------------------
     def point_position(self, index) -> tuple:

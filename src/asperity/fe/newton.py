@@ -6,7 +6,8 @@ u_z alone:
 
     R(u) = K_S u + int t_N(a(u)) N W ds = 0,     J = K_S + int t_N'(a) N N^T W ds,
 
-with K_S the condensed stiffness (`assembly.CondensedStiffness`).  R is
+with K_S the condensed stiffness (`assembly.CondensedStiffness`), by the
+Newton iteration of `nonlinear.newton` with a dense Cholesky of J.  R is
 the gradient of the convex energy 1/2 u^T K_S u + int Phi(a) W ds, so each
 Newton step is safeguarded by a backtracking line search on that energy
 (or on the residual norm where energy differences drown in round-off).
@@ -28,9 +29,10 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.linalg as sla
 
+from . import nonlinear
 from .contact import AugmentedPenalty, C1Penalty, ContactZone
 from .errors import ConvergenceError, StepFailed
-from .nonlinear import EnergySearch, Problem, newton
+from .nonlinear import EnergySearch, Problem
 
 
 #: Newton stops once the residual is below this multiple of its round-off
@@ -100,8 +102,8 @@ class ContactNewton:
 
     def solve(self, law, w: float, u0: np.ndarray):
         """Newton iterations from u0 (`nonlinear.newton`); returns (u, t, dt, iterations)."""
-        u, (f, t, dt), its = newton(_Level(self, law, w), u0, self.tolerance, self.max_iterations,
-                                    LINE_SEARCH, self.divergence)
+        u, (f, t, dt), its = nonlinear.newton(_Level(self, law, w), u0, self.tolerance,
+                                              self.max_iterations, LINE_SEARCH, self.divergence)
         return u, t, dt, its
 
     def tangent(self, dt: np.ndarray) -> np.ndarray:

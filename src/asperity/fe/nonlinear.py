@@ -18,6 +18,10 @@ loop (`newton`); what differs is passed in as a `Problem`:
 * a hook at convergence (`Problem.settle`: the adhesive solver leaves a
   saddle along its lowest mode) and a monitor of the iterations.
 
+A line search is called as ``search(problem, x, R, ||R||, d)`` and
+returns the new iterate and, if it evaluated it, ``problem.evaluate`` of
+it (else None).
+
 A try that fails (non-finite values, a diverging or stalled residual, a
 failed linear solve) raises `errors.StepFailed` with the iterations it
 took; the drivers cut the step and retry, and raise

@@ -104,10 +104,11 @@ import scipy.sparse.linalg as spl
 import xarray as xr
 from skfem import Basis, ElementTetP2, ElementVector, FacetBasis, MeshTet, MeshTet2
 
+from . import nonlinear
 from .contact import SMOOTHING, C1Penalty
 from .errors import ContactZoneError, ConvergenceError, StepFailed
 from .material import METRIC6, equivalent_strain, von_mises
-from .nonlinear import Problem, ResidualSearch, check_local_update, newton
+from .nonlinear import Problem, ResidualSearch, check_local_update
 from .outputs import INELASTIC_THRESHOLD, dataset, describe
 from .presets import resolve
 from .sliding import FrictionLaw, ShearResistance, contact_tangent, drag_anchor
@@ -760,8 +761,8 @@ class SlidingModel:
 
     def solve_step(self, u0, w, delta, state, iface, dt):
         """Newton from u0 for the step ending at (w, delta); returns (u, out, its)."""
-        return newton(_Step(self, w, delta, state, iface, dt), u0, self.tolerance,
-                      self.max_iterations, ResidualSearch(self.line_search))
+        return nonlinear.newton(_Step(self, w, delta, state, iface, dt), u0, self.tolerance,
+                                self.max_iterations, ResidualSearch(self.line_search))
 
     def release_separated(self, u, out, w, delta, state, iface: "Interface", dt,
                           max_rounds: int = 10):
@@ -831,7 +832,8 @@ class _Step(Problem):
     """Equilibrium at the end of a step (`SlidingModel.solve_step`)."""
 
     def __init__(self, sm: SlidingModel, w, delta, state, iface, dt):
-        self.sm, self.w, self.delta, self.state, self.iface, self.dt = sm, w, delta, state, iface, dt
+        self.sm, self.w, self.delta = sm, w, delta
+        self.state, self.iface, self.dt = state, iface, dt
         self.top = 0.0  # the largest contact force norm of the iterations
 
     def evaluate(self, u):
