@@ -137,3 +137,120 @@ def test_convergence_error_names_the_sample_and_the_step():
     assert isinstance(rup, ConvergenceError) and (rup.step, rup.reached, rup.cuts) == (7, 3e-8, 0)
     rup.sample = "k3"
     assert str(rup).startswith("sample k3: material ruptured at step 7 (time 12.5 s")
+
+
+# --- the routine on a closed form ------------------------------------------------------
+class _Cubic:
+    """R(x) = x^3 + x - 2 componentwise (root 1), the gradient of the convex
+    sum x^4/4 + x^2/2 - 2x; Newton's direction d = -R / (3 x^2 + 1)."""
+
+    def __init__(self):
+        from asperity.fe.nonlinear import Problem
+
+        class P(Problem):
+            def evaluate(self, x):
+                return x**3 + x - 2.0, None
+
+            def scale(self, x, data):
+                return 2.0 * math.sqrt(x.size)
+
+            def floor(self, x, data):
+                return 0.0
+
+            def direction(self, x, R, data, tangent, iteration):
+                return -R / (3.0 * x**2 + 1.0)
+
+            def merit(self, x):
+                return float(np.sum(x**4 / 4 + x**2 / 2 - 2.0 * x))
+
+        self.problem = P()
+
+
+def test_newton_is_newton_on_a_closed_form():
+    """Full steps from near the root (no backtracking): the iterates of a plain
+    Newton loop written here, quadratic convergence, and the count."""
+    from asperity.fe.nonlinear import EnergySearch, ResidualSearch, newton
+
+    x0 = np.array([1.5, 0.7])
+    plain = [x0]
+    while np.linalg.norm(plain[-1] ** 3 + plain[-1] - 2.0) > 1e-13 * 2.0 * math.sqrt(2):
+        x = plain[-1]
+        plain.append(x - (x**3 + x - 2.0) / (3.0 * x**2 + 1.0))
+    for search in (EnergySearch(40), ResidualSearch(6)):
+        x, _, its = newton(_Cubic().problem, x0, 1e-13, 20, search)
+        assert its == len(plain) - 1 and its <= 6
+        np.testing.assert_array_equal(x, plain[-1])
+    err = np.abs(np.array(plain) - 1.0).max(axis=1)
+    assert np.all(err[2:4] <= 2.0 * err[1:3] ** 2)  # quadratic
+
+
+def test_a_failed_try_says_how_many_iterations_it_took():
+    from asperity.fe.errors import StepFailed
+    from asperity.fe.nonlinear import EnergySearch, newton
+
+    with pytest.raises(StepFailed, match="no convergence in 2 iterations") as info:
+        newton(_Cubic().problem, np.array([30.0]), 1e-13, 2, EnergySearch(40))
+    assert info.value.iterations == 2
+    with pytest.raises(StepFailed, match="non-finite residual") as info:
+        newton(_Cubic().problem, np.array([np.nan]), 1e-13, 2, EnergySearch(40))
+    assert info.value.iterations == 0
+
+
+def test_the_line_searches_rescue_a_diverging_newton():
+    """R(x) = arctan x, the gradient of the convex x arctan x - ln(1 + x^2) / 2:
+    plain Newton from x = 3 diverges (|x| grows every step); both line searches
+    converge to 0, the energy search lowering the energy at every iterate."""
+    from asperity.fe.nonlinear import EnergySearch, Problem, ResidualSearch, newton
+
+    class Arctan(Problem):
+        def __init__(self):
+            self.iterates = []
+
+        def evaluate(self, x):
+            return np.arctan(x), None
+
+        def scale(self, x, data):
+            return 1.0
+
+        def floor(self, x, data):
+            return 0.0
+
+        def direction(self, x, R, data, tangent, iteration):
+            self.iterates.append(float(x[0]))
+            return -R * (1.0 + x**2)
+
+        def merit(self, x):
+            return float(np.sum(x * np.arctan(x) - 0.5 * np.log1p(x**2)))
+
+    x = 3.0
+    for _ in range(3):
+        x_next = x - math.atan(x) * (1 + x * x)
+        assert abs(x_next) > abs(x)
+        x = x_next
+    for search in (EnergySearch(40), ResidualSearch(8)):
+        problem = Arctan()
+        x, _, its = newton(problem, np.array([3.0]), 1e-12, 40, search)
+        assert abs(x[0]) <= 1e-12 and its <= 12
+        energies = [problem.merit(np.array([v])) for v in problem.iterates]
+        if isinstance(search, EnergySearch):
+            assert np.all(np.diff(energies) < 0)
+
+
+def test_the_sliding_trace_sees_every_iteration():
+    """The monitor hook: the 3-D solver's trace has one entry per iteration,
+    the last one converged."""
+    from asperity.fe.solid3d import HalfModel, MeshSpec, SlidingModel, build_mesh
+
+    a = math.sqrt(0.005)
+    spec = MeshSpec(half_width=8 * a, depth=8 * a, coarse_size=8 * a / 3, tip_size=a,
+                    grading=1.0, refine_radius=1.1 * a)
+    model = HalfModel(Paraboloid(1.0), build_mesh(Paraboloid(1.0), spec), 3.0 * a)
+    sm = SlidingModel(model, LinearElastic(1000.0, 0.3),
+                      FrictionLaw(ShearResistance.coulomb(0.3), 1e-3 * a), tolerance=1e-9)
+    sm.trace = []
+    state = sm.material.initial_state(model.shape, components=6)
+    u, out, its = sm.solve_step(np.zeros(model.ndofs), 0.005, 0.0, state,
+                                sm.initial_interface(), 1.0)
+    assert [t[0] for t in sm.trace] == list(range(its + 1)) and its >= 2
+    it, rn, scale, touching, slipping = sm.trace[-1]
+    assert rn <= 1e-9 * scale and touching > 0 and slipping <= touching
