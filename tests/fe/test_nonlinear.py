@@ -92,6 +92,17 @@ def _record(name):
     return out
 
 
+def _dumps(commit, cases) -> str:
+    """The record as JSON, one list per line."""
+    lines = [f'{{"commit": {json.dumps(commit)}, "cases": {{']
+    for i, (name, rec) in enumerate(cases.items()):
+        lines.append(f" {json.dumps(name)}: {{")
+        lines += [f"  {json.dumps(k)}: {json.dumps(v)}" + ("," if j < len(rec) - 1 else "")
+                  for j, (k, v) in enumerate(rec.items())]
+        lines.append(" }" + ("," if i < len(cases) - 1 else ""))
+    return "\n".join(lines) + "\n}}\n"
+
+
 @pytest.fixture(scope="module")
 def reference():
     return json.loads(DATA.read_text())
@@ -119,7 +130,7 @@ if __name__ == "__main__":
         print(name, f"{time.process_time() - t0:.1f} s CPU", len(cases[name]["step_cuts"]),
               "steps", sum(cases[name]["newton_iterations"]), "iterations",
               sum(cases[name]["step_cuts"]), "cuts")
-    DATA.write_text(json.dumps(dict(commit=commit, cases=cases), indent=1) + "\n")
+    DATA.write_text(_dumps(commit, cases))
 
 
 def test_convergence_error_names_the_sample_and_the_step():
