@@ -83,6 +83,9 @@ ACCURACY: dict[str, dict] = {
         max_cuts=8,
         exact_tolerance=1e-7,
         time_tolerance=0.1,
+        remesh=False,
+        remesh_band=1.5,
+        plastic_size=0.5,
     ),
     "standard": dict(
         domain_factor=300.0,
@@ -98,6 +101,9 @@ ACCURACY: dict[str, dict] = {
         max_cuts=8,
         exact_tolerance=1e-9,
         time_tolerance=0.6,
+        remesh=True,
+        remesh_band=1.5,
+        plastic_size=0.3,
     ),
     "fine": dict(
         domain_factor=1000.0,
@@ -113,6 +119,9 @@ ACCURACY: dict[str, dict] = {
         max_cuts=8,
         exact_tolerance=1e-11,
         time_tolerance=0.2,
+        remesh=True,
+        remesh_band=1.4,
+        plastic_size=0.15,
     ),
 }
 
