@@ -19,14 +19,20 @@ step is accepted.  Everything is vectorized over elements and quadrature
 points (`Discretization.B`, sparse strain operator, one batched matmul for
 the element matrices scattered into a sparsity pattern built once).
 
-The mesh is FIXED: it is adapted once, by the existing machinery
+The mesh follows the contact where the preset's ``remesh`` key is on
+(`remesh`): it is refined around the current contact edge and plastic
+zone only, rebuilt when the edge leaves the band of radii it resolves or
+the plastic zone the region refined for it, the state at the start of the
+step transferred to the new mesh (displacements, every field of the
+material state, the flow rates of the time-error estimate) and the step
+re-solved on it, with backward Euler (like after a knot).  With ``remesh``
+off the mesh is FIXED: it is adapted once, by the existing machinery
 (`solve.adapted_model` with the material's elastic constants), to elastic
 solutions at a few interferences up to the largest of the history
 (``mesh_levels``), so that it resolves the contact edge from first touch
-to the largest load.  Plastic contacts are wider than elastic ones at the
-same interference: the candidate contact zone is larger
-(``INELASTIC_CANDIDATE_FACTOR``) and grows if reached, but the mesh is
-not refined again.
+to the largest load.  Either way, plastic contacts are wider than elastic
+ones at the same interference: the candidate contact zone is larger
+(``INELASTIC_CANDIDATE_FACTOR``) and grows if reached.
 
 Time integration of the material (report 3.6).  The material's own update
 is backward Euler (BE): y_n+1 = y_n + dt f(y_n+1) for the internal
@@ -705,7 +711,8 @@ def solve_asperity_history(geometry, material, history: History, accuracy="stand
         time [s]; the body is stress free at its start (w <= 0: first
         touch at w = 0).
     accuracy
-        preset name or dict (`presets.ACCURACY`); sets the mesh (adapted
+        preset name or dict (`presets.ACCURACY`); sets the mesh (with
+        ``remesh`` on: rebuilt as the contact moves, `remesh`; off: adapted
         once, to elastic solutions at ``mesh_levels``), the Newton
         tolerance and iteration limit, and the default ``time_tolerance``.
     initial_time_step
@@ -736,7 +743,8 @@ def solve_asperity_history(geometry, material, history: History, accuracy="stand
         solutions, `solve.adapted_model`); default ``MESH_LEVELS`` levels
         spread geometrically from ``MESH_RANGE`` x the largest interference
         to the largest, so that the mesh also resolves the small contacts of
-        first touch and of the end of unloading.
+        first touch and of the end of unloading.  With ``remesh`` on, the
+        first mesh is the one for the elastic contact at the smallest level.
     stop_at_zero_force
         on unloading, stop once the force vanishes (falls below
         ``ZERO_FORCE`` x the largest force; the crossing is
@@ -752,12 +760,18 @@ def solve_asperity_history(geometry, material, history: History, accuracy="stand
     on_rupture
         ``"continue"`` (default), ``"stop"`` or ``"raise"`` (`RuptureError`)
         when a material point ruptures (module docstring).
+    remesh_times
+        times [s] at which a new mesh is built whatever the preset's
+        ``remesh``: after the first step ending at or after each, which is
+        re-solved on it (e.g. at a load reversal).
 
     Returns an `xarray.Dataset` on dim ``step`` (variables in `VARIABLES`,
     step 0 the initial untouched state) with attributes including
     ``residual_interference`` (NaN if the force never returned to zero),
     ``steps``, ``total_step_cuts``, ``total_factorizations``,
     ``time_tolerance``, ``max_time_error``, ``time_error_rejections``,
+    ``remeshes`` and ``remeshed_steps`` (the steps re-solved on a new mesh;
+    ``dofs`` is per step),
     ``ruptured`` (0/1) and, after a rupture, ``rupture_step``,
     ``rupture_time``, ``rupture_interference``, ``rupture_position`` (r or
     x of the first ruptured point) and ``rupture_depth`` (below the

@@ -58,6 +58,19 @@ time_tolerance
     far smaller).  What each preset's tolerance costs and how far its
     results are from tighter ones: `make bench` (benchmarks/run.py, README
     "Inelastic histories").
+remesh
+    inelastic histories: rebuild the mesh around the contact edge and the
+    plastic zone as they move (`remesh`), instead of one mesh adapted once
+    to elastic solutions up to the largest interference.  Off at 'draft'
+    (its results are those of the fixed mesh).
+remesh_band
+    a new mesh resolves the contact edge from its current radius a to
+    remesh_band x a (elastic solutions drive the refinement, as above),
+    and refines the region the plastic zone can reach while its extent
+    grows by (remesh_band - 1) x max(extent, a); beyond either, the mesh
+    is rebuilt.
+plastic_size
+    largest element in the plastic zone of a new mesh / the contact radius.
 """
 
 from __future__ import annotations
