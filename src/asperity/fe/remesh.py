@@ -70,8 +70,9 @@ from .solve import adapted_model
 REMESH_LEVELS = 3
 #: the band of refined contact radii starts at a / REMESH_BACK
 REMESH_BACK = 1.15
-#: element candidates per point searched first (nearest centroids), then more
-CANDIDATES = (8, 64)
+#: element candidates per point (nearest centroids): the nearest, then more for the
+#: points outside it
+CANDIDATES = (1, 8, 64)
 #: a point counts as inside an element when no barycentric coordinate is below this
 INSIDE = 1e-10
 #: refinement passes of the plastic zone at most
