@@ -61,8 +61,9 @@ time_tolerance
 remesh
     inelastic histories: rebuild the mesh around the contact edge and the
     plastic zone as they move (`remesh`), instead of one mesh adapted once
-    to elastic solutions up to the largest interference.  Off at 'draft'
-    (its results are those of the fixed mesh).
+    to elastic solutions up to the largest interference.  On at 'fine'
+    only (README "Inelastic histories": what it costs and gains at
+    'standard').
 remesh_band
     a new mesh resolves the contact edge from its current radius a to
     remesh_band x a (elastic solutions drive the refinement, as above),
@@ -114,7 +115,7 @@ ACCURACY: dict[str, dict] = {
         max_cuts=8,
         exact_tolerance=1e-9,
         time_tolerance=0.6,
-        remesh=True,
+        remesh=False,
         remesh_band=1.5,
         plastic_size=0.3,
     ),

@@ -18,8 +18,9 @@ mesh is rebuilt from the coarse graded rings (`mesh.AsperityMesh.initial`):
   report 6.1; exact for a paraboloid), so the band is set in contact
   radius, which is what a plastic contact (wider than an elastic one at
   the same interference) shares with the elastic solutions;
-- the plastic zone: elements within their own size of a yielded point
-  (equivalent inelastic strain above the solver's threshold) are refined
+- the plastic zone: elements within their own size of a point of the
+  plastic zone (equivalent inelastic strain above the solver's threshold
+  and above ``PLASTIC_FRACTION`` of the largest) are refined
   until no longer than ``plastic_size`` x a, and so are those within
   (``remesh_band`` - 1) x the zone's extent of it, so the zone can grow;
 - elsewhere the mesh is the coarse graded one (apex rings sized for the
@@ -75,6 +76,8 @@ REMESH_BACK = 1.15
 CANDIDATES = (1, 8, 64)
 #: a point counts as inside an element when no barycentric coordinate is below this
 INSIDE = 1e-10
+#: the plastic zone: inelastic strain above this fraction of the largest
+PLASTIC_FRACTION = 0.01
 #: refinement passes of the plastic zone at most
 PLASTIC_PASSES = 12
 
@@ -133,13 +136,16 @@ def contact_mesh(geometry, material, preset: dict, radius: float, penalty_factor
 
 
 def yielded_points(disc: Discretization, state, threshold: float) -> np.ndarray:
-    """Positions (2, n) of the quadrature points that have yielded."""
-    yielded = equivalent_strain(state.inelastic_strain) > threshold
+    """Positions (2, n) of the quadrature points of the plastic zone: an
+    equivalent inelastic strain above `threshold` and above ``PLASTIC_FRACTION``
+    of the largest (a viscoplastic body flows a little everywhere)."""
+    eq = equivalent_strain(state.inelastic_strain)
+    yielded = eq > max(threshold, PLASTIC_FRACTION * float(np.max(eq)))
     return disc.x[:, yielded]
 
 
 def plastic_extent(disc: Discretization, state, threshold: float, geometry) -> float:
-    """Largest distance of a yielded point from the apex (0 if none)."""
+    """Largest distance of a point of the plastic zone from the apex (0 if none)."""
     pts = yielded_points(disc, state, threshold)
     if pts.shape[1] == 0:
         return 0.0
