@@ -22,7 +22,8 @@ mesh is rebuilt from the coarse graded rings (`mesh.AsperityMesh.initial`):
   plastic zone (equivalent inelastic strain above the solver's threshold
   and above ``PLASTIC_FRACTION`` of the largest) are refined
   until no longer than ``plastic_size`` x a, and so are those within
-  (``remesh_band`` - 1) x the zone's extent of it, so the zone can grow;
+  (``remesh_band`` - 1) x max(the zone's extent, a) of it, so that the zone
+  can grow;
 - elsewhere the mesh is the coarse graded one (apex rings sized for the
   smallest radius of the band, not for first touch).
 
@@ -131,7 +132,7 @@ def contact_mesh(geometry, material, preset: dict, radius: float, penalty_factor
         apex = np.array([[0.0], [float(geometry.body_surface(np.zeros(1))[0])]])
         extent = float(np.max(np.hypot(*(plastic_points - apex))))
         mesh = refine_around(mesh, plastic_points, preset["plastic_size"] * radius,
-                             reach=(band - 1.0) * extent)
+                             reach=(band - 1.0) * max(extent, radius))
     return Discretization(mesh), float(radii[-1])
 
 
@@ -308,7 +309,6 @@ class ContactMeshes:
         self.preset = preset
         self.penalty_factor = penalty_factor
         self.threshold = threshold
-        self.built = 0
 
     def build(self, radius: float, disc: Discretization | None = None, state=None):
         """The mesh for contact radius `radius` and the plastic zone of
@@ -320,7 +320,6 @@ class ContactMeshes:
         extent = 0.0 if state is None else plastic_extent(disc, state, self.threshold,
                                                             self.geometry)
         self.extent_limit = extent + (band - 1.0) * max(extent, radius)
-        self.built += 1
         return new
 
     def due(self, radius: float, disc: Discretization, state) -> str:
