@@ -161,16 +161,17 @@ def test_plastic_zone_crossing_the_refined_region(crossing):
 
     # at step index s the kink is kink(...)[s - 2]; compared where the curves are
     # smooth (beyond 3 w_c: the first contacts jump from node to node) with the
-    # largest kink at the steps that kept their mesh
+    # largest kink at the steps that kept their mesh (the edge moves from node to
+    # node): measured 0.12 against 1.34 in force, 0.42 against 0.76 in area
     smooth = w[2:-1] >= 3 * W_C
     at = np.zeros(smooth.shape, bool)
     at[steps[(steps >= 2) & (steps < len(w) - 1)] - 2] = True
     for y in (lnF, lnA):
         k = kink(y)
-        assert np.max(k[at & smooth]) <= 1.5 * np.max(k[~at & smooth]), (k[at & smooth],
+        assert np.max(k[at & smooth]) <= np.max(k[~at & smooth]), (k[at & smooth],
                                                                          k[~at & smooth])
     # and the curves agree with the fixed finer mesh over the second half: force
-    # within 3 %, area within 4 % (measured 2.2 % and 3.0 %; the same preset
+    # within 3 %, area within 4 % (measured 1.9 % and 3.2 %; the same preset
     # without remeshing: 1.2 % and 6.6 %)
     late = w >= 0.5 * w[-1]
     Fr = np.interp(w[late], ref.interference.values, ref.force.values)
