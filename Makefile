@@ -78,7 +78,7 @@ time-sliding: $(STAMP)
 # make bench, each with remeshing on and off (CPU time, areas, forces, steps); fine
 # takes minutes. Writes benchmarks/results/remesh.json.
 # A subset: make time-remesh REMESH_ARGS="--cases j2_sphere --presets standard"
-REMESH_ARGS ?= --fixed
+REMESH_ARGS ?= --remesh on off
 time-remesh: $(STAMP)
 	$(BIN)/python benchmarks/remesh.py $(REMESH_ARGS)
 

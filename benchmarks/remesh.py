@@ -2,7 +2,7 @@
 
 Two cases, each run in this process with ``time.process_time`` (CPU time, valid
 on a shared machine), for every requested preset with the preset's remeshing
-on (its default at `standard` and `fine`) and, with ``--fixed``, off:
+on or off (``--remesh on off``; on is the default at `fine` only):
 
 * ``j2_sphere``: the J2 sphere of tests/fe/test_inelastic_edge.py (R = 1,
   E = 1000, nu = 0.3, elastic-perfectly plastic with E / Y = 400) pressed to
@@ -17,8 +17,8 @@ on (its default at `standard` and `fine`) and, with ``--fixed``, off:
 Writes benchmarks/results/remesh.json (merged with what is already there, so
 that the presets can be run separately: fine takes minutes)::
 
-    python benchmarks/remesh.py --cases j2_sphere --presets standard fine --fixed
-    python benchmarks/remesh.py --cases viscoplastic_hill --presets standard --fixed
+    python benchmarks/remesh.py --cases j2_sphere --presets standard fine --remesh on off
+    python benchmarks/remesh.py --cases viscoplastic_hill --presets standard --remesh on off
 """
 
 from __future__ import annotations
@@ -101,11 +101,12 @@ def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--cases", nargs="+", default=list(CASES), choices=list(CASES))
     ap.add_argument("--presets", nargs="+", default=["standard", "fine"])
-    ap.add_argument("--fixed", action="store_true", help="also with remeshing off")
+    ap.add_argument("--remesh", nargs="+", default=["on"], choices=["on", "off"],
+                    help="remeshing on, off (the fixed mesh) or both")
     args = ap.parse_args(argv)
     for case in args.cases:
         for preset in args.presets:
-            for remesh in (True, False) if args.fixed else (True,):
+            for remesh in [m == "on" for m in args.remesh]:
                 key = f"{case}/{preset}/{'remesh' if remesh else 'fixed'}"
                 r = run(case, preset, remesh)
                 record = _read()  # other presets may run at the same time
