@@ -99,7 +99,8 @@ def _read() -> dict:
 
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--cases", nargs="+", default=list(CASES), choices=list(CASES))
+    ap.add_argument("--cases", nargs="*", default=list(CASES), choices=list(CASES),
+                    help="none: only the summary of what benchmarks/results/remesh.json holds")
     ap.add_argument("--presets", nargs="+", default=["standard", "fine"])
     ap.add_argument("--remesh", nargs="+", default=["on"], choices=["on", "off"],
                     help="remeshing on, off (the fixed mesh) or both")
@@ -124,6 +125,21 @@ def main(argv=None):
             summary[f"j2_sphere_{mode}"] = dict(
                 cpu_fine_over_standard=f["cpu_seconds"] / s["cpu_seconds"],
                 standard_against_fine=compare(s, f))
+    s, f = runs.get("j2_sphere/standard/fixed"), runs.get("j2_sphere/fine/remesh")
+    if s and f:  # the defaults: remeshing on at fine only
+        summary["j2_sphere_defaults"] = dict(
+            cpu_fine_over_standard=f["cpu_seconds"] / s["cpu_seconds"],
+            standard_against_fine=compare(s, f))
+    for preset in ("standard", "fine"):
+        on, off = runs.get(f"j2_sphere/{preset}/remesh"), runs.get(f"j2_sphere/{preset}/fixed")
+        if on and off:
+            summary[f"j2_sphere_{preset}_cpu_remesh_over_fixed"] = on["cpu_seconds"] / off["cpu_seconds"]
+    on, off = runs.get("viscoplastic_hill/standard/remesh"), runs.get("viscoplastic_hill/standard/fixed")
+    if on and off:
+        summary["viscoplastic_hill_standard"] = dict(
+            cpu_remesh_over_fixed=on["cpu_seconds"] / off["cpu_seconds"],
+            steps_remesh=on["steps"], steps_fixed=off["steps"],
+            force_at_top_remesh_over_fixed=on["force_at_top"] / off["force_at_top"] - 1)
     fixed_fine = runs.get("j2_sphere/fine/fixed")
     if fixed_fine and runs.get("j2_sphere/fine/remesh"):
         summary["j2_sphere_fine_remesh_against_fine_fixed"] = compare(
