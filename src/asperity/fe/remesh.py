@@ -170,7 +170,6 @@ class Locator:
     map of the curved P2 triangles by Newton, vectorized)."""
 
     def __init__(self, disc: Discretization):
-        self.disc = disc
         sb = Basis(disc.m2, _P2, intorder=1)
         self.scalar_dofs = sb.element_dofs  # (6, ne): scalar P2 node numbers
         self.nodes = disc.m2.doflocs[:, self.scalar_dofs]  # (2, 6, ne)
@@ -277,6 +276,7 @@ class Transfer:
         return type(state)(**{f.name: self.field(getattr(state, f.name)) for f in fields(state)})
 
     def fields(self, d: dict) -> dict:
+        """A dict of quadrature-point fields on the new mesh."""
         return {k: self.field(v) for k, v in d.items()}
 
 
@@ -289,7 +289,6 @@ def integral(disc: Discretization, values: np.ndarray) -> float:
     """Integral of a quadrature-point scalar field over the body (per radian
     for a body of revolution, per unit length in plane strain)."""
     return float(np.sum(disc.weights * values))
-
 
 
 class ContactMeshes:
