@@ -20,7 +20,7 @@ points (`Discretization.B`, sparse strain operator, one batched matmul for
 the element matrices scattered into a sparsity pattern built once).
 
 The mesh follows the contact where the preset's ``remesh`` key is on
-(`remesh`): it is refined around the current contact edge and plastic
+(`remesh`; off in the built-in presets): it is refined around the current contact edge and plastic
 zone only, rebuilt when the edge leaves the band of radii it resolves or
 the plastic zone the region refined for it, the state at the start of the
 step transferred to the new mesh (displacements, every field of the
