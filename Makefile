@@ -8,7 +8,7 @@ CORES ?= 2
 export OPENBLAS_NUM_THREADS = 1
 export OMP_NUM_THREADS = 1
 
-.PHONY: all reproduce test test-fast bench time-scenes time-jobs time-adhesion time-plane-strain time-reference time-surface time-sliding compare-results figures clean-results
+.PHONY: all reproduce test test-fast bench time-scenes time-jobs time-adhesion time-plane-strain time-reference time-surface time-sliding time-remesh compare-results figures clean-results
 
 all: reproduce
 
@@ -72,6 +72,15 @@ time-reference: $(STAMP)
 SLIDING_ARGS ?=
 time-sliding: $(STAMP)
 	$(BIN)/python benchmarks/sliding_convergence.py $(SLIDING_ARGS)
+
+# Inelastic histories on meshes that follow the contact (issue #14): the J2 sphere to
+# 50 times its critical interference at standard and fine, the viscoplastic hill of
+# make bench, each with remeshing on and off (CPU time, areas, forces, steps); fine
+# takes minutes. Writes benchmarks/results/remesh.json.
+# A subset: make time-remesh REMESH_ARGS="--cases j2_sphere --presets standard"
+REMESH_ARGS ?= --remesh on off
+time-remesh: $(STAMP)
+	$(BIN)/python benchmarks/remesh.py $(REMESH_ARGS)
 
 # Form removal, statistics and peaks of a 2048 x 2048 map with 10 % undefined points,
 # beside SurfaceTopography's rms height, gradient and curvature of the same map;

@@ -19,14 +19,20 @@ step is accepted.  Everything is vectorized over elements and quadrature
 points (`Discretization.B`, sparse strain operator, one batched matmul for
 the element matrices scattered into a sparsity pattern built once).
 
-The mesh is FIXED: it is adapted once, by the existing machinery
+The mesh follows the contact where the preset's ``remesh`` key is on
+(`remesh`; off in the built-in presets): it is refined around the current contact edge and plastic
+zone only, rebuilt when the edge leaves the band of radii it resolves or
+the plastic zone the region refined for it, the state at the start of the
+step transferred to the new mesh (displacements, every field of the
+material state, the flow rates of the time-error estimate) and the step
+re-solved on it, with backward Euler (like after a knot).  With ``remesh``
+off the mesh is FIXED: it is adapted once, by the existing machinery
 (`solve.adapted_model` with the material's elastic constants), to elastic
 solutions at a few interferences up to the largest of the history
 (``mesh_levels``), so that it resolves the contact edge from first touch
-to the largest load.  Plastic contacts are wider than elastic ones at the
-same interference: the candidate contact zone is larger
-(``INELASTIC_CANDIDATE_FACTOR``) and grows if reached, but the mesh is
-not refined again.
+to the largest load.  Either way, plastic contacts are wider than elastic
+ones at the same interference: the candidate contact zone is larger
+(``INELASTIC_CANDIDATE_FACTOR``) and grows if reached.
 
 Time integration of the material (report 3.6).  The material's own update
 is backward Euler (BE): y_n+1 = y_n + dt f(y_n+1) for the internal
@@ -153,6 +159,7 @@ from .material import METRIC, LinearElastic, equivalent_strain, von_mises
 from .nonlinear import Problem, ResidualSearch, check_local_update
 from .outputs import INELASTIC_THRESHOLD, SMALL_STRAIN_LIMIT, dataset
 from .presets import resolve
+from .remesh import ContactMeshes, Transfer
 from .solve import adapted_model, check_levels, run_attrs
 
 #: on unloading, a force below this fraction of the largest force counts as zero
@@ -646,7 +653,8 @@ def solve_asperity_history(geometry, material, history: History, accuracy="stand
                            mesh_levels=None,
                            time_tolerance: float | None = None,
                            integration: str = "bdf2",
-                           on_rupture: str = "continue") -> xr.Dataset:
+                           on_rupture: str = "continue",
+                           remesh_times=()) -> xr.Dataset:
     """Incremental solution of an inelastic asperity along `history`.
 
     Parameters
@@ -663,7 +671,8 @@ def solve_asperity_history(geometry, material, history: History, accuracy="stand
         time [s]; the body is stress free at its start (w <= 0: first
         touch at w = 0).
     accuracy
-        preset name or dict (`presets.ACCURACY`); sets the mesh (adapted
+        preset name or dict (`presets.ACCURACY`); sets the mesh (with
+        ``remesh`` on: rebuilt as the contact moves, `remesh`; off: adapted
         once, to elastic solutions at ``mesh_levels``), the Newton
         tolerance and iteration limit, and the default ``time_tolerance``.
     initial_time_step
@@ -694,7 +703,8 @@ def solve_asperity_history(geometry, material, history: History, accuracy="stand
         solutions, `solve.adapted_model`); default ``MESH_LEVELS`` levels
         spread geometrically from ``MESH_RANGE`` x the largest interference
         to the largest, so that the mesh also resolves the small contacts of
-        first touch and of the end of unloading.
+        first touch and of the end of unloading.  With ``remesh`` on, the
+        first mesh is the one for the elastic contact at the smallest level.
     stop_at_zero_force
         on unloading, stop once the force vanishes (falls below
         ``ZERO_FORCE`` x the largest force; the crossing is
@@ -710,12 +720,18 @@ def solve_asperity_history(geometry, material, history: History, accuracy="stand
     on_rupture
         ``"continue"`` (default), ``"stop"`` or ``"raise"`` (`RuptureError`)
         when a material point ruptures (module docstring).
+    remesh_times
+        times [s] at which a new mesh is built whatever the preset's
+        ``remesh``: after the first step ending at or after each, which is
+        re-solved on it (e.g. at a load reversal).
 
     Returns an `xarray.Dataset` on dim ``step`` (variables `OUTPUTS`,
     step 0 the initial untouched state) with attributes including
     ``residual_interference`` (NaN if the force never returned to zero),
     ``steps``, ``total_step_cuts``, ``total_factorizations``,
     ``time_tolerance``, ``max_time_error``, ``time_error_rejections``,
+    ``remeshes`` and ``remeshed_steps`` (the steps re-solved on a new mesh;
+    ``dofs`` is per step),
     ``ruptured`` (0/1) and, after a rupture, ``rupture_step``,
     ``rupture_time``, ``rupture_interference``, ``rupture_position`` (r or
     x of the first ruptured point) and ``rupture_depth`` (below the
@@ -747,17 +763,28 @@ def solve_asperity_history(geometry, material, history: History, accuracy="stand
     if not hasattr(material, "update"):
         raise TypeError("material must have initial_state/update (an inelastic material)")
 
-    # --- mesh: adapted once to the elastic solution at the largest w --------
+    # --- mesh: adapted once to the elastic solution at the largest w, or
+    # (preset key ``remesh``) rebuilt as the contact moves ----------------------
     if mesh_levels is None:
         mesh_levels = np.geomspace(MESH_RANGE * w_max, w_max, MESH_LEVELS)
     mesh_levels = check_levels(geometry, mesh_levels)
-    emodel, _ = adapted_model(geometry, elastic_part(material), mesh_levels, preset, "penalty",
-                              factor)
     rg = float(geometry.intersection_radius(np.array([w_max]))[0])
-    r_cand = max(INELASTIC_CANDIDATE_FACTOR * rg, emodel.r_candidate)
+    r_cand = INELASTIC_CANDIDATE_FACTOR * rg
     if tolerance is None and rate_dependent and math.isfinite(time_tolerance):
         tolerance = max(preset["tolerance"], NEWTON_FRACTION * time_tolerance)
-    model = InelasticModel(emodel.disc, geometry, material, preset, r_cand, factor, tolerance)
+    remesh = bool(preset["remesh"])
+    remesh_times = sorted(float(x) for x in np.atleast_1d(remesh_times))
+    meshes = ContactMeshes(geometry, elastic_part(material), preset, factor, INELASTIC_THRESHOLD)
+    if remesh:
+        # the elastic contact radius at the smallest mesh level
+        a_first = float(geometry.intersection_radius(mesh_levels.min())) / math.sqrt(2.0)
+        disc = meshes.build(a_first)
+    else:
+        emodel, _ = adapted_model(geometry, elastic_part(material), mesh_levels, preset,
+                                  "penalty", factor)
+        r_cand = max(r_cand, emodel.r_candidate)
+        disc = emodel.disc
+    model = InelasticModel(disc, geometry, material, preset, r_cand, factor, tolerance)
     t_mesh = time.perf_counter() - t_start
 
     # --- time stepping ---------------------------------------------------------
@@ -790,18 +817,23 @@ def solve_asperity_history(geometry, material, history: History, accuracy="stand
     # initial state (assumed stress free, w <= 0 or first touch)
     _, out0 = model.evaluate(u, w, state, 0.0, tangent=False)
     append(model.record(u, w, out0), time=t, branch=history.branch(t), newton_iterations=0,
-           step_cuts=0, time_step=0.0, integration_order=0, time_error=0.0, wall_time=0.0)
+           step_cuts=0, time_step=0.0, integration_order=0, time_error=0.0, wall_time=0.0,
+           dofs=model.dofs)
     residual = math.nan
     f_max = 0.0
     n = 0
     error_rejections = 0
     rupture = None
     stop_reason = ""
+    factorizations = 0  # of the models replaced by remeshing
+    redo = False  # the step is being re-solved on a new mesh
+    carried = 0  # Newton iterations of a step solved on the mesh it left
+    remeshed_steps = []
     while t < t_end * (1 - 1e-12) and n < max_steps:
         n += 1
         step_start = time.perf_counter()
         cuts = 0
-        iterations = 0
+        iterations, carried = carried, 0
         branch = history.branch(t)
         # BDF2 from the second step on, restarted with backward Euler after a
         # knot of the history (where the loading rate jumps)
@@ -876,6 +908,34 @@ def solve_asperity_history(geometry, material, history: History, accuracy="stand
                                f"{rupture['step']})")
                 raise ConvergenceError(n, w_new, w, cuts - 1, detail)
             dt = shrink * h
+        # remesh: a new mesh around the contact and the plastic zone of the
+        # step, the state at its start transferred, the step re-solved on it
+        forced = bool(remesh_times) and t_new >= remesh_times[0] * (1 - 1e-12)
+        why = "" if redo or not (remesh or forced) else (
+            "forced" if forced else meshes.due(rec["contact_radius"], model.disc, new))
+        redo = False
+        if why:
+            if forced:
+                remesh_times.pop(0)
+            new_disc = meshes.build(max(rec["contact_radius"], 1e-3 * rg), model.disc, new)
+            move = Transfer(model.disc, new_disc)
+            factorizations += model.factorizations
+            r_cand = max(r_cand, model.r_candidate)
+            model = InelasticModel(new_disc, geometry, material, preset, r_cand, factor,
+                                   tolerance)
+            u = move.displacement(u)
+            u_prev = None if u_prev is None else move.displacement(u_prev)
+            state = move.state(state)
+            r_n = move.fields(r_n)
+            state_prev, r_prev = None, None  # restart with backward Euler
+            _, out_t = model.evaluate(u, w, state, 0.0, tangent=False)
+            f_ref = float(np.linalg.norm(model.zone.nodal(out_t["traction"])))
+            remeshed_steps.append(n)
+            n -= 1
+            dt = h
+            redo = True
+            carried = iterations
+            continue
         # accept
         u_prev, t_prev = u, t
         state_prev, h_prev = state, h
@@ -884,7 +944,7 @@ def solve_asperity_history(geometry, material, history: History, accuracy="stand
         f_ref = float(np.linalg.norm(model.zone.nodal(out["traction"])))
         append(rec, time=t, branch=branch, newton_iterations=iterations, step_cuts=cuts,
                time_step=h, integration_order=order, time_error=err,
-               wall_time=time.perf_counter() - step_start)
+               wall_time=time.perf_counter() - step_start, dofs=model.dofs)
         # next time step: the error controller, limited by Newton and the caps
         if math.isnan(err) or err <= 0:
             fac = MAX_GROWTH
@@ -934,9 +994,7 @@ def solve_asperity_history(geometry, material, history: History, accuracy="stand
         stop_reason = f"max_steps ({max_steps}) reached at time {t:.6g} s"
     rec = {}
     for name in OUTPUTS:
-        if name == "dofs":
-            rec[name] = np.full(k, model.dofs)
-        elif name == "elastic":
+        if name == "elastic":
             rec[name] = np.array([r["max_inelastic_strain"] <= INELASTIC_THRESHOLD for r in rows])
         elif name == "small_strain":
             rec[name] = np.array([r["max_principal_strain"] < SMALL_STRAIN_LIMIT for r in rows])
@@ -948,7 +1006,9 @@ def solve_asperity_history(geometry, material, history: History, accuracy="stand
         history_interferences=knots_w,
         steps=k - 1,
         total_step_cuts=int(sum(r["step_cuts"] for r in rows)),
-        total_factorizations=int(model.factorizations),
+        total_factorizations=int(factorizations + model.factorizations),
+        remeshes=len(remeshed_steps),
+        remeshed_steps=np.asarray(remeshed_steps, dtype=np.int64),
         residual_interference=float(residual),
         residual_interference_method="linear extrapolation to zero of the force of the last two "
                                      "unloading steps with force > 0, within the crossing step "
@@ -975,5 +1035,7 @@ def solve_asperity_history(geometry, material, history: History, accuracy="stand
                      rupture_position=rupture["position"], rupture_depth=rupture["depth"])
     return dataset(rec, geometry, material, accuracy, preset, "time step index", {
         **run_attrs("penalty", factor,
+                    "rebuilt around the contact edge and the plastic zone as they move (remesh)"
+                    if remesh else
                     "fixed, adapted once to the elastic solution at the largest interference"),
         **extra})

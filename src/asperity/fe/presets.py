@@ -59,6 +59,20 @@ time_tolerance
     far smaller).  What each preset's tolerance costs and how far its
     results are from tighter ones: `make bench` (benchmarks/run.py, README
     "Inelastic histories").
+remesh
+    inelastic histories: rebuild the mesh around the contact edge and the
+    plastic zone as they move (`remesh`), instead of one mesh adapted once
+    to elastic solutions up to the largest interference.  Off in every
+    preset: what it costs and gains is measured by `make time-remesh`
+    (benchmarks/remesh.py, README "Inelastic histories").
+remesh_band
+    a new mesh resolves the contact edge from its current radius a to
+    remesh_band x a (elastic solutions drive the refinement, as above),
+    and refines the region the plastic zone can reach while its extent
+    grows by (remesh_band - 1) x max(extent, a); beyond either, the mesh
+    is rebuilt.
+plastic_size
+    largest element in the plastic zone of a new mesh / the contact radius.
 
 Adhesive presets (`ADHESIVE_ACCURACY`, `adhesive.solve_asperity_adhesive`)
 add to the elastic preset of the same name: the mesh of the adhesive band
@@ -94,6 +108,9 @@ ACCURACY: dict[str, dict] = {
         max_cuts=8,
         exact_tolerance=1e-7,
         time_tolerance=0.1,
+        remesh=False,
+        remesh_band=1.5,
+        plastic_size=0.5,
     ),
     "standard": dict(
         domain_factor=300.0,
@@ -109,6 +126,9 @@ ACCURACY: dict[str, dict] = {
         max_cuts=8,
         exact_tolerance=1e-9,
         time_tolerance=0.6,
+        remesh=False,
+        remesh_band=2.0,
+        plastic_size=0.4,
     ),
     "fine": dict(
         domain_factor=1000.0,
@@ -124,6 +144,9 @@ ACCURACY: dict[str, dict] = {
         max_cuts=8,
         exact_tolerance=1e-11,
         time_tolerance=0.2,
+        remesh=False,
+        remesh_band=1.4,
+        plastic_size=0.15,
     ),
 }
 

@@ -1,0 +1,154 @@
+"""Meshes that follow the contact of an inelastic history (issue #14, item 2).
+
+Two cases, each run in this process with ``time.process_time`` (CPU time, valid
+on a shared machine), for every requested preset with the preset's remeshing
+on or off (``--remesh on off``; off is every preset's default):
+
+* ``j2_sphere``: the J2 sphere of tests/fe/test_inelastic_edge.py (R = 1,
+  E = 1000, nu = 0.3, elastic-perfectly plastic with E / Y = 400) pressed to
+  50 times its critical interference (Hertz first yield, p0 = 1.6 Y).  Targets:
+  CPU at `fine` under 5 times that at `standard`; contact area at `standard`
+  within 1 % of `fine` (at the largest interference, and the largest
+  difference at equal interference over the second half of the loading).
+* ``viscoplastic_hill``: the SAE 1020 hill of benchmarks/run.py (report 8.2.2)
+  loaded and unloaded at `standard`: CPU time and steps (target: no slower
+  than the fixed mesh, 131 steps).
+
+Writes benchmarks/results/remesh.json (merged with what is already there, so
+that the presets can be run separately: fine takes minutes)::
+
+    python benchmarks/remesh.py --cases j2_sphere --presets standard fine --remesh on off
+    python benchmarks/remesh.py --cases viscoplastic_hill --presets standard --remesh on off
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import platform
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+
+from asperity.fe import J2Plasticity, Sphere
+from asperity.fe.bodner_partom import BodnerPartom
+from asperity.fe.geometry import CosineHill
+from asperity.fe.inelastic import History, solve_asperity_history
+
+OUT = Path(__file__).with_name("results") / "remesh.json"
+
+E, NU = 1000.0, 0.3
+Y = E / 400
+W_C = (math.pi * 1.6 * Y / (2 * E / (1 - NU**2))) ** 2
+
+
+def j2_sphere(accuracy):
+    return solve_asperity_history(Sphere(1.0), J2Plasticity(E, NU, Y),
+                                  History.loading(50 * W_C, 1.0), accuracy=accuracy)
+
+
+def viscoplastic_hill(accuracy):
+    ratio = np.pi / (np.sqrt(2.0) * 0.160)
+    hill = CosineHill.from_aspect(ratio, 2.0 * np.pi**2 / (ratio**2 * 0.042e6))
+    return solve_asperity_history(hill, BodnerPartom.sae_1020(),
+                                  History.load_unload(0.1 * hill.height, 0.25e-6),
+                                  accuracy=accuracy)
+
+
+CASES = {"j2_sphere": j2_sphere, "viscoplastic_hill": viscoplastic_hill}
+
+
+def run(case: str, preset: str, remesh: bool) -> dict:
+    t0 = time.process_time()
+    ds = CASES[case](dict(base=preset, remesh=remesh))
+    cpu = time.process_time() - t0
+    k = int(np.argmax(ds.interference.values))
+    return dict(
+        cpu_seconds=cpu, steps=int(ds.attrs["steps"]), remeshes=int(ds.attrs["remeshes"]),
+        newton_iterations=int(ds.newton_iterations.sum()),
+        dofs_min=int(ds.dofs.min()), dofs_max=int(ds.dofs.max()),
+        force_at_top=float(ds.force[k]), contact_area_at_top=float(ds.contact_area[k]),
+        residual_interference=float(ds.attrs["residual_interference"]),
+        interference=ds.interference.values[:k + 1].tolist(),
+        force=ds.force.values[:k + 1].tolist(),
+        contact_area=ds.contact_area.values[:k + 1].tolist())
+
+
+def compare(coarse: dict, fine: dict) -> dict:
+    """Relative differences of `coarse` from `fine`: at the top of the loading,
+    and the largest at equal interference over its second half."""
+    w = np.asarray(coarse["interference"])
+    late = w >= 0.5 * w[-1]
+    out = {}
+    for name in ("force", "contact_area"):
+        ref = np.interp(w[late], fine["interference"], fine[name])
+        out[name + "_at_top"] = coarse[name + "_at_top"] / fine[name + "_at_top"] - 1
+        out[name + "_largest"] = float(np.max(np.abs(np.asarray(coarse[name])[late] / ref - 1)))
+    return out
+
+
+def _read() -> dict:
+    record = json.loads(OUT.read_text()) if OUT.exists() else {}
+    record.update(machine=platform.platform(), python=sys.version.split()[0])
+    record.setdefault("runs", {})
+    return record
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--cases", nargs="*", default=list(CASES), choices=list(CASES),
+                    help="none: only the summary of what benchmarks/results/remesh.json holds")
+    ap.add_argument("--presets", nargs="+", default=["standard", "fine"])
+    ap.add_argument("--remesh", nargs="+", default=["on"], choices=["on", "off"],
+                    help="remeshing on, off (the fixed mesh) or both")
+    args = ap.parse_args(argv)
+    for case in args.cases:
+        for preset in args.presets:
+            for remesh in [m == "on" for m in args.remesh]:
+                key = f"{case}/{preset}/{'remesh' if remesh else 'fixed'}"
+                r = run(case, preset, remesh)
+                record = _read()  # other presets may run at the same time
+                record["runs"][key] = r
+                print(f"{key:<36s} {r['cpu_seconds']:8.1f} s CPU  {r['steps']:4d} steps  "
+                      f"{r['remeshes']:2d} remeshes  dofs {r['dofs_min']}-{r['dofs_max']}  "
+                      f"F {r['force_at_top']:.6g}  A {r['contact_area_at_top']:.6g}", flush=True)
+                OUT.write_text(json.dumps(record, indent=1))
+    record = _read()
+    runs = record["runs"]
+    summary = {}
+    for mode in ("remesh", "fixed"):
+        s, f = runs.get(f"j2_sphere/standard/{mode}"), runs.get(f"j2_sphere/fine/{mode}")
+        if s and f:
+            summary[f"j2_sphere_{mode}"] = dict(
+                cpu_fine_over_standard=f["cpu_seconds"] / s["cpu_seconds"],
+                standard_against_fine=compare(s, f))
+    s, f = runs.get("j2_sphere/standard/remesh"), runs.get("j2_sphere/fine/fixed")
+    if s and f:
+        summary["j2_sphere_standard_remesh_against_fine_fixed"] = dict(
+            cpu_fine_over_standard=f["cpu_seconds"] / s["cpu_seconds"],
+            standard_against_fine=compare(s, f))
+    for preset in ("standard", "fine"):
+        on, off = runs.get(f"j2_sphere/{preset}/remesh"), runs.get(f"j2_sphere/{preset}/fixed")
+        if on and off:
+            summary[f"j2_sphere_{preset}_cpu_remesh_over_fixed"] = on["cpu_seconds"] / off["cpu_seconds"]
+    on, off = runs.get("viscoplastic_hill/standard/remesh"), runs.get("viscoplastic_hill/standard/fixed")
+    if on and off:
+        summary["viscoplastic_hill_standard"] = dict(
+            cpu_remesh_over_fixed=on["cpu_seconds"] / off["cpu_seconds"],
+            steps_remesh=on["steps"], steps_fixed=off["steps"],
+            force_at_top_remesh_over_fixed=on["force_at_top"] / off["force_at_top"] - 1)
+    fixed_fine = runs.get("j2_sphere/fine/fixed")
+    if fixed_fine and runs.get("j2_sphere/fine/remesh"):
+        summary["j2_sphere_fine_remesh_against_fine_fixed"] = compare(
+            runs["j2_sphere/fine/remesh"], fixed_fine)
+    record["summary"] = summary
+    OUT.write_text(json.dumps(record, indent=1))
+    print(json.dumps(summary, indent=1))
+    print(f"written {OUT}")
+
+
+if __name__ == "__main__":
+    main()
