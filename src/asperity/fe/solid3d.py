@@ -115,8 +115,10 @@ PENALTY_FACTOR_3D = 100.0
 SMOOTHING_3D = SMOOTHING
 #: a point's tangent counts as elastic when |D - C| <= this * |C|
 TANGENT_ELASTIC_TOL = 1e-10
-#: time step growth after an easy step (<= FAST Newton iterations)
-GROWTH, FAST = 1.5, 5
+#: time step growth after a step without cuts that took <= FAST Newton
+#: iterations (a sliding junction often takes more than 5 per step: a lower
+#: threshold never lets the step grow back after a cut)
+GROWTH, FAST = 1.5, 12
 #: a point has yielded once its equivalent inelastic strain exceeds this
 INELASTIC_THRESHOLD = 1e-8
 #: "at the junction": the largest inelastic strain lies less than this
