@@ -66,13 +66,15 @@ def scene() -> dict:
 
 
 # ---------------------------------------------------------------------------- one preset
-def patch_diagnostics(tn, tx, cw, x, stress, before=None) -> dict:
+def patch_diagnostics(tn, tx, cw, x, stress, dv, before=None) -> dict:
     """The contact patch of one step against the stresses under it.
 
     tn, tx (nf, nq): pressure and x traction at the contact points; cw (nf, nq) their
     weights; x (nf, nq) their undeformed x; stress (6, nf, nqv) at the volume points of
-    the elements of the contact facets; before (nf, nq): which points touched in the
-    step before.  Areas are of the whole model (twice the half).
+    the elements of the contact facets, dv (nf, nqv) their volume weights; before
+    (nf, nq): which points touched in the step before.  Areas are of the whole model
+    (twice the half).  The bulk shear stress under the patch is sigma_xz in the
+    elements of the touching facets: its largest value and its volume mean.
     """
     on = tn > 0
     changes = {} if before is None else dict(entered=int(np.sum(on & ~before)),
@@ -87,6 +89,7 @@ def patch_diagnostics(tn, tx, cw, x, stress, before=None) -> dict:
                 area_of_touching_facets=2.0 * float(cw[fac].sum()),
                 largest_point_tangential_traction=float(np.abs(tx[on]).max()),
                 largest_patch_shear_stress=float(np.abs(sxz).max()),
+                mean_patch_shear_stress=float(np.sum(sxz * dv[fac]) / np.sum(dv[fac])),
                 largest_patch_mises_stress=float(q.max()),
                 x_touching=[float(x[on].min()), float(x[on].max())])
 
@@ -103,7 +106,7 @@ def _hook_diagnostics(path: Path):
         rec = record(self, u, w, delta, out)
         m, c = self.m, out["contact"]
         d = patch_diagnostics(c["tn"], c["txy"][0], m.cw, m.cX[0], out["stress"][:, m.ctind],
-                              last.get("touching"))
+                              m.weights[m.ctind], last.get("touching"))
         last["touching"] = c["tn"] > 0
         sink.write(json.dumps(dict(d, normal_displacement=w, tangential_displacement=delta,
                                    tangential_force=rec["tangential_force"],
@@ -310,6 +313,8 @@ def patch_summary(preset: str, out: Path) -> dict:
         largest_point_tangential_traction_sliding=max(
             r["largest_point_tangential_traction"] for r in slide),
         largest_patch_shear_stress_sliding=max(r["largest_patch_shear_stress"] for r in slide),
+        mean_patch_shear_stress_sliding=[min(r["mean_patch_shear_stress"] for r in slide),
+                                         max(r["mean_patch_shear_stress"] for r in slide)],
         largest_patch_mises_stress_sliding=max(r["largest_patch_mises_stress"] for r in slide),
         tangential_force_over_touching_facets_sliding=[min(tau_f), max(tau_f)],
         x_touching_first_sliding_step=slide[0]["x_touching"],

@@ -61,9 +61,6 @@ VARIABLES: dict[str, tuple[str, str]] = {
                           "model)"),
     "tangential_force": ("N", "tangential contact force on the asperity along the sliding "
                               "direction x"),
-    "tangential_force_off_contact": ("N", "part of the tangential force from contact points "
-                                          "without pressure (lagged friction: separated during "
-                                          "the step)"),
     "mean_pressure": ("Pa", "normal force / contact area"),
     "mean_tangential_traction": ("Pa", "tangential force / contact area (report 9.2: about "
                                        "64 MPa)"),

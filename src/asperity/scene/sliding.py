@@ -23,9 +23,9 @@ class Sliding:
     ``press_time`` [s], then ``slide`` [m] along x during ``slide_time`` [s]); the
     shear resistance tau_s = c0 + c1 sigma_n + c2 sigma_n^2 of 3.21 (c0 [Pa], c1,
     c2 [1/Pa], the c0 ramp ``onset_pressure`` [Pa]) regularized over
-    ``slip_regularization`` eps_b [m] (3.25); ``friction_pressure`` (``current`` or
-    ``lagged``), ``penalty_factor``; and what overrides the accuracy preset
-    (``max_inelastic_step``, ``normal_steps``, ``tangential_steps``, ``mesh``)."""
+    ``slip_regularization`` eps_b [m] (3.25), ``penalty_factor``; and what overrides
+    the accuracy preset (``max_inelastic_step``, ``normal_steps``, ``tangential_steps``,
+    ``mesh``)."""
 
     height: float
     base_diameter: float
@@ -39,7 +39,6 @@ class Sliding:
     c2: float
     onset_pressure: float
     slip_regularization: float
-    friction_pressure: str
     penalty_factor: float
     max_inelastic_step: float | None
     normal_steps: int | None
@@ -59,7 +58,6 @@ class Sliding:
             slide=mo["slide"] * length, slide_time=tuple(mo["slide_time"]),
             c0=s["c0"] * p, c1=s["c1"], c2=s["c2"] / p, onset_pressure=s["onset_pressure"] * p,
             slip_regularization=section["slip_regularization"] * length,
-            friction_pressure=section["friction_pressure"],
             penalty_factor=float(section["penalty_factor"]),
             max_inelastic_step=(float(section["max_inelastic_step"])
                                 if "max_inelastic_step" in section else None),

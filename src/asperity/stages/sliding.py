@@ -23,7 +23,7 @@ def sliding_dataset(scene_name: str, sliding: Config, units_cfg: Config, accurac
         s = Sliding.from_section(sliding, Units.from_section(units_cfg))
         ds = solve_sliding(s.geometry(), s.body(), s.motion(), s.friction(),
                            accuracy=s.preset(accuracy), penalty_factor=s.penalty_factor,
-                           friction_pressure=s.friction_pressure, progress=progress)
+                           progress=progress)
     except Exception as err:
         raise RuntimeError(f"scene {scene_name}, sliding asperity: {err}") from err
     ds.attrs["accuracy"] = accuracy
