@@ -72,8 +72,27 @@ contact radius there plus 5 min(l, sqrt(2 R d)) (an adhesive contact is
 never larger than JKR's).  The zone of candidate facets is the band; a
 path whose adhesive ring reaches its last tenth is restarted with a wider
 band.  The number of band facets grows like mu^2 (contact radius /
-cohesive length), and the cost with it: what the adhesive jobs cost is
-measured by `make time-adhesion` (README, "Adhesion").
+cohesive length), and the cost with it (the dense condensed stiffness is
+m x m in the band's nodes, the active set of the tangent holds every node
+in contact).
+
+Meshes that follow the contact: a band of more than ``follow_above``
+ring elements (a large Tabor parameter) is not refined as a whole.  Only
+a window of it is (`AdhesiveModel.window_for`): the contact edge and the
+surface within FINE_SEPARATION d of the flat, plus a margin of
+FOLLOW_MARGIN times the radius that reaches on either side (the contact
+inside and the surface outside are graded away from it as above); the
+candidate zone is still the whole band.  Each state the path reaches is
+checked: if its edge or ring has come within a quarter of the margin of
+the window's ends, the surface displacement is interpolated onto a mesh
+with a new window and the equilibrium at the same flat position is
+re-solved there (`_follow`), and the path goes on from that state (the
+energy balance is checked between states of one mesh only).  A jump may
+land far outside the window (jump-in): the landing state is moved, and
+re-solved, until its window holds.  Each state keeps its mesh
+(``AdhesiveState.model``): the bisection around the pull-off and the
+outputs use it.  What the adhesive jobs cost is measured by
+`make time-adhesion` (README, "Adhesion").
 """
 
 from __future__ import annotations
@@ -103,15 +122,15 @@ ADHESIVE_ACCURACY: dict[str, dict] = {
     "draft": dict(base="draft", process_zone_elements=1.5, ring_elements=4.0, grading=0.5,
                   gauss_points=5, subdivisions=2, steps_per_d=3.0, far_steps=8,
                   jump_tolerance=0.25, energy_tolerance=0.03, min_step=2e-3,
-                  max_band_facets=1500),
+                  max_band_facets=1500, follow_above=600),
     "standard": dict(base="standard", process_zone_elements=3.0, ring_elements=8.0, grading=0.3,
                      gauss_points=5, subdivisions=2, steps_per_d=6.0, far_steps=16,
                      jump_tolerance=0.25, energy_tolerance=0.02, min_step=1e-3,
-                     max_band_facets=3000),
+                     max_band_facets=3000, follow_above=1200),
     "fine": dict(base="fine", process_zone_elements=6.0, ring_elements=16.0, grading=0.2,
                  gauss_points=5, subdivisions=4, steps_per_d=10.0, far_steps=24,
                  jump_tolerance=0.25, energy_tolerance=0.01, min_step=5e-4,
-                 max_band_facets=6000),
+                 max_band_facets=6000, follow_above=2400),
 }
 
 #: Newton iterations of a step attempt are the preset's ``max_iterations``
@@ -127,6 +146,16 @@ JUMP_ITERATION_FACTOR = 15
 ENERGY_ROUNDOFF = 1e-10
 #: halvings of one requested step (failed Newton or discontinuity) before giving up
 MAX_HALVINGS = 60
+#: a mesh following the contact (`AdhesiveModel.window_for`): the fine band
+#: spans the contact edge and the surface within FINE_SEPARATION d of the
+#: flat, with a margin of FOLLOW_MARGIN times the radius it reaches (at
+#: least FOLLOW_MIN_FACETS ring elements) on each side; a state whose edge
+#: or ring comes within a quarter of the margin of the band's ends is moved
+#: to a new mesh, at most MAX_REMESH times in a row
+FINE_SEPARATION = 4.0
+FOLLOW_MARGIN = 0.15
+FOLLOW_MIN_FACETS = 40
+MAX_REMESH = 8
 
 
 def resolve_adhesive(accuracy) -> dict:
@@ -186,13 +215,15 @@ def jkr_contact_radius(radius: float, contact_modulus: float, work: float, w: fl
 
 
 # --- mesh ----------------------------------------------------------------------------
-def band_mesh(geometry: Profile, r_band: float, h_ring: float, grading: float,
+def band_mesh(geometry: Profile, window: tuple[float, float], h_ring: float, grading: float,
               spec: MeshSpec, max_rounds: int = 80) -> AsperityMesh:
     """The ring mesh refined until h <= h_ring + grading * distance to the band.
 
-    The band is the top surface 0 <= r <= r_band.  Red-green-blue
-    refinement of the elements too large for their distance, repeated.
+    The band is the top surface r_lo <= r <= r_hi, ``window = (r_lo,
+    r_hi)`` (r_lo = 0: from the apex).  Red-green-blue refinement of the
+    elements too large for their distance, repeated.
     """
+    r_lo, r_hi = window
     mesh = AsperityMesh.initial(geometry, spec)
     for _ in range(max_rounds):
         m = mesh.vertices
@@ -201,7 +232,8 @@ def band_mesh(geometry: Profile, r_band: float, h_ring: float, grading: float,
         size = edges.max(axis=0)
         c = p.mean(axis=1)
         depth = geometry.body_surface(c[0]) - c[1]
-        dist = np.hypot(np.maximum(c[0] - r_band, 0.0), np.maximum(depth, 0.0))
+        off = np.maximum(np.maximum(c[0] - r_hi, r_lo - c[0]), 0.0)
+        dist = np.hypot(off, np.maximum(depth, 0.0))
         dist = np.maximum(dist - 0.5 * size, 0.0)
         marked = np.nonzero(size > h_ring + grading * dist)[0]
         if marked.size == 0:
@@ -264,6 +296,8 @@ class AdhesiveState:
     iterations: int = 0
     cuts: int = 0
     wall_time: float = 0.0
+    #: the `AdhesiveModel` (mesh) the state is an equilibrium of
+    model: "AdhesiveModel | None" = None
 
     @property
     def force(self) -> float:
@@ -507,22 +541,35 @@ class AdhesiveNewton:
 
 # --- the model -----------------------------------------------------------------------
 class AdhesiveModel:
-    """Mesh graded to the adhesive band, condensed stiffness, both surface rules."""
+    """Mesh graded to the adhesive band, condensed stiffness, both surface rules.
+
+    The fine band is ``window`` (r_lo, r_hi); the candidate zone is always
+    0 <= r <= r_band.  A model `follows` the contact if the band has more
+    than ``follow_above`` ring elements: its fine band is then a window
+    around the contact edge, by default FOLLOW_MIN_FACETS ring elements at
+    the apex, moved along the path (`window_for`, `remeshed`; module
+    docstring, "Mesh"); else it is the whole band (0, r_band).
+    """
 
     def __init__(self, geometry: Profile, material, adhesion: LennardJones, scales: _Scales,
-                 preset: dict, penalty_factor: float = PENALTY_FACTOR):
+                 preset: dict, penalty_factor: float = PENALTY_FACTOR,
+                 window: tuple[float, float] | None = None):
         if not getattr(material, "is_linear", False):
             raise NotImplementedError("adhesion is implemented for elastic materials only")
         t0 = time.perf_counter()
         self.geometry, self.material, self.adhesion = geometry, material, adhesion
-        self.scales, self.preset = scales, preset
+        self.scales, self.preset, self.penalty_factor = scales, preset, penalty_factor
+        self.follows = scales.r_band > preset["follow_above"] * scales.h_ring
+        if window is None:
+            window = (0.0, FOLLOW_MIN_FACETS * scales.h_ring if self.follows else scales.r_band)
+        self.window = window
         if geometry.axisymmetric:
             L = preset["domain_factor"] * geometry.length_scale
         else:
             L = PLANE_STRAIN_DOMAIN * geometry.length_scale
         spec = MeshSpec(L, min(4.0 * scales.h_ring, 0.1 * scales.r_band), preset["growth"],
                         preset["n_theta"])
-        self.mesh = band_mesh(geometry, scales.r_band, scales.h_ring, preset["grading"], spec)
+        self.mesh = band_mesh(geometry, self.window, scales.h_ring, preset["grading"], spec)
         self.disc = Discretization(self.mesh)
         _, D = material.response(np.zeros((4, 1)))
         K = self.disc.stiffness(np.asarray(D))
@@ -542,7 +589,12 @@ class AdhesiveModel:
         self.force_reference = (2 * np.pi * R * adhesion.dgamma if geometry.axisymmetric
                                 else 2 * math.sqrt(R / adhesion.d) * adhesion.dgamma)
         # the last tenth of the band's facets must stay out of the adhesive range
-        self.edge_facets = np.arange(nf) >= int(0.9 * nf)
+        # (of its radius where the facets outside the fine band are graded)
+        if self.follows:
+            ends = top.coords[0, 2:2 * nf + 1:2]
+            self.edge_facets = ends > 0.9 * ends[-1]
+        else:
+            self.edge_facets = np.arange(nf) >= int(0.9 * nf)
         self.setup_time = time.perf_counter() - t0
 
     @property
@@ -596,6 +648,38 @@ class AdhesiveModel:
         truncation = dw * dw * abs(new.stiffness - old.stiffness) / (6.0 * ff) if same_side else 0.0
         return abs(balance) <= pre["energy_tolerance"] * d * scale + truncation \
             and off <= 0.5 * d + 2.0 * abs(dw)
+
+    def window_for(self, state: AdhesiveState) -> tuple[float, float] | None:
+        """The fine band `state` needs if this mesh's will not do, else None.
+
+        The ring is the surface from the contact edge (the apex if not
+        touching) to the outermost node within FINE_SEPARATION d of the flat
+        (the cohesive zone: q there is 4 % of its peak).  The band must
+        reach a quarter of the margin beyond it on either side (or the apex,
+        or r_band); a new band extends a full margin beyond it, from the
+        apex if that leaves less than a margin inside.
+        """
+        if not self.follows:
+            return None
+        d = self.adhesion.d
+        r = self.zone.coords[0]
+        pen = self.zone.node_penetration(state.u, state.w)
+        touching = pen >= 0
+        edge = contact_edge(r, -pen, touching) if touching.any() else 0.0
+        near = pen > -(FINE_SEPARATION - 1.0) * d
+        outer = max(float(r[near].max()) if near.any() else 0.0, edge)
+        margin = max(FOLLOW_MARGIN * outer, FOLLOW_MIN_FACETS * self.scales.h_ring)
+        lo, hi = self.window
+        r_band = self.scales.r_band
+        if lo <= max(edge - 0.25 * margin, 0.0) and hi >= min(outer + 0.25 * margin, r_band):
+            return None
+        lo = edge - margin if edge > 2.0 * margin else 0.0
+        return lo, min(outer + margin, r_band)
+
+    def remeshed(self, window: tuple[float, float]) -> "AdhesiveModel":
+        """The model on a mesh with the fine band `window`."""
+        return AdhesiveModel(self.geometry, self.material, self.adhesion, self.scales,
+                             self.preset, self.penalty_factor, window)
 
     def overflow(self, state: AdhesiveState) -> bool:
         a = self.azone.penetration(state.u, state.w)
@@ -701,7 +785,39 @@ class _Failed(Exception):
         self.halvings = halvings
 
 
-def _advance(model: AdhesiveModel, state: AdhesiveState, target: float, pre: dict):
+def _follow(state: AdhesiveState) -> tuple[AdhesiveState, int]:
+    """`state` moved onto a mesh whose fine band covers its contact edge.
+
+    While the state's mesh will not do (`AdhesiveModel.window_for`), the
+    surface displacement is interpolated onto the nodes of a mesh with the
+    band it needs and the equilibrium at the same flat position re-solved
+    from there (a jump may land far outside the band: the landing state
+    then moves the band, and is re-solved, again).  Returns the state and
+    the Newton iterations spent.
+    """
+    iterations = 0
+    for _ in range(MAX_REMESH):
+        old = state.model
+        window = old.window_for(state)
+        if window is None:
+            return state, iterations
+        model = old.remeshed(window)
+        u0 = np.interp(model.zone.coords[0], old.zone.coords[0], state.u)
+        newton = model.newton
+        try:
+            u, parts, T, its = newton.solve(state.w, u0,
+                                            JUMP_ITERATION_FACTOR * newton.max_iterations)
+        except _NotConverged as exc:
+            raise _Failed(f"{exc} (re-solving on a new mesh at w = {state.w:.6g} m)",
+                          state.w, 0) from None
+        iterations += its
+        state = newton.state(state.w, u, parts, T)
+        state.model = model
+    raise _Failed(f"the fine band does not settle on the contact (at w = {state.w:.6g} m)",
+                  state.w, 0)
+
+
+def _advance(state: AdhesiveState, target: float, pre: dict):
     """From a converged state to the flat position `target`, with step control.
 
     A step that fails to converge, or is discontinuous
@@ -710,12 +826,14 @@ def _advance(model: AdhesiveModel, state: AdhesiveState, target: float, pre: dic
     midpoint advances the state, a bad one shrinks the bracket) until it is
     min_step * d long, where a discontinuous step is a jump.  A bad
     position reached continuously after all (a steep stretch) is dropped
-    and the bracket reopens to the next one, never to the target.  Returns (final state,
+    and the bracket reopens to the next one, never to the target.  Each
+    state reached (after a jump too) is moved onto a mesh that follows its
+    contact edge (`_follow`) before the next step.  Returns (final state,
     [(state before, state after) of each jump], iterations, halvings);
     raises `_Failed` (with the last position reached) when a step fails
     even at the smallest size.
     """
-    newton, d = model.newton, model.adhesion.d
+    d = state.model.adhesion.d
     smallest = pre["min_step"] * d
     target = float(target)
     goals = [target]
@@ -732,6 +850,8 @@ def _advance(model: AdhesiveModel, state: AdhesiveState, target: float, pre: dic
             if nxt != goal:
                 goals.append(nxt)
                 continue
+        model = state.model
+        newton = model.newton
         dw = goal - state.w
         small = abs(dw) <= smallest
         # tangent predictor, its move capped at d + 2 |dw| (du/dw blows up near
@@ -753,17 +873,21 @@ def _advance(model: AdhesiveModel, state: AdhesiveState, target: float, pre: dic
             goals = [target]
             continue
         new = newton.state(goal, u, parts, T)
-        if not model.continuous(state, new, pred, pre):
-            if not small:
-                halvings += 1
-                if halvings > MAX_HALVINGS:
-                    raise _Failed("the path stays discontinuous", state.w, halvings - 1)
-                bads.append(goal)
-                goals = [target]
-                continue
+        new.model = model
+        jumped = not model.continuous(state, new, pred, pre)
+        if jumped and not small:
+            halvings += 1
+            if halvings > MAX_HALVINGS:
+                raise _Failed("the path stays discontinuous", state.w, halvings - 1)
+            bads.append(goal)
+            goals = [target]
+            continue
+        new, its = _follow(new)
+        iterations += its
+        if jumped:
             jumps.append((state, new))
             bads = []
-        if model.overflow(new):
+        if new.model.overflow(new):
             raise _Overflow()
         state = new
         goals.pop()
@@ -771,7 +895,8 @@ def _advance(model: AdhesiveModel, state: AdhesiveState, target: float, pre: dic
 
 
 def _trace(model: AdhesiveModel, path, pre: dict, label: str = "") -> list[_Record]:
-    """States along the path with step control and jumps (module docstring)."""
+    """States along the path with step control and jumps (module docstring),
+    from `model`'s mesh (moved along with the contact if it follows it)."""
     newton = model.newton
     branches = _branches(path)
     who = f"sample {label}: " if label else ""
@@ -781,13 +906,19 @@ def _trace(model: AdhesiveModel, path, pre: dict, label: str = "") -> list[_Reco
     except _NotConverged as exc:
         raise ConvergenceError(0, float(path[0]), math.nan, 0, f"{who}{exc}") from None
     state = newton.state(float(path[0]), u, parts, T, its)
+    state.model = model
+    try:
+        state, more = _follow(state)
+    except _Failed as exc:
+        raise ConvergenceError(0, float(path[0]), math.nan, 0, f"{who}{exc}") from None
+    state.iterations = its + more
     state.wall_time = time.perf_counter() - t0
     records = [_Record(state, branches[0], False, True, 0)]
     for n in range(1, len(path)):
         target, branch = float(path[n]), branches[n]
         t0 = time.perf_counter()
         try:
-            state, jumps, iterations, halvings = _advance(model, state, target, pre)
+            state, jumps, iterations, halvings = _advance(state, target, pre)
         except _Failed as exc:
             raise ConvergenceError(n, target, exc.reached, exc.halvings, f"{who}{exc}") from None
         for before, after in jumps:
@@ -840,7 +971,7 @@ def _retract_indices(branch: np.ndarray) -> np.ndarray:
     return idx
 
 
-def _refine_pull_off(model: AdhesiveModel, records: list, pre: dict, resolution: float) -> None:
+def _refine_pull_off(records: list, pre: dict, resolution: float) -> None:
     """Bisect the path around the largest tensile force on retraction.
 
     States at the midpoints between the minimum of the force and its
@@ -865,7 +996,7 @@ def _refine_pull_off(model: AdhesiveModel, records: list, pre: dict, resolution:
                 continue
             mid = 0.5 * (records[j].state.w + src.w)
             try:
-                new, jumps, its, cuts = _advance(model, src, mid, pre)
+                new, jumps, its, cuts = _advance(src, mid, pre)
             except (_Failed, _Overflow):
                 continue
             if jumps:  # not on the branch of the minimum
@@ -966,9 +1097,14 @@ def solve_asperity_adhesive(geometry: Profile, material, adhesion: LennardJones,
             band *= 1.5
     else:
         raise ContactZoneError("the adhesive ring outgrew the refined band")
-    _refine_pull_off(model, records, pre, adhesion.d / 64.0)
+    _refine_pull_off(records, pre, adhesion.d / 64.0)
     states = [r.state for r in records]
-    ev = model.evaluate(states)
+    models = list({id(s.model): s.model for s in states}.values())
+    ev = {}
+    for m in models:  # each state on its own mesh
+        mine = [k for k, s in enumerate(states) if s.model is m]
+        for name, values in m.evaluate([states[k] for k in mine]).items():
+            ev.setdefault(name, np.zeros(len(states)))[mine] = values
     axi = geometry.axisymmetric
     a = ev["contact_radius"]
     w = np.array([s.w for s in states])
@@ -992,7 +1128,7 @@ def solve_asperity_adhesive(geometry: Profile, material, adhesion: LennardJones,
         branch=branch,
         jump=jump,
         requested=np.array([r.requested for r in records]),
-        dofs=np.full(len(states), model.dofs),
+        dofs=np.array([s.model.dofs for s in states]),
         newton_iterations=np.array([s.iterations for s in states]),
         step_cuts=np.array([s.cuts for s in states]),
         wall_time=own + (total - own.sum()) / len(states),
@@ -1032,7 +1168,8 @@ def solve_asperity_adhesive(geometry: Profile, material, adhesion: LennardJones,
         process_zone=sc.process_zone,
         ring_element_size=sc.h_ring,
         band_radius=sc.r_band,
-        band_facets=int(model.zone.nfacets),
+        band_facets=max(int(m.zone.nfacets) for m in models),
+        meshes=len(models),
         resolution_capped=int(sc.capped),
         total_wall_time=total,
     )
