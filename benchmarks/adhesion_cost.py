@@ -9,13 +9,19 @@ script measures it (CPU time of this process, `time.process_time`):
 2. the scene's flattest asperity (R = 60 um) moved to R = 100 um, the cost
    behind the scene's curvature range (README: departures);
 3. `asperity.fe.adhesive.smooth_aluminum_curves` (Fig. 7.6: R = 15.4, 30,
-   60 um at d = 0.3 nm), at draft, one radius at a time.
+   60 um at d = 0.3 nm), at draft, one radius at a time;
+4. the flat end of report 7.3's range, R = 150 and 300 um at d = 0.3 nm
+   (Tabor parameter 10 and 13: meshes that follow the contact), at draft
+   and at standard: CPU time, the pull-off force against JKR's
+   3/2 pi R W_c, and the draft pull-off against standard's.
 
 Writes benchmarks/results/adhesion-cost.json and prints a table.  Nothing
 is asserted: speed is measured here, not in the tests.
 
-    python benchmarks/adhesion_cost.py             # everything, about 12 min
+    python benchmarks/adhesion_cost.py             # everything
     python benchmarks/adhesion_cost.py --no-curves # without part 3
+    python benchmarks/adhesion_cost.py --only-large # part 4 alone, the other
+                                                    # parts kept from the JSON
 """
 
 from __future__ import annotations
@@ -39,6 +45,8 @@ from asperity.fe.adhesive import smooth_aluminum_curves  # noqa: E402
 
 SCENE = "smooth_aluminum_adhesion"
 RESULTS = Path(__file__).with_name("results")
+#: part 4: report 7.3's flattest asperities [m]
+LARGE_RADII = (150e-6, 300e-6)
 
 
 def scene_specs() -> list[dict]:
@@ -67,12 +75,42 @@ def job_row(spec: dict, accuracy: str) -> dict:
                 tabor_parameter=float(ds.attrs["tabor_parameter"]))
 
 
+def large_rows() -> list[dict]:
+    """Part 4: R = 150, 300 um at d = 0.3 nm, draft and standard."""
+    rows = []
+    for radius in LARGE_RADII:
+        pulls = {}
+        for accuracy in ("draft", "standard"):
+            ds, cpu = timed(lambda: smooth_aluminum_curves(radii=(radius,), accuracy=accuracy))
+            pull = float(ds["pull_off_force"][0])
+            pulls[accuracy] = pull
+            rows.append(dict(tip_radius_um=radius * 1e6, d_nm=0.3, accuracy=accuracy, cpu_time_s=cpu,
+                             tabor_parameter=float(ds["tabor_parameter"][0]), pull_off_force_N=pull,
+                             pull_off_over_jkr=pull / float(ds["pull_off_force_jkr"][0]),
+                             meshes=int(ds["meshes"][0]),
+                             jumps=int(ds["jump"].sum()), steps=int(ds["valid"].sum())))
+            print(f"R = {radius * 1e6:.4g} um, {accuracy}: {cpu:.1f} s, pull-off "
+                  f"{rows[-1]['pull_off_over_jkr']:.4f} JKR", flush=True)
+        rows[-1]["pull_off_draft_vs_standard"] = pulls["draft"] / pulls["standard"] - 1.0
+    return rows
+
+
 def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--no-curves", action="store_true", help="leave out smooth_aluminum_curves")
+    ap.add_argument("--only-large", action="store_true",
+                    help="run part 4 (R = 150, 300 um) alone; parts 1-3 are kept from --out")
     ap.add_argument("--out", type=Path, default=RESULTS / "adhesion-cost.json")
     args = ap.parse_args(argv)
 
+    if args.only_large:
+        record = json.loads(args.out.read_text())
+        record["large_radii"] = large_rows()
+        record["large_radii_commit"], record["large_radii_uncommitted_changes"] = _commit()
+        record["large_radii_date"] = time.strftime("%Y-%m-%dT%H:%M:%S%z")
+        args.out.write_text(json.dumps(record, indent=1) + "\n")
+        print(f"written: {args.out}")
+        return 0
     specs = scene_specs()
     rows = []
     for accuracy in ("draft", "standard"):
@@ -90,10 +128,11 @@ def main(argv: list[str] | None = None) -> int:
             curves.append(dict(tip_radius_um=radius * 1e6, d_nm=0.3, accuracy="draft", cpu_time_s=cpu,
                                tabor_parameter=float(ds["tabor_parameter"][0])))
             print(f"smooth_aluminum_curves R = {radius * 1e6:.4g} um: {cpu:.1f} s", flush=True)
+    large = large_rows()
     commit, dirty = _commit()
     record = dict(date=time.strftime("%Y-%m-%dT%H:%M:%S%z"), commit=commit, uncommitted_changes=dirty,
                   scene=SCENE, scene_jobs=rows, scene_cpu_time_s=totals, radius_100um=wider,
-                  smooth_aluminum_curves=curves)
+                  smooth_aluminum_curves=curves, large_radii=large)
     args.out.parent.mkdir(parents=True, exist_ok=True)
     args.out.write_text(json.dumps(record, indent=1) + "\n")
     print(f"scene FE CPU: draft {totals['draft']:.0f} s, standard {totals['standard']:.0f} s")

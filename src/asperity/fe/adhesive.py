@@ -1063,7 +1063,9 @@ def solve_asperity_adhesive(geometry: Profile, material, adhesion: LennardJones,
     ``pull_off_force``, ``pull_off_interference``, ``tabor_parameter``,
     ``jump_in_interference`` and ``jump_off_interference`` (the flat's
     position before the largest jump of each branch; NaN if none),
-    ``jumps`` (their number), the mesh scales, and ``adhesion``.  A
+    ``jumps`` (their number), the mesh scales, ``meshes`` (how many the
+    recorded states lie on: more than one if the mesh follows the
+    contact), and ``adhesion``.  A
     requested level's ``newton_iterations`` and ``step_cuts`` include
     those of the states added before it.  Raises `ConvergenceError` naming
     the step (and `label`).
@@ -1270,7 +1272,9 @@ def stack_runs(runs, coord: str, values, coord_attrs: dict) -> xr.Dataset:
         tabor_parameter=("1", "Tabor parameter (R dgamma^2 / (E*^2 d^3))^(1/3)"),
         jump_in_interference=("m", "interference where the asperity jumps into contact (NaN: none)"),
         jump_off_interference=("m", "interference where it jumps out of contact (NaN: none)"),
-        band_facets=("1", "surface facets of the band refined for the adhesive ring"),
+        band_facets=("1", "surface facets of the band refined for the adhesive ring "
+                          "(the largest over the meshes)"),
+        meshes=("1", "meshes the recorded states lie on (1: the whole band refined once)"),
         total_wall_time=("s", "wall time of the run"),
     )
     if not runs[0].attrs["symmetry"].startswith("axi"):
