@@ -33,7 +33,7 @@ Along the path, each step starts from the tangent predictor.  A step is
 continuous if the energy balance Pi*(w1) - Pi*(w0) = (F0 + F1)/2 (w1 - w0)
 holds (Pi* has the derivative F along a branch; a jump releases a finite
 energy) and the surface stayed near the predictor
-(`AdhesiveModel.continuous`).  Otherwise, or if Newton fails, the step's
+(`AdhesiveModel.continuity`).  Otherwise, or if Newton fails, the step's
 end is marked bad and the bracket up to it is bisected: a continuous
 branch is followed with steps small enough to be smooth, and where the
 step stays discontinuous down to ``min_step * d`` the old branch has ended
@@ -601,9 +601,11 @@ class AdhesiveModel:
     def dofs(self) -> int:
         return len(self.disc.free)
 
-    def continuous(self, old: AdhesiveState, new: AdhesiveState, pred: np.ndarray,
-                   pre: dict) -> bool:
-        """Whether `new` continues the branch of `old` (module docstring).
+    def continuity(self, old: AdhesiveState, new: AdhesiveState, pred: np.ndarray,
+                   pre: dict) -> str:
+        """Whether `new` continues the branch of `old` (module docstring):
+        "continuous", "steep" (the energy balances but the surface left the
+        predictor) or "jump".
 
         Along a branch the minimum energy Pi*(w) has the derivative F
         (/ 2 pi, or / 2 in plane strain), so the trapezoidal rule
@@ -630,7 +632,11 @@ class AdhesiveModel:
         jump moves 5 d.  Jumps smaller than 0.25 d are recorded as a steep
         continuous stretch.  Without the truncation term the geometric steps
         beyond 4 d (tens of d each) fail the balance through the trapezoidal
-        rule's own error and are halved for nothing.
+        rule's own error and are halved for nothing.  At a large Tabor
+        parameter (mu = 10, R = 150 um) the nodes that zip into contact in a
+        step of d / 3 move 1.5 d off the predictor while the energy balances
+        to 1e-5 of its tolerance: such a "steep" step is retried once from
+        the midpoint (`_advance`).
         """
         d = self.adhesion.d
         ff = self.zone.force_factor
@@ -640,14 +646,15 @@ class AdhesiveModel:
         balance = new.energy - old.energy - 0.5 * (f0 + f1) * dw
         off = np.max(np.abs(new.u - pred), initial=0.0)
         if abs(dw) <= pre["min_step"] * d:
-            return off <= pre["jump_tolerance"] * d
+            return "continuous" if off <= pre["jump_tolerance"] * d else "jump"
         # the rule's own error, allowed only between states on the same side of
         # touching: a jump-in (no contact -> contact) moves the stiffness by the
         # contact's own, and the allowance could then hide the energy it releases
         same_side = (old.contact_force > 0) == (new.contact_force > 0)
         truncation = dw * dw * abs(new.stiffness - old.stiffness) / (6.0 * ff) if same_side else 0.0
-        return abs(balance) <= pre["energy_tolerance"] * d * scale + truncation \
-            and off <= 0.5 * d + 2.0 * abs(dw)
+        if abs(balance) > pre["energy_tolerance"] * d * scale + truncation:
+            return "jump"
+        return "continuous" if off <= 0.5 * d + 2.0 * abs(dw) else "steep"
 
     def window_for(self, state: AdhesiveState) -> tuple[float, float] | None:
         """The fine band `state` needs if this mesh's will not do, else None.
@@ -821,10 +828,13 @@ def _advance(state: AdhesiveState, target: float, pre: dict):
     """From a converged state to the flat position `target`, with step control.
 
     A step that fails to converge, or is discontinuous
-    (`AdhesiveModel.continuous`), marks its end as bad; the bracket from
+    (`AdhesiveModel.continuity`), marks its end as bad; the bracket from
     the state to the nearest bad position is then bisected (a good
     midpoint advances the state, a bad one shrinks the bracket) until it is
-    min_step * d long, where a discontinuous step is a jump.  A bad
+    min_step * d long, where a discontinuous step is a jump.  A position
+    bad only by the predictor test ("steep") is retried once, from the
+    first midpoint reached, before the bisection goes on (a steep stretch
+    then costs two half steps instead of a bisection down to min_step).  A bad
     position reached continuously after all (a steep stretch) is dropped
     and the bracket reopens to the next one, never to the target.  Each
     state reached (after a jump too) is moved onto a mesh that follows its
@@ -840,13 +850,18 @@ def _advance(state: AdhesiveState, target: float, pre: dict):
     halvings = iterations = 0
     jumps = []
     bads = []  # positions known to fail or to be discontinuous, nearest last
+    steep = None  # a bad position to retry once after the next advance
+    retry = False  # the last attempt advanced the state
     while goals:
         goal = goals[-1]
         while bads and (bads[-1] - state.w) * (target - state.w) <= 0:  # reached after all
             bads.pop()
         if bads and (goal - bads[-1]) * (target - state.w) >= 0:  # the goal is at or beyond it
             bad = bads[-1]
-            nxt = 0.5 * (state.w + bad) if abs(bad - state.w) > smallest else bad
+            if (retry and bad == steep) or abs(bad - state.w) <= smallest:
+                nxt = bad
+            else:
+                nxt = 0.5 * (state.w + bad)
             if nxt != goal:
                 goals.append(nxt)
                 continue
@@ -855,7 +870,7 @@ def _advance(state: AdhesiveState, target: float, pre: dict):
         dw = goal - state.w
         small = abs(dw) <= smallest
         # tangent predictor, its move capped at d + 2 |dw| (du/dw blows up near
-        # a fold; `AdhesiveModel.continuous` allows d / 2 + 2 |dw| off it)
+        # a fold; `AdhesiveModel.continuity` allows d / 2 + 2 |dw| off it)
         step_u = dw * state.dudw
         big = np.max(np.abs(step_u), initial=0.0)
         cap = d + 2.0 * abs(dw)
@@ -871,16 +886,22 @@ def _advance(state: AdhesiveState, target: float, pre: dict):
                 raise _Failed(f"{exc} (at w = {goal:.6g} m)", state.w, halvings - 1) from None
             bads.append(goal)
             goals = [target]
+            steep = None if goal == steep else steep
+            retry = False
             continue
         new = newton.state(goal, u, parts, T)
         new.model = model
-        jumped = not model.continuous(state, new, pred, pre)
+        verdict = model.continuity(state, new, pred, pre)
+        jumped = verdict != "continuous"
         if jumped and not small:
             halvings += 1
             if halvings > MAX_HALVINGS:
                 raise _Failed("the path stays discontinuous", state.w, halvings - 1)
+            # a steep position is retried once: not when this was its retry
+            steep = goal if verdict == "steep" and not (retry and goal == steep) else None
             bads.append(goal)
             goals = [target]
+            retry = False
             continue
         new, its = _follow(new)
         iterations += its
@@ -890,6 +911,7 @@ def _advance(state: AdhesiveState, target: float, pre: dict):
         if new.model.overflow(new):
             raise _Overflow()
         state = new
+        retry = True
         goals.pop()
     return state, jumps, iterations, halvings
 
@@ -1305,10 +1327,12 @@ def smooth_aluminum_curves(radii=(15.4e-6, 30e-6, 60e-6), d: float = 0.3e-9,
     pull-off forces 2 pi R W_c and 3/2 pi R W_c for comparison.
 
     Cost grows with the Tabor parameter (R^(1/3) / d): with d = 0.3 nm,
-    mu = 4.8, 6.0, 7.6 at 15.4, 30, 60 um, and 10, 13 at 150 and 300 um,
-    which need a band of thousands of facets and are not in the default
-    (the costs: `make time-adhesion`, README "Adhesion").  With d = 0.5 nm,
-    mu is 0.6 times smaller.
+    mu = 4.8, 6.0, 7.6 at 15.4, 30, 60 um, and 10, 13 at 150 and 300 um
+    (the flat end of 7.3's range), whose mesh follows the contact edge
+    (module docstring, "Mesh").  The report's Fig. 7.6 shows R = 15.4 um
+    only; the default adds two flatter radii, and the costs of all of
+    them are measured by `make time-adhesion` (README "Adhesion").  With
+    d = 0.5 nm, mu is 0.6 times smaller.
     """
     from .geometry import Paraboloid
     from .material import LinearElastic
