@@ -75,12 +75,13 @@ def job_row(spec: dict, accuracy: str) -> dict:
                 tabor_parameter=float(ds.attrs["tabor_parameter"]))
 
 
-def large_rows() -> list[dict]:
-    """Part 4: R = 150, 300 um at d = 0.3 nm, draft and standard."""
+def large_rows(radii=LARGE_RADII, accuracies=("draft", "standard"), done=None) -> list[dict]:
+    """Part 4: R = 150, 300 um at d = 0.3 nm, draft and standard; `done(rows)`
+    is called after each run (the JSON keeps what finished)."""
     rows = []
-    for radius in LARGE_RADII:
+    for radius in radii:
         pulls = {}
-        for accuracy in ("draft", "standard"):
+        for accuracy in accuracies:
             ds, cpu = timed(lambda: smooth_aluminum_curves(radii=(radius,), accuracy=accuracy))
             pull = float(ds["pull_off_force"][0])
             pulls[accuracy] = pull
@@ -91,7 +92,10 @@ def large_rows() -> list[dict]:
                              jumps=int(ds["jump"].sum()), steps=int(ds["valid"].sum())))
             print(f"R = {radius * 1e6:.4g} um, {accuracy}: {cpu:.1f} s, pull-off "
                   f"{rows[-1]['pull_off_over_jkr']:.4f} JKR", flush=True)
-        rows[-1]["pull_off_draft_vs_standard"] = pulls["draft"] / pulls["standard"] - 1.0
+            if len(pulls) == 2:
+                rows[-1]["pull_off_draft_vs_standard"] = pulls["draft"] / pulls["standard"] - 1.0
+            if done is not None:
+                done(rows)
     return rows
 
 
@@ -100,15 +104,24 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--no-curves", action="store_true", help="leave out smooth_aluminum_curves")
     ap.add_argument("--only-large", action="store_true",
                     help="run part 4 (R = 150, 300 um) alone; parts 1-3 are kept from --out")
+    ap.add_argument("--radii", type=float, nargs="+", default=[r * 1e6 for r in LARGE_RADII],
+                    help="part 4's tip radii [um]")
+    ap.add_argument("--accuracies", nargs="+", default=["draft", "standard"],
+                    help="part 4's presets")
     ap.add_argument("--out", type=Path, default=RESULTS / "adhesion-cost.json")
     args = ap.parse_args(argv)
 
+    radii = tuple(r * 1e-6 for r in args.radii)
     if args.only_large:
         record = json.loads(args.out.read_text())
-        record["large_radii"] = large_rows()
         record["large_radii_commit"], record["large_radii_uncommitted_changes"] = _commit()
         record["large_radii_date"] = time.strftime("%Y-%m-%dT%H:%M:%S%z")
-        args.out.write_text(json.dumps(record, indent=1) + "\n")
+
+        def done(rows):
+            record["large_radii"] = rows
+            args.out.write_text(json.dumps(record, indent=1) + "\n")
+
+        large_rows(radii, tuple(args.accuracies), done)
         print(f"written: {args.out}")
         return 0
     specs = scene_specs()
@@ -128,7 +141,7 @@ def main(argv: list[str] | None = None) -> int:
             curves.append(dict(tip_radius_um=radius * 1e6, d_nm=0.3, accuracy="draft", cpu_time_s=cpu,
                                tabor_parameter=float(ds["tabor_parameter"][0])))
             print(f"smooth_aluminum_curves R = {radius * 1e6:.4g} um: {cpu:.1f} s", flush=True)
-    large = large_rows()
+    large = large_rows(radii, tuple(args.accuracies))
     commit, dirty = _commit()
     record = dict(date=time.strftime("%Y-%m-%dT%H:%M:%S%z"), commit=commit, uncommitted_changes=dirty,
                   scene=SCENE, scene_jobs=rows, scene_cpu_time_s=totals, radius_100um=wider,
