@@ -40,7 +40,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1]))  # run as a script:
 from benchmarks.scenes import _commit, _env  # noqa: E402
 from benchmarks.workflow_copy import SNAKEMAKE, copy_workflow  # noqa: E402
 
-from asperity import models  # noqa: E402
+from asperity.population import samples  # noqa: E402
 from asperity.fe.adhesive import smooth_aluminum_curves  # noqa: E402
 
 SCENE = "smooth_aluminum_adhesion"
@@ -69,7 +69,7 @@ def timed(fn):
 
 def job_row(spec: dict, accuracy: str) -> dict:
     s = dict(spec, accuracy=accuracy)
-    ds, cpu = timed(lambda: models.solve_job(s, "benchmark"))
+    ds, cpu = timed(lambda: samples.solve(s, "benchmark"))
     return dict(tip_radius_um=1e6 / s["curvature"], accuracy=accuracy, cpu_time_s=cpu,
                 pull_off_force_N=float(ds.attrs["pull_off_force"]),
                 tabor_parameter=float(ds.attrs["tabor_parameter"]))
