@@ -881,7 +881,7 @@ def _advance(state: AdhesiveState, target: float, pre: dict):
             iterations += its
         except _NotConverged as exc:
             iterations += exc.iterations
-            halvings += 1
+            halvings += 0 if retry and goal == steep else 1  # a failed retry halves nothing
             if small or halvings > MAX_HALVINGS:
                 raise _Failed(f"{exc} (at w = {goal:.6g} m)", state.w, halvings - 1) from None
             bads.append(goal)
@@ -894,11 +894,12 @@ def _advance(state: AdhesiveState, target: float, pre: dict):
         verdict = model.continuity(state, new, pred, pre)
         jumped = verdict != "continuous"
         if jumped and not small:
-            halvings += 1
+            retried = retry and goal == steep
+            halvings += 0 if retried else 1  # a failed retry halves nothing
             if halvings > MAX_HALVINGS:
                 raise _Failed("the path stays discontinuous", state.w, halvings - 1)
             # a steep position is retried once: not when this was its retry
-            steep = goal if verdict == "steep" and not (retry and goal == steep) else None
+            steep = goal if verdict == "steep" and not retried else None
             bads.append(goal)
             goals = [target]
             retry = False
