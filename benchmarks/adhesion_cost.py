@@ -88,7 +88,6 @@ def large_rows(radii=LARGE_RADII, accuracies=("draft", "standard"), done=None) -
             rows.append(dict(tip_radius_um=radius * 1e6, d_nm=0.3, accuracy=accuracy, cpu_time_s=cpu,
                              tabor_parameter=float(ds["tabor_parameter"][0]), pull_off_force_N=pull,
                              pull_off_over_jkr=pull / float(ds["pull_off_force_jkr"][0]),
-                             meshes=int(ds["meshes"][0]),
                              jumps=int(ds["jump"].sum()), steps=int(ds["valid"].sum())))
             print(f"R = {radius * 1e6:.4g} um, {accuracy}: {cpu:.1f} s, pull-off "
                   f"{rows[-1]['pull_off_over_jkr']:.4f} JKR", flush=True)

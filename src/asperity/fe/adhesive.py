@@ -1297,7 +1297,6 @@ def stack_runs(runs, coord: str, values, coord_attrs: dict) -> xr.Dataset:
         jump_off_interference=("m", "interference where it jumps out of contact (NaN: none)"),
         band_facets=("1", "surface facets of the band refined for the adhesive ring "
                           "(the largest over the meshes)"),
-        meshes=("1", "meshes the recorded states lie on (1: the whole band refined once)"),
         total_wall_time=("s", "wall time of the run"),
     )
     if not runs[0].attrs["symmetry"].startswith("axi"):
