@@ -9,13 +9,19 @@ script measures it (CPU time of this process, `time.process_time`):
 2. the scene's flattest asperity (R = 60 um) moved to R = 100 um, the cost
    behind the scene's curvature range (README: departures);
 3. `asperity.fe.adhesive.smooth_aluminum_curves` (Fig. 7.6: R = 15.4, 30,
-   60 um at d = 0.3 nm), at draft, one radius at a time.
+   60 um at d = 0.3 nm), at draft, one radius at a time;
+4. the flat end of report 7.3's range, R = 150 and 300 um at d = 0.3 nm
+   (Tabor parameter 10 and 13: meshes that follow the contact), at draft
+   and at standard: CPU time, the pull-off force against JKR's
+   3/2 pi R W_c, and the draft pull-off against standard's.
 
 Writes benchmarks/results/adhesion-cost.json and prints a table.  Nothing
 is asserted: speed is measured here, not in the tests.
 
-    python benchmarks/adhesion_cost.py             # everything, about 12 min
+    python benchmarks/adhesion_cost.py             # everything
     python benchmarks/adhesion_cost.py --no-curves # without part 3
+    python benchmarks/adhesion_cost.py --only-large # part 4 alone, the other
+                                                    # parts kept from the JSON
 """
 
 from __future__ import annotations
@@ -34,11 +40,14 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1]))  # run as a script:
 from benchmarks.scenes import _commit, _env  # noqa: E402
 from benchmarks.workflow_copy import SNAKEMAKE, copy_workflow  # noqa: E402
 
-from asperity import models  # noqa: E402
+from asperity.population import samples  # noqa: E402
+from asperity.fe import ConvergenceError  # noqa: E402
 from asperity.fe.adhesive import smooth_aluminum_curves  # noqa: E402
 
 SCENE = "smooth_aluminum_adhesion"
 RESULTS = Path(__file__).with_name("results")
+#: part 4: report 7.3's flattest asperities [m]
+LARGE_RADII = (150e-6, 300e-6)
 
 
 def scene_specs() -> list[dict]:
@@ -61,18 +70,70 @@ def timed(fn):
 
 def job_row(spec: dict, accuracy: str) -> dict:
     s = dict(spec, accuracy=accuracy)
-    ds, cpu = timed(lambda: models.solve_job(s, "benchmark"))
+    ds, cpu = timed(lambda: samples.solve(s, "benchmark"))
     return dict(tip_radius_um=1e6 / s["curvature"], accuracy=accuracy, cpu_time_s=cpu,
                 pull_off_force_N=float(ds.attrs["pull_off_force"]),
                 tabor_parameter=float(ds.attrs["tabor_parameter"]))
 
 
+def large_rows(radii=LARGE_RADII, accuracies=("draft", "standard"), done=None) -> list[dict]:
+    """Part 4: R = 150, 300 um at d = 0.3 nm, draft and standard; `done(rows)`
+    is called after each run (the JSON keeps what finished)."""
+    rows = []
+    for radius in radii:
+        pulls = {}
+        for accuracy in accuracies:
+            t0 = time.process_time()
+            try:
+                ds = smooth_aluminum_curves(radii=(radius,), accuracy=accuracy)
+            except ConvergenceError as exc:  # recorded: where and after how much CPU
+                rows.append(dict(tip_radius_um=radius * 1e6, d_nm=0.3, accuracy=accuracy,
+                                 cpu_time_s=time.process_time() - t0, failed=str(exc)))
+                print(f"R = {radius * 1e6:.4g} um, {accuracy}: failed: {exc}", flush=True)
+                if done is not None:
+                    done(rows)
+                continue
+            cpu = time.process_time() - t0
+            pull = float(ds["pull_off_force"][0])
+            pulls[accuracy] = pull
+            rows.append(dict(tip_radius_um=radius * 1e6, d_nm=0.3, accuracy=accuracy, cpu_time_s=cpu,
+                             tabor_parameter=float(ds["tabor_parameter"][0]), pull_off_force_N=pull,
+                             pull_off_over_jkr=pull / float(ds["pull_off_force_jkr"][0]),
+                             jumps=int(ds["jump"].sum()), steps=int(ds["valid"].sum())))
+            print(f"R = {radius * 1e6:.4g} um, {accuracy}: {cpu:.1f} s, pull-off "
+                  f"{rows[-1]['pull_off_over_jkr']:.4f} JKR", flush=True)
+            if len(pulls) == 2:
+                rows[-1]["pull_off_draft_vs_standard"] = pulls["draft"] / pulls["standard"] - 1.0
+            if done is not None:
+                done(rows)
+    return rows
+
+
 def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--no-curves", action="store_true", help="leave out smooth_aluminum_curves")
+    ap.add_argument("--only-large", action="store_true",
+                    help="run part 4 (R = 150, 300 um) alone; parts 1-3 are kept from --out")
+    ap.add_argument("--radii", type=float, nargs="+", default=[r * 1e6 for r in LARGE_RADII],
+                    help="part 4's tip radii [um]")
+    ap.add_argument("--accuracies", nargs="+", default=["draft", "standard"],
+                    help="part 4's presets")
     ap.add_argument("--out", type=Path, default=RESULTS / "adhesion-cost.json")
     args = ap.parse_args(argv)
 
+    radii = tuple(r * 1e-6 for r in args.radii)
+    if args.only_large:
+        record = json.loads(args.out.read_text())
+        record["large_radii_commit"], record["large_radii_uncommitted_changes"] = _commit()
+        record["large_radii_date"] = time.strftime("%Y-%m-%dT%H:%M:%S%z")
+
+        def done(rows):
+            record["large_radii"] = rows
+            args.out.write_text(json.dumps(record, indent=1) + "\n")
+
+        large_rows(radii, tuple(args.accuracies), done)
+        print(f"written: {args.out}")
+        return 0
     specs = scene_specs()
     rows = []
     for accuracy in ("draft", "standard"):
@@ -90,10 +151,11 @@ def main(argv: list[str] | None = None) -> int:
             curves.append(dict(tip_radius_um=radius * 1e6, d_nm=0.3, accuracy="draft", cpu_time_s=cpu,
                                tabor_parameter=float(ds["tabor_parameter"][0])))
             print(f"smooth_aluminum_curves R = {radius * 1e6:.4g} um: {cpu:.1f} s", flush=True)
+    large = large_rows(radii, tuple(args.accuracies))
     commit, dirty = _commit()
     record = dict(date=time.strftime("%Y-%m-%dT%H:%M:%S%z"), commit=commit, uncommitted_changes=dirty,
                   scene=SCENE, scene_jobs=rows, scene_cpu_time_s=totals, radius_100um=wider,
-                  smooth_aluminum_curves=curves)
+                  smooth_aluminum_curves=curves, large_radii=large)
     args.out.parent.mkdir(parents=True, exist_ok=True)
     args.out.write_text(json.dumps(record, indent=1) + "\n")
     print(f"scene FE CPU: draft {totals['draft']:.0f} s, standard {totals['standard']:.0f} s")

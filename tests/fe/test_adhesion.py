@@ -300,7 +300,7 @@ def test_smooth_aluminum_curves_stack_radii():
 
 def test_large_steps_in_contact_are_not_halved_and_land_on_the_branch():
     """The geometric steps beyond 4 d span tens of d.  The continuity test
-    allows the trapezoidal rule's own error there (`AdhesiveModel.continuous`);
+    allows the trapezoidal rule's own error there (`AdhesiveModel.continuity`);
     without it each such step failed the energy balance and was halved twice
     over.  The states must be those of a path with twice as many steps."""
     mat = material_for(3.0)

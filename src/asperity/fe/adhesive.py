@@ -33,7 +33,7 @@ Along the path, each step starts from the tangent predictor.  A step is
 continuous if the energy balance Pi*(w1) - Pi*(w0) = (F0 + F1)/2 (w1 - w0)
 holds (Pi* has the derivative F along a branch; a jump releases a finite
 energy) and the surface stayed near the predictor
-(`AdhesiveModel.continuous`).  Otherwise, or if Newton fails, the step's
+(`AdhesiveModel.continuity`).  Otherwise, or if Newton fails, the step's
 end is marked bad and the bracket up to it is bisected: a continuous
 branch is followed with steps small enough to be smooth, and where the
 step stays discontinuous down to ``min_step * d`` the old branch has ended
@@ -72,8 +72,27 @@ contact radius there plus 5 min(l, sqrt(2 R d)) (an adhesive contact is
 never larger than JKR's).  The zone of candidate facets is the band; a
 path whose adhesive ring reaches its last tenth is restarted with a wider
 band.  The number of band facets grows like mu^2 (contact radius /
-cohesive length), and the cost with it: what the adhesive jobs cost is
-measured by `make time-adhesion` (README, "Adhesion").
+cohesive length), and the cost with it (the dense condensed stiffness is
+m x m in the band's nodes, the active set of the tangent holds every node
+in contact).
+
+Meshes that follow the contact: a band of more than ``follow_above``
+ring elements (a large Tabor parameter) is not refined as a whole.  Only
+a window of it is (`AdhesiveModel.window_for`): the contact edge and the
+surface within FINE_SEPARATION d of the flat, plus a margin of
+FOLLOW_MARGIN times the radius that reaches on either side (the contact
+inside and the surface outside are graded away from it as above); the
+candidate zone is still the whole band.  Each state the path reaches is
+checked: if its edge or ring has come within a quarter of the margin of
+the window's ends, the surface displacement is interpolated onto a mesh
+with a new window and the equilibrium at the same flat position is
+re-solved there (`_follow`), and the path goes on from that state (the
+energy balance is checked between states of one mesh only).  A jump may
+land far outside the window (jump-in): the landing state is moved, and
+re-solved, until its window holds.  Each state keeps its mesh
+(``AdhesiveState.model``): the bisection around the pull-off and the
+outputs use it.  What the adhesive jobs cost is measured by
+`make time-adhesion` (README, "Adhesion").
 """
 
 from __future__ import annotations
@@ -116,6 +135,16 @@ ENERGY_ROUNDOFF = 1e-10
 LINE_SEARCH = EnergySearch(halvings=50, projected=True, roundoff=ENERGY_ROUNDOFF)
 #: halvings of one requested step (failed Newton or discontinuity) before giving up
 MAX_HALVINGS = 60
+#: a mesh following the contact (`AdhesiveModel.window_for`): the fine band
+#: spans the contact edge and the surface within FINE_SEPARATION d of the
+#: flat, with a margin of FOLLOW_MARGIN times the radius it reaches (at
+#: least FOLLOW_MIN_FACETS ring elements) on each side; a state whose edge
+#: or ring comes within a quarter of the margin of the band's ends is moved
+#: to a new mesh, at most MAX_REMESH times in a row
+FINE_SEPARATION = 4.0
+FOLLOW_MARGIN = 0.15
+FOLLOW_MIN_FACETS = 40
+MAX_REMESH = 8
 
 
 class _Overflow(Exception):
@@ -146,13 +175,15 @@ def jkr_contact_radius(radius: float, contact_modulus: float, work: float, w: fl
 
 
 # --- mesh ----------------------------------------------------------------------------
-def band_mesh(geometry: Profile, r_band: float, h_ring: float, grading: float,
+def band_mesh(geometry: Profile, window: tuple[float, float], h_ring: float, grading: float,
               spec: MeshSpec, max_rounds: int = 80) -> AsperityMesh:
     """The ring mesh refined until h <= h_ring + grading * distance to the band.
 
-    The band is the top surface 0 <= r <= r_band.  Red-green-blue
-    refinement of the elements too large for their distance, repeated.
+    The band is the top surface r_lo <= r <= r_hi, ``window = (r_lo,
+    r_hi)`` (r_lo = 0: from the apex).  Red-green-blue refinement of the
+    elements too large for their distance, repeated.
     """
+    r_lo, r_hi = window
     mesh = AsperityMesh.initial(geometry, spec)
     for _ in range(max_rounds):
         m = mesh.vertices
@@ -161,7 +192,8 @@ def band_mesh(geometry: Profile, r_band: float, h_ring: float, grading: float,
         size = edges.max(axis=0)
         c = p.mean(axis=1)
         depth = geometry.body_surface(c[0]) - c[1]
-        dist = np.hypot(np.maximum(c[0] - r_band, 0.0), np.maximum(depth, 0.0))
+        off = np.maximum(np.maximum(c[0] - r_hi, r_lo - c[0]), 0.0)
+        dist = np.hypot(off, np.maximum(depth, 0.0))
         dist = np.maximum(dist - 0.5 * size, 0.0)
         marked = np.nonzero(size > h_ring + grading * dist)[0]
         if marked.size == 0:
@@ -224,6 +256,8 @@ class AdhesiveState:
     iterations: int = 0
     cuts: int = 0
     wall_time: float = 0.0
+    #: the `AdhesiveModel` (mesh) the state is an equilibrium of
+    model: "AdhesiveModel | None" = None
 
     @property
     def force(self) -> float:
@@ -470,22 +504,35 @@ class _Level(Problem):
 
 # --- the model -----------------------------------------------------------------------
 class AdhesiveModel:
-    """Mesh graded to the adhesive band, condensed stiffness, both surface rules."""
+    """Mesh graded to the adhesive band, condensed stiffness, both surface rules.
+
+    The fine band is ``window`` (r_lo, r_hi); the candidate zone is always
+    0 <= r <= r_band.  A model `follows` the contact if the band has more
+    than ``follow_above`` ring elements: its fine band is then a window
+    around the contact edge, by default FOLLOW_MIN_FACETS ring elements at
+    the apex, moved along the path (`window_for`, `remeshed`; module
+    docstring, "Mesh"); else it is the whole band (0, r_band).
+    """
 
     def __init__(self, geometry: Profile, material, adhesion: LennardJones, scales: _Scales,
-                 preset: dict, penalty_factor: float = PENALTY_FACTOR):
+                 preset: dict, penalty_factor: float = PENALTY_FACTOR,
+                 window: tuple[float, float] | None = None):
         if not getattr(material, "is_linear", False):
             raise NotImplementedError("adhesion is implemented for elastic materials only")
         t0 = time.perf_counter()
         self.geometry, self.material, self.adhesion = geometry, material, adhesion
-        self.scales, self.preset = scales, preset
+        self.scales, self.preset, self.penalty_factor = scales, preset, penalty_factor
+        self.follows = scales.r_band > preset["follow_above"] * scales.h_ring
+        if window is None:
+            window = (0.0, FOLLOW_MIN_FACETS * scales.h_ring if self.follows else scales.r_band)
+        self.window = window
         if geometry.axisymmetric:
             L = preset["domain_factor"] * geometry.length_scale
         else:
             L = PLANE_STRAIN_DOMAIN * geometry.length_scale
         spec = MeshSpec(L, min(4.0 * scales.h_ring, 0.1 * scales.r_band), preset["growth"],
                         preset["n_theta"])
-        self.mesh = band_mesh(geometry, scales.r_band, scales.h_ring, preset["grading"], spec)
+        self.mesh = band_mesh(geometry, self.window, scales.h_ring, preset["grading"], spec)
         self.disc = Discretization(self.mesh)
         _, D = material.response(np.zeros((4, 1)))
         K = self.disc.stiffness(np.asarray(D))
@@ -505,16 +552,23 @@ class AdhesiveModel:
         self.force_reference = (2 * np.pi * R * adhesion.dgamma if geometry.axisymmetric
                                 else 2 * math.sqrt(R / adhesion.d) * adhesion.dgamma)
         # the last tenth of the band's facets must stay out of the adhesive range
-        self.edge_facets = np.arange(nf) >= int(0.9 * nf)
+        # (of its radius where the facets outside the fine band are graded)
+        if self.follows:
+            ends = top.coords[0, 2:2 * nf + 1:2]
+            self.edge_facets = ends > 0.9 * ends[-1]
+        else:
+            self.edge_facets = np.arange(nf) >= int(0.9 * nf)
         self.setup_time = time.perf_counter() - t0
 
     @property
     def dofs(self) -> int:
         return len(self.disc.free)
 
-    def continuous(self, old: AdhesiveState, new: AdhesiveState, pred: np.ndarray,
-                   pre: dict) -> bool:
-        """Whether `new` continues the branch of `old` (module docstring).
+    def continuity(self, old: AdhesiveState, new: AdhesiveState, pred: np.ndarray,
+                   pre: dict) -> str:
+        """Whether `new` continues the branch of `old` (module docstring):
+        "continuous", "steep" (the energy balances but the surface left the
+        predictor) or "jump".
 
         Along a branch the minimum energy Pi*(w) has the derivative F
         (/ 2 pi, or / 2 in plane strain), so the trapezoidal rule
@@ -541,7 +595,11 @@ class AdhesiveModel:
         jump moves 5 d.  Jumps smaller than 0.25 d are recorded as a steep
         continuous stretch.  Without the truncation term the geometric steps
         beyond 4 d (tens of d each) fail the balance through the trapezoidal
-        rule's own error and are halved for nothing.
+        rule's own error and are halved for nothing.  At a large Tabor
+        parameter (mu = 10, R = 150 um) the nodes that zip into contact in a
+        step of d / 3 move 1.5 d off the predictor while the energy balances
+        to 1e-5 of its tolerance: such a "steep" step is retried once from
+        the midpoint (`_advance`).
         """
         d = self.adhesion.d
         ff = self.zone.force_factor
@@ -551,14 +609,47 @@ class AdhesiveModel:
         balance = new.energy - old.energy - 0.5 * (f0 + f1) * dw
         off = np.max(np.abs(new.u - pred), initial=0.0)
         if abs(dw) <= pre["min_step"] * d:
-            return off <= pre["jump_tolerance"] * d
+            return "continuous" if off <= pre["jump_tolerance"] * d else "jump"
         # the rule's own error, allowed only between states on the same side of
         # touching: a jump-in (no contact -> contact) moves the stiffness by the
         # contact's own, and the allowance could then hide the energy it releases
         same_side = (old.contact_force > 0) == (new.contact_force > 0)
         truncation = dw * dw * abs(new.stiffness - old.stiffness) / (6.0 * ff) if same_side else 0.0
-        return abs(balance) <= pre["energy_tolerance"] * d * scale + truncation \
-            and off <= 0.5 * d + 2.0 * abs(dw)
+        if abs(balance) > pre["energy_tolerance"] * d * scale + truncation:
+            return "jump"
+        return "continuous" if off <= 0.5 * d + 2.0 * abs(dw) else "steep"
+
+    def window_for(self, state: AdhesiveState) -> tuple[float, float] | None:
+        """The fine band `state` needs if this mesh's will not do, else None.
+
+        The ring is the surface from the contact edge (the apex if not
+        touching) to the outermost node within FINE_SEPARATION d of the flat
+        (the cohesive zone: q there is 4 % of its peak).  The band must
+        reach a quarter of the margin beyond it on either side (or the apex,
+        or r_band); a new band extends a full margin beyond it, from the
+        apex if that leaves less than a margin inside.
+        """
+        if not self.follows:
+            return None
+        d = self.adhesion.d
+        r = self.zone.coords[0]
+        pen = self.zone.node_penetration(state.u, state.w)
+        touching = pen >= 0
+        edge = contact_edge(r, -pen, touching) if touching.any() else 0.0
+        near = pen > -(FINE_SEPARATION - 1.0) * d
+        outer = max(float(r[near].max()) if near.any() else 0.0, edge)
+        margin = max(FOLLOW_MARGIN * outer, FOLLOW_MIN_FACETS * self.scales.h_ring)
+        lo, hi = self.window
+        r_band = self.scales.r_band
+        if lo <= max(edge - 0.25 * margin, 0.0) and hi >= min(outer + 0.25 * margin, r_band):
+            return None
+        lo = edge - margin if edge > 2.0 * margin else 0.0
+        return lo, min(outer + margin, r_band)
+
+    def remeshed(self, window: tuple[float, float]) -> "AdhesiveModel":
+        """The model on a mesh with the fine band `window`."""
+        return AdhesiveModel(self.geometry, self.material, self.adhesion, self.scales,
+                             self.preset, self.penalty_factor, window)
 
     def overflow(self, state: AdhesiveState) -> bool:
         a = self.azone.penetration(state.u, state.w)
@@ -657,42 +748,86 @@ class _Record:
     step: int
 
 
-def _advance(model: AdhesiveModel, state: AdhesiveState, target: float, pre: dict,
-             step: int = 0):
+def _follow(state: AdhesiveState, step: int = 0) -> tuple[AdhesiveState, int]:
+    """`state` moved onto a mesh whose fine band covers its contact edge.
+
+    While the state's mesh will not do (`AdhesiveModel.window_for`), the
+    surface displacement is interpolated onto the nodes of a mesh with the
+    band it needs and the equilibrium at the same flat position re-solved
+    from there (a jump may land far outside the band: the landing state
+    then moves the band, and is re-solved, again).  Returns the state and
+    the Newton iterations spent.
+    """
+    iterations = 0
+    for _ in range(MAX_REMESH):
+        old = state.model
+        window = old.window_for(state)
+        if window is None:
+            return state, iterations
+        model = old.remeshed(window)
+        u0 = np.interp(model.zone.coords[0], old.zone.coords[0], state.u)
+        newton = model.newton
+        try:
+            u, parts, T, its = newton.solve(state.w, u0,
+                                            JUMP_ITERATION_FACTOR * newton.max_iterations)
+        except StepFailed as exc:
+            raise ConvergenceError(step, state.w, state.w, 0,
+                                   f"{exc} (re-solving on a new mesh at w = {state.w:.6g} m)"
+                                   ) from None
+        iterations += its
+        state = newton.state(state.w, u, parts, T)
+        state.model = model
+    raise ConvergenceError(step, state.w, state.w, 0,
+                           f"the fine band does not settle on the contact (at w = {state.w:.6g} m)")
+
+
+def _advance(state: AdhesiveState, target: float, pre: dict, step: int = 0):
     """From a converged state to the flat position `target`, with step control.
 
     A step that fails to converge, or is discontinuous
-    (`AdhesiveModel.continuous`), marks its end as bad; the bracket from
+    (`AdhesiveModel.continuity`), marks its end as bad; the bracket from
     the state to the nearest bad position is then bisected (a good
     midpoint advances the state, a bad one shrinks the bracket) until it is
-    min_step * d long, where a discontinuous step is a jump.  A bad
+    min_step * d long, where a discontinuous step is a jump.  A position
+    bad only by the predictor test ("steep") is retried once, from the
+    first midpoint reached, before the bisection goes on (a steep stretch
+    then costs two half steps instead of a bisection down to min_step).  A bad
     position reached continuously after all (a steep stretch) is dropped
-    and the bracket reopens to the next one, never to the target.  Returns (final state,
+    and the bracket reopens to the next one, never to the target.  Each
+    state reached (after a jump too) is moved onto a mesh that follows its
+    contact edge (`_follow`) before the next step.  Returns (final state,
     [(state before, state after) of each jump], iterations, halvings);
     raises `ConvergenceError` (naming `step` and the last position reached)
     when a step fails even at the smallest size.
     """
-    newton, d = model.newton, model.adhesion.d
+    d = state.model.adhesion.d
     smallest = pre["min_step"] * d
     target = float(target)
     goals = [target]
     halvings = iterations = 0
     jumps = []
     bads = []  # positions known to fail or to be discontinuous, nearest last
+    steep = None  # a bad position to retry once after the next advance
+    retry = False  # the last attempt advanced the state
     while goals:
         goal = goals[-1]
         while bads and (bads[-1] - state.w) * (target - state.w) <= 0:  # reached after all
             bads.pop()
         if bads and (goal - bads[-1]) * (target - state.w) >= 0:  # the goal is at or beyond it
             bad = bads[-1]
-            nxt = 0.5 * (state.w + bad) if abs(bad - state.w) > smallest else bad
+            if (retry and bad == steep) or abs(bad - state.w) <= smallest:
+                nxt = bad
+            else:
+                nxt = 0.5 * (state.w + bad)
             if nxt != goal:
                 goals.append(nxt)
                 continue
+        model = state.model
+        newton = model.newton
         dw = goal - state.w
         small = abs(dw) <= smallest
         # tangent predictor, its move capped at d + 2 |dw| (du/dw blows up near
-        # a fold; `AdhesiveModel.continuous` allows d / 2 + 2 |dw| off it)
+        # a fold; `AdhesiveModel.continuity` allows d / 2 + 2 |dw| off it)
         step_u = dw * state.dudw
         big = np.max(np.abs(step_u), initial=0.0)
         cap = d + 2.0 * abs(dw)
@@ -703,34 +838,47 @@ def _advance(model: AdhesiveModel, state: AdhesiveState, target: float, pre: dic
             iterations += its
         except StepFailed as exc:
             iterations += exc.iterations
-            halvings += 1
+            halvings += 0 if retry and goal == steep else 1  # a failed retry halves nothing
             if small or halvings > MAX_HALVINGS:
                 raise ConvergenceError(step, target, state.w, halvings - 1,
                                        f"{exc} (at w = {goal:.6g} m)") from None
             bads.append(goal)
             goals = [target]
+            steep = None if goal == steep else steep
+            retry = False
             continue
         new = newton.state(goal, u, parts, T)
-        if not model.continuous(state, new, pred, pre):
-            if not small:
-                halvings += 1
-                if halvings > MAX_HALVINGS:
-                    raise ConvergenceError(step, target, state.w, halvings - 1,
-                                           "the path stays discontinuous")
-                bads.append(goal)
-                goals = [target]
-                continue
+        new.model = model
+        verdict = model.continuity(state, new, pred, pre)
+        jumped = verdict != "continuous"
+        if jumped and not small:
+            retried = retry and goal == steep
+            halvings += 0 if retried else 1  # a failed retry halves nothing
+            if halvings > MAX_HALVINGS:
+                raise ConvergenceError(step, target, state.w, halvings - 1,
+                                       "the path stays discontinuous")
+            # a steep position is retried once: not when this was its retry
+            steep = goal if verdict == "steep" and not retried else None
+            bads.append(goal)
+            goals = [target]
+            retry = False
+            continue
+        new, its = _follow(new, step)
+        iterations += its
+        if jumped:
             jumps.append((state, new))
             bads = []
-        if model.overflow(new):
+        if new.model.overflow(new):
             raise _Overflow()
         state = new
+        retry = True
         goals.pop()
     return state, jumps, iterations, halvings
 
 
 def _trace(model: AdhesiveModel, path, pre: dict, label: str = "") -> list[_Record]:
-    """States along the path with step control and jumps (module docstring)."""
+    """States along the path with step control and jumps (module docstring),
+    from `model`'s mesh (moved along with the contact if it follows it)."""
     newton = model.newton
     branches = _branches(path)
     t0 = time.perf_counter()
@@ -739,13 +887,20 @@ def _trace(model: AdhesiveModel, path, pre: dict, label: str = "") -> list[_Reco
     except StepFailed as exc:
         raise ConvergenceError(0, float(path[0]), math.nan, 0, str(exc), label) from None
     state = newton.state(float(path[0]), u, parts, T, its)
+    state.model = model
+    try:
+        state, more = _follow(state)
+    except ConvergenceError as exc:
+        exc.sample = label
+        raise
+    state.iterations = its + more
     state.wall_time = time.perf_counter() - t0
     records = [_Record(state, branches[0], False, True, 0)]
     for n in range(1, len(path)):
         target, branch = float(path[n]), branches[n]
         t0 = time.perf_counter()
         try:
-            state, jumps, iterations, halvings = _advance(model, state, target, pre, n)
+            state, jumps, iterations, halvings = _advance(state, target, pre, n)
         except ConvergenceError as exc:
             exc.sample = label
             raise
@@ -769,7 +924,7 @@ def _retract_indices(branch: np.ndarray) -> np.ndarray:
     return idx
 
 
-def _refine_pull_off(model: AdhesiveModel, records: list, pre: dict, resolution: float) -> None:
+def _refine_pull_off(records: list, pre: dict, resolution: float) -> None:
     """Bisect the path around the largest tensile force on retraction.
 
     States at the midpoints between the minimum of the force and its
@@ -794,7 +949,7 @@ def _refine_pull_off(model: AdhesiveModel, records: list, pre: dict, resolution:
                 continue
             mid = 0.5 * (records[j].state.w + src.w)
             try:
-                new, jumps, its, cuts = _advance(model, src, mid, pre)
+                new, jumps, its, cuts = _advance(src, mid, pre)
             except (ConvergenceError, _Overflow):
                 continue
             if jumps:  # not on the branch of the minimum
@@ -862,7 +1017,9 @@ def solve_asperity_adhesive(geometry: Profile, material, adhesion: LennardJones,
     ``pull_off_force``, ``pull_off_interference``, ``tabor_parameter``,
     ``jump_in_interference`` and ``jump_off_interference`` (the flat's
     position before the largest jump of each branch; NaN if none),
-    ``jumps`` (their number), the mesh scales, and ``adhesion``.  A
+    ``jumps`` (their number), the mesh scales, ``meshes`` (how many the
+    recorded states lie on: more than one if the mesh follows the
+    contact), and ``adhesion``.  A
     requested level's ``newton_iterations`` and ``step_cuts`` include
     those of the states added before it.  Raises `ConvergenceError` naming
     the step (and `label`).
@@ -896,9 +1053,14 @@ def solve_asperity_adhesive(geometry: Profile, material, adhesion: LennardJones,
             band *= 1.5
     else:
         raise ContactZoneError("the adhesive ring outgrew the refined band")
-    _refine_pull_off(model, records, pre, adhesion.d / 64.0)
+    _refine_pull_off(records, pre, adhesion.d / 64.0)
     states = [r.state for r in records]
-    ev = model.evaluate(states)
+    models = list({id(s.model): s.model for s in states}.values())
+    ev = {}
+    for m in models:  # each state on its own mesh
+        mine = [k for k, s in enumerate(states) if s.model is m]
+        for name, values in m.evaluate([states[k] for k in mine]).items():
+            ev.setdefault(name, np.zeros(len(states)))[mine] = values
     axi = geometry.axisymmetric
     a = ev["contact_radius"]
     w = np.array([s.w for s in states])
@@ -922,7 +1084,7 @@ def solve_asperity_adhesive(geometry: Profile, material, adhesion: LennardJones,
         branch=branch,
         jump=jump,
         requested=np.array([r.requested for r in records]),
-        dofs=np.full(len(states), model.dofs),
+        dofs=np.array([s.model.dofs for s in states]),
         newton_iterations=np.array([s.iterations for s in states]),
         step_cuts=np.array([s.cuts for s in states]),
         wall_time=own + (total - own.sum()) / len(states),
@@ -948,7 +1110,8 @@ def solve_asperity_adhesive(geometry: Profile, material, adhesion: LennardJones,
         process_zone=sc.process_zone,
         ring_element_size=sc.h_ring,
         band_radius=sc.r_band,
-        band_facets=int(model.zone.nfacets),
+        band_facets=max(int(m.zone.nfacets) for m in models),
+        meshes=len(models),
         resolution_capped=int(sc.capped),
         total_wall_time=total,
     ))
@@ -1048,7 +1211,8 @@ def stack_runs(runs, coord: str, values, coord_attrs: dict) -> xr.Dataset:
         tabor_parameter=("1", "Tabor parameter (R dgamma^2 / (E*^2 d^3))^(1/3)"),
         jump_in_interference=("m", "interference where the asperity jumps into contact (NaN: none)"),
         jump_off_interference=("m", "interference where it jumps out of contact (NaN: none)"),
-        band_facets=("1", "surface facets of the band refined for the adhesive ring"),
+        band_facets=("1", "surface facets of the band refined for the adhesive ring "
+                          "(the largest over the meshes)"),
         total_wall_time=("s", "wall time of the run"),
     )
     if not runs[0].attrs["symmetry"].startswith("axi"):
@@ -1079,10 +1243,12 @@ def smooth_aluminum_curves(radii=(15.4e-6, 30e-6, 60e-6), d: float = 0.3e-9,
     pull-off forces 2 pi R W_c and 3/2 pi R W_c for comparison.
 
     Cost grows with the Tabor parameter (R^(1/3) / d): with d = 0.3 nm,
-    mu = 4.8, 6.0, 7.6 at 15.4, 30, 60 um, and 10, 13 at 150 and 300 um,
-    which need a band of thousands of facets and are not in the default
-    (the costs: `make time-adhesion`, README "Adhesion").  With d = 0.5 nm,
-    mu is 0.6 times smaller.
+    mu = 4.8, 6.0, 7.6 at 15.4, 30, 60 um, and 10, 13 at 150 and 300 um
+    (the flat end of 7.3's range), whose mesh follows the contact edge
+    (module docstring, "Mesh").  The report's Fig. 7.6 shows R = 15.4 um
+    only; the default adds two flatter radii, and the costs of all of
+    them are measured by `make time-adhesion` (README "Adhesion").  With
+    d = 0.5 nm, mu is 0.6 times smaller.
     """
     from .geometry import Paraboloid
     from .material import LinearElastic

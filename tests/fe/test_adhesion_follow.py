@@ -1,0 +1,83 @@
+"""Meshes that follow the contact (`asperity.fe.adhesive`, module docstring "Mesh"),
+meant for the flat asperities of report 7.3 (R up to 300 um at d = 0.3 nm).
+
+The fine band is a window around the contact edge, moved (surface displacement
+interpolated, equilibrium re-solved) when the edge nears its ends.  Checked, with the
+following forced on a steeper asperity, against the whole band refined once (the fixed
+mesh the solver uses below `follow_above`), and through a jump-in that lands outside
+the window (a mesh change in the middle of the jump).
+"""
+
+import numpy as np
+import pytest
+
+from asperity.fe import LennardJones, LinearElastic, Paraboloid, solve_asperity_adhesive
+from asperity.fe.adhesive import ALUMINUM_E, ALUMINUM_NU, interpolate_adhesive
+
+D = 0.3e-9
+LAW = LennardJones(1.0, D)
+MAT = LinearElastic(ALUMINUM_E, ALUMINUM_NU)
+W_MAX = 10e-9
+
+
+def _main_jumps(ds):
+    """Indices of the jumps on each branch (a jump's record and the one before it)."""
+    jump = ds.jump.values.astype(bool)
+    branch = ds.branch.values.astype(str)
+    return (np.nonzero(jump & (branch == "approach"))[0],
+            np.nonzero(jump & (branch == "retract"))[0])
+
+
+@pytest.fixture(scope="module")
+def pair():
+    """R = 15.4 um (Fig. 7.6, mu = 4.8) on the whole band and on a following mesh."""
+    R = 15.4e-6
+    fixed = solve_asperity_adhesive(Paraboloid(R), MAT, LAW, w_max=W_MAX, accuracy="draft")
+    moving = solve_asperity_adhesive(Paraboloid(R), MAT, LAW, w_max=W_MAX,
+                                     accuracy=dict(base="draft", follow_above=0))
+    return R, fixed, moving
+
+
+@pytest.mark.slow
+def test_following_mesh_agrees_with_the_whole_band(pair):
+    R, fixed, moving = pair
+    assert fixed.attrs["meshes"] == 1 and moving.attrs["meshes"] >= 3
+    assert moving.attrs["band_facets"] < fixed.attrs["band_facets"]
+    # the pull-off to 1e-4 (the draft Newton tolerance leaves ~1e-5 between
+    # two discretizations of the edge; measured at R = 30 um: 5.7e-6)
+    assert moving.attrs["pull_off_force"] == pytest.approx(fixed.attrs["pull_off_force"], rel=1e-4)
+    for attr in ("jump_in_interference", "jump_off_interference"):
+        assert abs(moving.attrs[attr] - fixed.attrs[attr]) <= 0.01 * D, attr
+    assert moving.attrs["jumps"] == fixed.attrs["jumps"]
+    # both branches on the fixed run's requested levels, away from the jumps
+    for which in ("approach", "retract"):
+        w = fixed.interference.values[fixed.requested.values & (fixed.branch.values == which)]
+        w = w[(np.abs(w - fixed.attrs["jump_in_interference"]) > 0.1 * D)
+              & (np.abs(w - fixed.attrs["jump_off_interference"]) > 0.1 * D)]
+        Ff = interpolate_adhesive(fixed, w, which)["force"]
+        Fm = interpolate_adhesive(moving, w, which)["force"]
+        ok = np.isfinite(Ff)
+        np.testing.assert_allclose(Fm[ok], Ff[ok], rtol=0,
+                                   atol=1e-3 * fixed.attrs["pull_off_force"])
+
+
+@pytest.mark.slow
+def test_mesh_change_in_the_middle_of_a_jump_in(pair):
+    """The following mesh starts with its fine band at the apex: the jump-in lands
+    with the contact edge outside it, is moved to a mesh around the edge and
+    re-solved there.  It must land on the branch the fixed mesh jumps to: the
+    same force, contact radius and tip at the flat."""
+    R, fixed, moving = pair
+    (kf,) = _main_jumps(fixed)[0]
+    (km,) = _main_jumps(moving)[0]
+    assert moving.dofs.values[km] != moving.dofs.values[km - 1]  # re-meshed on landing
+    assert fixed.dofs.values[kf] == fixed.dofs.values[kf - 1]
+    assert moving.interference.values[km] == pytest.approx(fixed.interference.values[kf],
+                                                           abs=1e-3 * D)
+    P = fixed.attrs["pull_off_force"]
+    assert abs(moving.force.values[km] - fixed.force.values[kf]) <= 1e-3 * P
+    assert moving.contact_radius.values[km] == pytest.approx(fixed.contact_radius.values[kf],
+                                                             rel=0.01)
+    assert moving.tip_separation.values[km] == pytest.approx(D, rel=1e-3)
+    # and before the jump the tip hung out of contact on both
+    assert moving.contact_radius.values[km - 1] == 0 == fixed.contact_radius.values[kf - 1]
