@@ -105,8 +105,7 @@ for the output: the interference changed by more than
 ``max_interference_step`` times the largest interference, or the
 equivalent inelastic strain changed somewhere by more than
 ``max_inelastic_step`` (a safety bound; the error control decides).  Slow
-Newton convergence shrinks the next time step (preset keys ``newton_fast``
-and ``newton_slow``).  A step that would cross a
+Newton convergence shrinks the next time step.  A step that would cross a
 knot of the history ends on it.
 
 Points with negligible flow (`InelasticModel.point_time_steps`): a
@@ -165,10 +164,9 @@ from .solve import adapted_model, check_levels, run_attrs
 
 #: on unloading, a force below this fraction of the largest force counts as zero
 ZERO_FORCE = 1e-6
-#: Newton: the next time step shrinks by SHRINK after the preset's
-#: ``newton_slow`` iterations or more (and does not grow after more than
-#: ``newton_fast``)
-SHRINK = 0.7
+#: Newton: the next time step does not grow after more than FAST iterations,
+#: and shrinks by SHRINK after SLOW or more
+FAST, SLOW, SHRINK = 4, 10, 0.7
 #: time-error controller: safety factor, largest growth, smallest factor, and
 #: a step is rejected when its indicator exceeds REJECT x the tolerance
 SAFETY, MAX_GROWTH, MIN_FACTOR, REJECT = 0.9, 2.0, 0.2, 2.0
@@ -775,7 +773,6 @@ def solve_asperity_history(geometry, material, history: History, accuracy="stand
     if tolerance is None and rate_dependent and math.isfinite(time_tolerance):
         tolerance = max(preset["tolerance"], NEWTON_FRACTION * time_tolerance)
     remesh = bool(preset["remesh"])
-    fast, slow = preset["newton_fast"], preset["newton_slow"]
     remesh_times = sorted(float(x) for x in np.atleast_1d(remesh_times))
     meshes = ContactMeshes(geometry, elastic_part(material), preset, factor, INELASTIC_THRESHOLD)
     if remesh:
@@ -956,9 +953,9 @@ def solve_asperity_history(geometry, material, history: History, accuracy="stand
                                       SAFETY * (time_tolerance / err) ** (1.0 / (order + 1))))
         if cuts:
             fac = min(fac, 1.0)
-        if iterations >= slow:
+        if iterations >= SLOW:
             fac = min(fac, SHRINK)
-        elif iterations > fast:
+        elif iterations > FAST:
             fac = min(fac, 1.0)
         dt = fac * h
         v = history.velocity(t)

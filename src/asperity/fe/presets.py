@@ -48,14 +48,6 @@ tolerance
     Newton: relative residual ||R|| / ||f_contact|| to stop.
 max_iterations, max_cuts
     Newton iterations before a step is cut in half; cuts per requested step.
-newton_fast, newton_slow
-    inelastic histories: the next time step does not grow after more than
-    newton_fast Newton iterations, and shrinks after newton_slow or more.
-    At `fine` (a finer mesh: more contact nodes and yielding points change
-    state in a step) Newton takes as many iterations at a tenth of the
-    largest interference step as at all of it, more than 4: there 4 and 10
-    shrank the steps for nothing, and 7 and 14 keep them at the cap
-    (`make time-remesh`, README "Inelastic histories").
 exact_tolerance
     exact contact option: penetration / interference and relative force
     change between Uzawa updates to stop.
@@ -114,8 +106,6 @@ ACCURACY: dict[str, dict] = {
         tolerance=1e-6,
         max_iterations=40,
         max_cuts=8,
-        newton_fast=4,
-        newton_slow=10,
         exact_tolerance=1e-7,
         time_tolerance=0.1,
         remesh=False,
@@ -134,8 +124,6 @@ ACCURACY: dict[str, dict] = {
         tolerance=1e-8,
         max_iterations=40,
         max_cuts=8,
-        newton_fast=4,
-        newton_slow=10,
         exact_tolerance=1e-9,
         time_tolerance=0.6,
         remesh=False,
@@ -154,8 +142,6 @@ ACCURACY: dict[str, dict] = {
         tolerance=1e-10,
         max_iterations=40,
         max_cuts=8,
-        newton_fast=7,
-        newton_slow=14,
         exact_tolerance=1e-11,
         time_tolerance=0.2,
         remesh=False,
