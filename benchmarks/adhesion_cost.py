@@ -20,6 +20,7 @@ is asserted: speed is measured here, not in the tests.
 
     python benchmarks/adhesion_cost.py             # everything
     python benchmarks/adhesion_cost.py --no-curves # without part 3
+    python benchmarks/adhesion_cost.py --no-large   # parts 1-3, part 4 kept
     python benchmarks/adhesion_cost.py --only-large # part 4 alone, the other
                                                     # parts kept from the JSON
 """
@@ -114,6 +115,8 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--no-curves", action="store_true", help="leave out smooth_aluminum_curves")
     ap.add_argument("--only-large", action="store_true",
                     help="run part 4 (R = 150, 300 um) alone; parts 1-3 are kept from --out")
+    ap.add_argument("--no-large", action="store_true",
+                    help="leave out part 4; its rows are kept from --out")
     ap.add_argument("--radii", type=float, nargs="+", default=[r * 1e6 for r in LARGE_RADII],
                     help="part 4's tip radii [um]")
     ap.add_argument("--accuracies", nargs="+", default=["draft", "standard"],
@@ -151,7 +154,10 @@ def main(argv: list[str] | None = None) -> int:
             curves.append(dict(tip_radius_um=radius * 1e6, d_nm=0.3, accuracy="draft", cpu_time_s=cpu,
                                tabor_parameter=float(ds["tabor_parameter"][0])))
             print(f"smooth_aluminum_curves R = {radius * 1e6:.4g} um: {cpu:.1f} s", flush=True)
-    large = large_rows(radii, tuple(args.accuracies))
+    if args.no_large:
+        large = json.loads(args.out.read_text()).get("large_radii", [])
+    else:
+        large = large_rows(radii, tuple(args.accuracies))
     commit, dirty = _commit()
     record = dict(date=time.strftime("%Y-%m-%dT%H:%M:%S%z"), commit=commit, uncommitted_changes=dirty,
                   scene=SCENE, scene_jobs=rows, scene_cpu_time_s=totals, radius_100um=wider,
