@@ -66,7 +66,10 @@ def _loglog(levels: np.ndarray, values: np.ndarray, targets: np.ndarray,
     return out, above
 
 
-#: inside small-strain theory while the largest strain magnitude stays below this (report 7.3)
+#: inside small-strain theory while the largest strain magnitude stays below this (report 7.3);
+#: for samples without the FE job's own `small_strain` flag.  The same limit as
+#: `asperity.fe.outputs.SMALL_STRAIN_LIMIT`, written here because importing `asperity.fe`
+#: would load scikit-fem into every gather job
 SMALL_STRAIN_LIMIT = 0.08
 
 
