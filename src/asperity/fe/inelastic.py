@@ -155,7 +155,8 @@ import xarray as xr
 from . import nonlinear
 from .contact import PENALTY_FACTOR, C1Penalty, ContactZone, contact_edge_pressure
 from .errors import ContactZoneError, ConvergenceError, RuptureError, StepFailed
-from .material import METRIC, LinearElastic, equivalent_strain, von_mises
+from .kinematics import KINEMATICS, SmallStrain, kinematics_for
+from .material import LinearElastic, equivalent_strain, von_mises
 from .nonlinear import Problem, ResidualSearch, check_local_update
 from .outputs import INELASTIC_THRESHOLD, SMALL_STRAIN_LIMIT, dataset
 from .presets import resolve
@@ -259,7 +260,8 @@ class InelasticModel:
     """Full (uncondensed) Newton on a fixed mesh with per point state."""
 
     def __init__(self, disc, geometry, material, preset: dict, r_candidate: float,
-                 penalty_factor: float = PENALTY_FACTOR, tolerance: float | None = None):
+                 penalty_factor: float = PENALTY_FACTOR, tolerance: float | None = None,
+                 kinematics: str = "small"):
         self.disc = disc
         self.geometry = geometry
         self.material = material
@@ -267,12 +269,12 @@ class InelasticModel:
         self.penalty_factor = float(penalty_factor)
         self.tolerance = preset["tolerance"] if tolerance is None else float(tolerance)
         self.max_iterations = preset["max_iterations"]
-        self.Bsp = disc.strain_operator()
+        self.kinematics = kinematics_for(disc, kinematics)
+        # the linear kinematics also measure round-off and the time error
+        self.linear = self.kinematics if not self.kinematics.finite else SmallStrain(disc)
         self.free = disc.free
         self.shape = disc.weights.shape  # (ne, nq)
-        self.W4 = (METRIC[:, None, None] * disc.weights[None]).ravel()
-        self._absBT = abs(self.Bsp).T.tocsr()
-        self._BspT = self.Bsp.T.tocsr()
+        self._absBT = abs(self.linear.Bsp).T.tocsr()
         self._pattern()
         self._set_zone(r_candidate)
         self.factorizations = 0
@@ -302,12 +304,6 @@ class InelasticModel:
         self._indptr = np.concatenate(([0], np.cumsum(counts))).astype(np.int32)
         self._keys = ukey
         self._n = n
-        # strain-displacement matrices per point (ne, nq, 4, 12) for batched matmul
-        self._Bm = np.ascontiguousarray(np.transpose(disc.B, (2, 3, 0, 1)))
-        ne, nq = self.shape
-        BtW = np.swapaxes(self._Bm * (METRIC[:, None] * disc.weights[:, :, None, None]), 2, 3)
-        # (ne, 12, nq * 4): B^T W of all points of an element side by side
-        self._BtW = np.ascontiguousarray(BtW.transpose(0, 2, 1, 3).reshape(ne, -1, nq * 4))
 
     def _contact_slots(self):
         """Slots of the contact (facet) couplings of the zone's u_z dofs."""
@@ -354,17 +350,16 @@ class InelasticModel:
 
     def evaluate(self, u, w, state, dt, tangent=True):
         """Residual (ndofs,) and the fields (with the point tangents ``D``)."""
-        disc = self.disc
-        strain = disc.strain(u)
+        strain, deformation = self.kinematics.strain(u)
         dtp = self.point_time_steps(strain, state, dt)
         stress, D, new = self.material.update(strain, state, dtp, tangent=tangent)
         if dtp is not dt and hasattr(new, "time"):
             new.time = state.time + dt
-        f_int = self._BspT @ (stress.ravel() * self.W4)
+        R = self.kinematics.internal_force(deformation, stress)
         _, t, tn = self._contact(u, w)
-        R = f_int
         R[self.zone.dofs] += self.zone.nodal(t)
-        out = dict(strain=strain, stress=stress, state=new, traction=t, D=D, dtraction=tn)
+        out = dict(strain=strain, stress=stress, state=new, traction=t, D=D, dtraction=tn,
+                   deformation=deformation)
         return R, out
 
     def point_time_steps(self, strain, state, dt):
@@ -393,14 +388,7 @@ class InelasticModel:
 
     def jacobian(self, out) -> sp.csc_matrix:
         """Consistent tangent on the free dofs: material plus contact penalty."""
-        D = np.asarray(out["D"])
-        ne, nq = self.shape
-        if D.ndim == 2:
-            DB = np.matmul(D[None, None], self._Bm)  # (ne, nq, 4, 12)
-        else:
-            Dm = np.transpose(D, (2, 3, 0, 1))  # (ne, nq, 4, 4)
-            DB = np.matmul(Dm, self._Bm)  # (ne, nq, 4, 12)
-        Ke = np.matmul(self._BtW, DB.reshape(ne, nq * 4, -1))  # (ne, 12, 12)
+        Ke = self.kinematics.element_matrices(out["deformation"], out["stress"], out["D"])
         data = np.bincount(self._slot, weights=Ke.ravel()[self._keep], minlength=self._nnz)
         zone = self.zone
         q = out["dtraction"] * zone.weights
@@ -469,6 +457,9 @@ class InelasticModel:
         if force > 0:
             pen = zone.node_penetration(u[zone.dofs], w)
             radius = contact_edge_pressure(zone.coords[0], -pen, zone.node_traction(t), pen > 0)
+            if self.kinematics.finite:  # the edge on the deformed surface
+                top = self.disc.top
+                radius += float(np.interp(radius, top.coords[0], u[top.node_r_dofs]))
         strain, stress, state = out["strain"], out["stress"], out["state"]
         e11, e22, e33, e12 = strain
         c = 0.5 * (e11 + e22)
@@ -515,7 +506,7 @@ class _Step(Problem):
         """Round-off of the internal forces (sum of |terms|)."""
         m = self.model
         return 1e3 * np.finfo(float).eps * float(np.linalg.norm(
-            (m._absBT @ np.abs(out["stress"].ravel() * m.W4))[m.free]))
+            (m._absBT @ np.abs(out["stress"].ravel() * m.linear.W4))[m.free]))
 
     def direction(self, u, Rf, out, tangent, iteration):
         try:
@@ -601,7 +592,7 @@ def error_indicator(model, errors: dict, out) -> float:
     fc = float(np.linalg.norm(model.zone.nodal(out["traction"])))
     E = 0.0
     if fc > 0:
-        fe = model._BspT @ ((2.0 * material.G) * e.ravel() * model.W4)
+        fe = model.linear.internal_force(None, (2.0 * material.G) * e)
         E = float(np.linalg.norm(fe[model.free])) / fc
     if "kappa" in errors:
         ek = np.abs(errors["kappa"])
@@ -654,7 +645,7 @@ def solve_asperity_history(geometry, material, history: History, accuracy="stand
                            time_tolerance: float | None = None,
                            integration: str = "bdf2",
                            on_rupture: str = "continue",
-                           remesh_times=()) -> xr.Dataset:
+                           remesh_times=(), kinematics: str = "small") -> xr.Dataset:
     """Incremental solution of an inelastic asperity along `history`.
 
     Parameters
@@ -724,6 +715,13 @@ def solve_asperity_history(geometry, material, history: History, accuracy="stand
         times [s] at which a new mesh is built whatever the preset's
         ``remesh``: after the first step ending at or after each, which is
         re-solved on it (e.g. at a load reversal).
+    kinematics
+        ``"small"`` (default: linearized strains, report 3.23) or
+        ``"finite"``: total Lagrangian with the logarithmic strain
+        (`kinematics.FiniteStrain`), for contacts whose strains leave the
+        small-strain range (report 7.3: about 8 %).  The strain outputs are
+        then Hencky strains, the stresses their work conjugates (rotated
+        Kirchhoff stresses), the contact radius that of the deformed surface.
 
     Returns an `xarray.Dataset` on dim ``step`` (variables `OUTPUTS`,
     step 0 the initial untouched state) with attributes including
@@ -755,6 +753,8 @@ def solve_asperity_history(geometry, material, history: History, accuracy="stand
         raise ValueError(f"on_rupture must be one of {ON_RUPTURE}, got {on_rupture!r}")
     if integration not in INTEGRATION:
         raise ValueError(f"integration must be one of {INTEGRATION}, got {integration!r}")
+    if kinematics not in KINEMATICS:
+        raise ValueError(f"kinematics must be one of {KINEMATICS}, got {kinematics!r}")
     knots_w = np.asarray(history.interferences, float)
     w_max = float(knots_w.max())
     if not w_max > 0:
@@ -784,7 +784,8 @@ def solve_asperity_history(geometry, material, history: History, accuracy="stand
                                   "penalty", factor)
         r_cand = max(r_cand, emodel.r_candidate)
         disc = emodel.disc
-    model = InelasticModel(disc, geometry, material, preset, r_cand, factor, tolerance)
+    model = InelasticModel(disc, geometry, material, preset, r_cand, factor, tolerance,
+                           kinematics)
     t_mesh = time.perf_counter() - t_start
 
     # --- time stepping ---------------------------------------------------------
@@ -922,7 +923,7 @@ def solve_asperity_history(geometry, material, history: History, accuracy="stand
             factorizations += model.factorizations
             r_cand = max(r_cand, model.r_candidate)
             model = InelasticModel(new_disc, geometry, material, preset, r_cand, factor,
-                                   tolerance)
+                                   tolerance, kinematics)
             u = move.displacement(u)
             u_prev = None if u_prev is None else move.displacement(u_prev)
             state = move.state(state)
@@ -1024,6 +1025,7 @@ def solve_asperity_history(geometry, material, history: History, accuracy="stand
                           "kappa error over its rupture value",
         ruptured=int(rupture is not None),
         on_rupture=on_rupture,
+        kinematics=kinematics,
         completed=int(done),
         stop_reason=stop_reason,
         mesh_wall_time=t_mesh,

@@ -1,0 +1,317 @@
+"""Kinematics of the two-dimensional inelastic driver: small strain, or
+finite strain in logarithmic strain space.
+
+`SmallStrain` is the linear kinematics of report 3.23: strains e = B u,
+internal forces int B^T sigma dV, element matrices int B^T D B dV.
+
+`FiniteStrain` is the total Lagrangian formulation with the *additive
+plasticity in logarithmic strain space* of Miehe, Apel and Lambrecht
+(Comput. Methods Appl. Mech. Engrg. 191 (2002) 5383-5425).  The material
+of the small-strain theory (report 3.2.2: `J2Plasticity`, `BodnerPartom`,
+its internal variables, damage and directional hardening, and its
+consistent tangent) is used unchanged, fed with the Lagrangian Hencky
+strain instead of the linearized one:
+
+    F = I + Grad u,   C = F^T F,   E = 1/2 ln C,
+    T, D = material.update(E, state, dt)     (the small-strain update),
+    S = T : P,   P = 2 dE/dC,                (second Piola-Kirchhoff stress)
+    dS/dE_GL = P^T : D : P + T : L,   L = 4 d^2E/dC^2,
+
+with E_GL = (C - I) / 2 the Green-Lagrange strain whose variation
+delta E_GL = sym(F^T Grad delta u) is the work conjugate of S (Miehe et al.,
+eqs. 2.11, 2.13, 3.5).  The elastic response T = C_e : (E - E_p) of
+moderate elastic strain (metals: E_e below 1 %) is then a Hencky
+hyperelastic law, the inelastic strain accumulates additively in log
+space, rigid rotations leave E (so the response) unchanged, and for
+isotropic materials the scheme is the exponential-map return of
+Eterovic and Bathe (1990) and Simo (1992).  The residual is
+
+    R = int (delta E_GL : S) dV_0 + contact,
+
+integrated over the undeformed body (dV_0 = R dR dZ in axisymmetry); the
+contact with the rigid flat is exact in this setting: the flat is normal
+to z, so the gap of a surface point is z + u_z - z_flat whatever its
+radial motion, and the penalty traction is a force per undeformed area.
+
+The derivatives of the isotropic matrix function E(C) use the
+eigenvectors Q and eigenvalues lambda of C (the in-plane 2 x 2 block
+and, in axisymmetry, the hoop stretch C_33 = (1 + u_r / R)^2) and the
+divided differences of f = 1/2 ln (Daleckii-Krein):
+
+    dE[A]      = Q (f[1](lambda_i, lambda_j) o A') Q^T,
+    d^2E[A, B] = Q (sum_k f[2](lambda_i, lambda_k, lambda_j)
+                    (A'_ik B'_kj + B'_ik A'_kj)) Q^T,
+
+A' = Q^T A Q; the first divided differences are exact to round-off for
+equal eigenvalues (the undeformed body), the second, which enter only
+the tangent, to 1e-8 relative.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import scipy.sparse as sp
+
+from .errors import StepFailed
+from .material import METRIC
+
+#: kinematics of the inelastic driver
+KINEMATICS = ("small", "finite")
+#: (row, column) of the 4 stored components [11, 22, 33, 12] in a 3 x 3 tensor
+_COMP = (np.array([0, 1, 2, 0]), np.array([0, 1, 2, 1]))
+#: the 3 x 3 tensors of the 4 components (tensor shear: e_12 + e_21)
+_BASIS = np.zeros((4, 3, 3))
+_BASIS[0, 0, 0] = _BASIS[1, 1, 1] = _BASIS[2, 2, 2] = 1.0
+_BASIS[3, 0, 1] = _BASIS[3, 1, 0] = 1.0
+#: close eigenvalues: below this relative distance the divided differences
+#: are taken from their Taylor series
+_CLOSE = 1e-4
+
+
+def divided_log(a, b):
+    """f[a, b] = (f(a) - f(b)) / (a - b) of f = 1/2 ln; f'(a) at a = b."""
+    x = (a - b) / b
+    close = np.abs(x) < _CLOSE
+    xs = np.where(close, 1.0, x)
+    far = 0.5 * np.log1p(xs) / (b * xs)
+    near = (0.5 / b) * (1.0 + x * (-0.5 + x * (1.0 / 3.0 - 0.25 * x)))
+    return np.where(close, near, far)
+
+
+def divided_log2(a, b, c):
+    """Second divided difference f[a, b, c] of f = 1/2 ln (symmetric in
+    its arguments); f''/2 = -1 / (4 m^2) at the mean m where all three
+    are within `_CLOSE` of each other."""
+    lo = np.minimum(np.minimum(a, b), c)
+    hi = np.maximum(np.maximum(a, b), c)
+    mid = a + b + c - lo - hi
+    span = hi - lo
+    close = span < _CLOSE * hi
+    den = np.where(close, 1.0, span)
+    far = (divided_log(hi, mid) - divided_log(mid, lo)) / den
+    m = (a + b + c) / 3.0
+    return np.where(close, -0.25 / m**2, far)
+
+
+def _eigen2(A):
+    """Eigenvalues (n, 2) and eigenvectors (n, 2, 2, in columns) of
+    symmetric 2 x 2 matrices in closed form (errors at the round-off of the
+    matrix's own size)."""
+    a, b, c = A[:, 0, 0], A[:, 0, 1], A[:, 1, 1]
+    m, d = 0.5 * (a + c), 0.5 * (a - c)
+    r = np.hypot(d, b)
+    theta = 0.5 * np.arctan2(b, d)
+    cos, sin = np.cos(theta), np.sin(theta)
+    Q = np.empty_like(A)
+    Q[:, 0, 0], Q[:, 1, 0] = -sin, cos  # eigenvalue m - r
+    Q[:, 0, 1], Q[:, 1, 1] = cos, sin   # eigenvalue m + r
+    return np.stack((m - r, m + r), axis=1), Q
+
+
+def _tensor(comps):
+    """(4, n) stored components -> (n, 3, 3) symmetric tensors."""
+    return np.einsum("an,aij->nij", comps, _BASIS)
+
+
+def _components(tensors):
+    """(..., 3, 3) -> (..., 4) stored components."""
+    return tensors[..., _COMP[0], _COMP[1]]
+
+
+class SmallStrain:
+    """Linear kinematics: e = B u (`assembly.Discretization.B`)."""
+
+    finite = False
+
+    def __init__(self, disc):
+        self.disc = disc
+        self.shape = disc.weights.shape  # (ne, nq)
+        self.Bsp = disc.strain_operator()
+        self.BspT = self.Bsp.T.tocsr()
+        self.W4 = (METRIC[:, None, None] * disc.weights[None]).ravel()
+        # strain-displacement matrices per point (ne, nq, 4, 12) for batched matmul
+        self._Bm = np.ascontiguousarray(np.transpose(disc.B, (2, 3, 0, 1)))
+        ne, nq = self.shape
+        BtW = np.swapaxes(self._Bm * (METRIC[:, None] * disc.weights[:, :, None, None]), 2, 3)
+        # (ne, 12, nq * 4): B^T W of all points of an element side by side
+        self._BtW = np.ascontiguousarray(BtW.transpose(0, 2, 1, 3).reshape(ne, -1, nq * 4))
+
+    def strain(self, u):
+        """(strain (4, ne, nq), None)."""
+        return self.disc.strain(u), None
+
+    def internal_force(self, deformation, stress):
+        return self.BspT @ (stress.ravel() * self.W4)
+
+    def element_matrices(self, deformation, stress, D):
+        """int B^T D B dV per element, (ne, 12, 12)."""
+        ne, nq = self.shape
+        D = np.asarray(D)
+        if D.ndim == 2:
+            DB = np.matmul(D[None, None], self._Bm)  # (ne, nq, 4, 12)
+        else:
+            DB = np.matmul(np.transpose(D, (2, 3, 0, 1)), self._Bm)
+        return np.matmul(self._BtW, DB.reshape(ne, nq * 4, -1))
+
+
+class Deformation:
+    """F, the eigen-decomposition of C and the first divided differences at
+    every point (flattened, n = ne * nq), from `FiniteStrain.strain`."""
+
+    def __init__(self, H):
+        n = H.shape[1]
+        F = np.zeros((n, 3, 3))
+        F[:, 0, 0] = 1.0 + H[0]
+        F[:, 1, 1] = 1.0 + H[1]
+        F[:, 2, 2] = 1.0 + H[2]
+        F[:, 0, 1] = H[3]  # d u_r / d Z
+        F[:, 1, 0] = H[4]  # d u_z / d R
+        self.F = F
+        self.J = (F[:, 0, 0] * F[:, 1, 1] - F[:, 0, 1] * F[:, 1, 0]) * F[:, 2, 2]
+        # C - I = H + H^T + H^T H, from H (not from C: the strains of a
+        # barely touched body are far below the round-off of C's unit diagonal)
+        H2 = np.empty((n, 2, 2))
+        H2[:, 0, 0], H2[:, 1, 1], H2[:, 0, 1], H2[:, 1, 0] = H[0], H[1], H[3], H[4]
+        A2 = H2 + np.swapaxes(H2, 1, 2) + np.einsum("nki,nkj->nij", H2, H2)
+        mu = np.empty((n, 3))
+        mu[:, :2], Q2 = _eigen2(A2)
+        mu[:, 2] = H[2] * (2.0 + H[2])
+        self.mu = mu  # eigenvalues of C - I
+        lam = 1.0 + mu
+        Q = np.zeros((n, 3, 3))
+        Q[:, :2, :2] = Q2
+        Q[:, 2, 2] = 1.0
+        self.lam, self.Q = lam, Q
+        self.admissible = bool(np.all(self.J > 0) and np.all(mu > -1.0))
+        li, lj = lam[:, :, None], lam[:, None, :]
+        self.f1 = divided_log(li, lj)  # (n, 3, 3)
+
+    def rotated(self, A):
+        """Q^T A Q of (n, ..., 3, 3) tensors."""
+        return np.einsum("nki,n...kl,nlj->n...ij", self.Q, A, self.Q, optimize=True)
+
+    def back(self, A):
+        """Q A Q^T."""
+        return np.einsum("nik,n...kl,njl->n...ij", self.Q, A, self.Q, optimize=True)
+
+    def log_strain(self):
+        """E = 1/2 ln C, stored components (4, n)."""
+        E = self.back(np.einsum("ni,ij->nij", 0.5 * np.log1p(self.mu), np.eye(3)))
+        return _components(E).T
+
+    def projection(self):
+        """P = 2 dE/dC as a (n, 4, 4) matrix on stored components: the
+        components of P[basis tensor b] in column b."""
+        Bp = self.rotated(np.broadcast_to(_BASIS, (len(self.lam), 4, 3, 3)))
+        return np.swapaxes(_components(self.back(2.0 * self.f1[:, None] * Bp)), 1, 2)
+
+    def second_piola(self, T):
+        """S = P[T] (stored components (4, n)) of the log-space stress T."""
+        Tp = self.rotated(_tensor(T))
+        return _components(self.back(2.0 * self.f1 * Tp)).T
+
+    def geometric(self, T):
+        """T : L = 4 d^2E/dC^2 [T, .] as a (n, 4, 4) matrix on stored components."""
+        lam = self.lam
+        f2 = divided_log2(lam[:, :, None, None], lam[:, None, :, None], lam[:, None, None, :])
+        Tp = self.rotated(_tensor(T))  # (n, 3, 3)
+        Bp = self.rotated(np.broadcast_to(_BASIS, (len(lam), 4, 3, 3)))  # (n, 4, 3, 3)
+        X = (np.einsum("nikj,nik,nbkj->nbij", f2, Tp, Bp, optimize=True)
+             + np.einsum("nikj,nbik,nkj->nbij", f2, Bp, Tp, optimize=True))
+        return np.swapaxes(_components(self.back(4.0 * X)), 1, 2)
+
+    def strain_variation(self):
+        """B_NL (n, 4, 5): delta E_GL = sym(F^T delta H) in stored components
+        of the gradient components [rr, zz, 33, rz, zr] (`FiniteStrain`)."""
+        F = self.F
+        n = len(F)
+        Bn = np.zeros((n, 4, 5))
+        Frr, Fzz, Ftt, Frz, Fzr = F[:, 0, 0], F[:, 1, 1], F[:, 2, 2], F[:, 0, 1], F[:, 1, 0]
+        Bn[:, 0, 0], Bn[:, 0, 4] = Frr, Fzr
+        Bn[:, 1, 1], Bn[:, 1, 3] = Fzz, Frz
+        Bn[:, 2, 2] = Ftt
+        Bn[:, 3, 0], Bn[:, 3, 1], Bn[:, 3, 3], Bn[:, 3, 4] = 0.5 * Frz, 0.5 * Fzr, 0.5 * Frr, 0.5 * Fzz
+        return Bn
+
+
+class FiniteStrain:
+    """Total Lagrangian kinematics with the logarithmic strain (module docstring)."""
+
+    finite = True
+
+    def __init__(self, disc):
+        self.disc = disc
+        self.shape = disc.weights.shape
+        basis = disc.basis
+        nloc = disc.element_dofs.shape[0]
+        ne, nq = self.shape
+        G = np.zeros((5, nloc, ne, nq))
+        for i, (phi, *_) in enumerate(basis.basis):
+            g = phi.grad
+            G[0, i], G[1, i] = g[0][0], g[1][1]
+            if disc.axisymmetric:
+                G[2, i] = np.asarray(phi)[0] / disc.x[0]
+            G[3, i], G[4, i] = g[0][1], g[1][0]
+        rows = np.broadcast_to(np.arange(5 * ne * nq).reshape(5, 1, ne, nq), G.shape)
+        cols = np.broadcast_to(disc.element_dofs[None, :, :, None], G.shape)
+        self.Gsp = sp.csr_matrix((G.ravel(), (rows.ravel(), cols.ravel())),
+                                 shape=(5 * ne * nq, disc.ndofs))
+        self.GspT = self.Gsp.T.tocsr()
+        self._Gm = np.ascontiguousarray(np.transpose(G, (2, 3, 0, 1)))  # (ne, nq, 5, 12)
+        self.w = disc.weights.ravel()
+
+    def strain(self, u):
+        """(E (4, ne, nq) the Lagrangian Hencky strain, `Deformation`).
+
+        An inverted point (det F <= 0) fails the Newton try (`StepFailed`),
+        so that the step is cut."""
+        H = (self.Gsp @ u).reshape(5, -1)
+        d = Deformation(H)
+        if not d.admissible:
+            raise StepFailed("an element is inverted (det F <= 0)", 0)
+        return d.log_strain().reshape((4,) + self.shape), d
+
+    def internal_force(self, deformation, stress):
+        S = deformation.second_piola(stress.reshape(4, -1))
+        Bn = deformation.strain_variation()  # (n, 4, 5)
+        h = np.einsum("nai,an->in", Bn, METRIC[:, None] * S * self.w)
+        return self.GspT @ h.ravel()
+
+    def element_matrices(self, deformation, stress, D):
+        """int Grad^T (B_NL^T M B_NL + Sigma) Grad dV_0 per element, (ne, 12, 12):
+        M = P^T D P + T : L the material tangent dS/dE_GL, Sigma the initial
+        stress matrix of S on the gradient components."""
+        ne, nq = self.shape
+        n = ne * nq
+        T = stress.reshape(4, -1)
+        D = np.asarray(D)
+        Dn = np.broadcast_to(D, (n, 4, 4)) if D.ndim == 2 else \
+            np.transpose(D.reshape(4, 4, n), (2, 0, 1))
+        P = deformation.projection()
+        M = np.matmul(P, np.matmul(Dn, P)) + deformation.geometric(T)
+        Bn = deformation.strain_variation()
+        K5 = np.matmul(np.swapaxes(Bn, 1, 2), METRIC[None, :, None] * np.matmul(M, Bn))
+        S = deformation.second_piola(T)  # (4, n)
+        Srr, Szz, Stt, Srz = S
+        K5[:, 0, 0] += Srr
+        K5[:, 4, 4] += Srr
+        K5[:, 3, 3] += Szz
+        K5[:, 1, 1] += Szz
+        K5[:, 2, 2] += Stt
+        K5[:, 0, 3] += Srz
+        K5[:, 3, 0] += Srz
+        K5[:, 4, 1] += Srz
+        K5[:, 1, 4] += Srz
+        K5 *= self.w[:, None, None]
+        Gm = self._Gm.reshape(n, 5, -1)
+        Ke = np.matmul(np.swapaxes(Gm, 1, 2), np.matmul(K5, Gm))  # (n, 12, 12)
+        return Ke.reshape(ne, nq, *Ke.shape[1:]).sum(axis=1)
+
+
+def kinematics_for(disc, name: str):
+    """The kinematics object of `name` (`KINEMATICS`) on discretization `disc`."""
+    if name == "small":
+        return SmallStrain(disc)
+    if name == "finite":
+        return FiniteStrain(disc)
+    raise ValueError(f"kinematics must be one of {KINEMATICS}, got {name!r}")
