@@ -127,3 +127,22 @@ def test_tail_slope_ignores_one_jumping_step():
     # a geometric elastic sequence: only the last step lies in the window (its last tangent)
     g = np.geomspace(1e-3, 1.0, 40)
     assert gathering.tail_slope(g, g**1.5) == pytest.approx((1 - g[-2] ** 1.5) / (1 - g[-2]), rel=1e-12)
+
+
+@pytest.mark.parametrize("kind, effects", [("elastic", set()), ("adhesive", {"adhesion"}),
+                                           ("hertz", set())])
+def test_finite_strain_is_refused_without_plasticity(kind, effects):
+    """The finite-strain kinematics are the inelastic asperity's; elsewhere the effect is an
+    error naming it, not silently dropped."""
+    material = Material("elastic", youngs_modulus=2e11, poisson=0.3)
+    with pytest.raises(ValueError, match="effect `finite_strain` needs an FE asperity with "
+                                         "effect `plasticity`"):
+        KINDS[kind].check(asperity(model="fe", geometry="sphere"), material,
+                          frozenset(effects | {"finite_strain"}))
+    # with plasticity it is accepted, and it reaches the job as its kinematics
+    from asperity.population.kinds.inelastic import kinematics
+    steel = Material("j2", youngs_modulus=2e11, poisson=0.3, yield_stress=4e8)
+    KINDS["inelastic"].check(asperity(model="fe", geometry="sphere"), steel,
+                             frozenset({"plasticity", "finite_strain"}))
+    assert kinematics(["finite_strain", "plasticity"]) == "finite"
+    assert kinematics(["plasticity"]) == "small"

@@ -203,6 +203,27 @@ def test_hardness_rules():
     assert "saturated Bodner-Partom flow stress" in rule
 
 
+def test_large_strains_fail_small_strain_jobs_only():
+    """A share of 0.4 of the contacts beyond 8 % strain fails the limit 0.1 where the FE
+    jobs are in small-strain kinematics, and is recorded but not limited with the
+    effect finite_strain."""
+    ds = _branches(["loading", "unloading"], np.ones(5, bool)).sel(branch="loading", drop=True)
+    ds["small_strain_fraction"] = ("separation", np.full(5, 0.6), {"units": "1", "long_name": "s"})
+    steel = Material("bodner_partom", youngs_modulus=2.09e11, poisson=0.3, preset="sae_1020")
+    peaks = (SIGMA_P, 1 / CURVATURE)
+    small = validity.assess(ds, validity.plasticity_of(steel, {"plasticity"}, True), peaks,
+                            validity.Limits(**LIMITS))
+    assert not small["valid"].values.any()
+    assert str(small["validity"].values[0]) == "large_strain_fraction 0.4 > 0.1"
+    finite = validity.assess(ds, validity.plasticity_of(steel, {"plasticity", "finite_strain"}, True),
+                             peaks, validity.Limits(**LIMITS))
+    assert finite["valid"].values.all()
+    np.testing.assert_allclose(finite["large_strain_fraction"].values, 0.4, rtol=1e-12)
+    assert "large_strain_fraction: finite-strain FE asperities" in finite["valid"].attrs["not_checked"]
+    # the effect means nothing without plasticity (the kinds refuse it there)
+    assert not validity.plasticity_of(steel, {"finite_strain"}).finite_strain
+
+
 def test_limits_are_shares():
     with pytest.raises(ValueError, match="validity.contact_area_ratio"):
         validity.Limits(**{**LIMITS, "contact_area_ratio": 1.5})

@@ -57,12 +57,6 @@ from .material import METRIC
 
 #: kinematics of the inelastic driver
 KINEMATICS = ("small", "finite")
-#: (row, column) of the 4 stored components [11, 22, 33, 12] in a 3 x 3 tensor
-_COMP = (np.array([0, 1, 2, 0]), np.array([0, 1, 2, 1]))
-#: the 3 x 3 tensors of the 4 components (tensor shear: e_12 + e_21)
-_BASIS = np.zeros((4, 3, 3))
-_BASIS[0, 0, 0] = _BASIS[1, 1, 1] = _BASIS[2, 2, 2] = 1.0
-_BASIS[3, 0, 1] = _BASIS[3, 1, 0] = 1.0
 #: close eigenvalues: below this relative distance the divided differences
 #: are taken from their Taylor series
 _CLOSE = 1e-4
@@ -93,29 +87,15 @@ def divided_log2(a, b, c):
     return np.where(close, -0.25 / m**2, far)
 
 
-def _eigen2(A):
-    """Eigenvalues (n, 2) and eigenvectors (n, 2, 2, in columns) of
-    symmetric 2 x 2 matrices in closed form (errors at the round-off of the
-    matrix's own size)."""
-    a, b, c = A[:, 0, 0], A[:, 0, 1], A[:, 1, 1]
-    m, d = 0.5 * (a + c), 0.5 * (a - c)
-    r = np.hypot(d, b)
-    theta = 0.5 * np.arctan2(b, d)
-    cos, sin = np.cos(theta), np.sin(theta)
-    Q = np.empty_like(A)
-    Q[:, 0, 0], Q[:, 1, 0] = -sin, cos  # eigenvalue m - r
-    Q[:, 0, 1], Q[:, 1, 1] = cos, sin   # eigenvalue m + r
-    return np.stack((m - r, m + r), axis=1), Q
-
-
-def _tensor(comps):
-    """(4, n) stored components -> (n, 3, 3) symmetric tensors."""
-    return np.einsum("an,aij->nij", comps, _BASIS)
-
-
-def _components(tensors):
-    """(..., 3, 3) -> (..., 4) stored components."""
-    return tensors[..., _COMP[0], _COMP[1]]
+def _eigen2(a, b, e):
+    """Eigen-decomposition of the symmetric 2 x 2 matrices [[a, e], [e, b]] in
+    closed form (errors at the round-off of the matrix's own size): the
+    eigenvalues m - r, m + r and (cos, sin) of the angle theta of the second
+    eigenvector; the first is (-sin, cos)."""
+    m, d = 0.5 * (a + b), 0.5 * (a - b)
+    r = np.hypot(d, e)
+    theta = 0.5 * np.arctan2(e, d)
+    return m - r, m + r, np.cos(theta), np.sin(theta)
 
 
 class SmallStrain:
@@ -156,77 +136,83 @@ class SmallStrain:
 
 class Deformation:
     """F, the eigen-decomposition of C and the first divided differences at
-    every point (flattened, n = ne * nq), from `FiniteStrain.strain`."""
+    every point (flattened, n = ne * nq), from `FiniteStrain.strain`.
+
+    Every symmetric tensor of the axisymmetric (or plane) body has the four
+    stored components [11, 22, 33, 12]; so do its images under the
+    eigenvectors of C, Q = [[-sin, cos, 0], [cos, sin, 0], [0, 0, 1]], which
+    is symmetric and orthogonal: Q^T A Q = Q A Q^T is one (n, 4, 4) matrix
+    ``M`` on stored components, and the matrix functions of C act on
+    [11, 22, 33, 12] of the eigenbasis without coupling the hoop direction.
+    """
 
     def __init__(self, H):
-        n = H.shape[1]
-        F = np.zeros((n, 3, 3))
-        F[:, 0, 0] = 1.0 + H[0]
-        F[:, 1, 1] = 1.0 + H[1]
-        F[:, 2, 2] = 1.0 + H[2]
-        F[:, 0, 1] = H[3]  # d u_r / d Z
-        F[:, 1, 0] = H[4]  # d u_z / d R
-        self.F = F
-        self.J = (F[:, 0, 0] * F[:, 1, 1] - F[:, 0, 1] * F[:, 1, 0]) * F[:, 2, 2]
-        # C - I = H + H^T + H^T H, from H (not from C: the strains of a
+        hrr, hzz, htt, hrz, hzr = H
+        self.F = np.stack((1.0 + hrr, 1.0 + hzz, 1.0 + htt, hrz, hzr))  # [rr, zz, 33, rz, zr]
+        self.J = ((1.0 + hrr) * (1.0 + hzz) - hrz * hzr) * (1.0 + htt)
+        # C - I = H + H^T + H^T H, from H (not from F = 1 + H: the strains of a
         # barely touched body are far below the round-off of C's unit diagonal)
-        H2 = np.empty((n, 2, 2))
-        H2[:, 0, 0], H2[:, 1, 1], H2[:, 0, 1], H2[:, 1, 0] = H[0], H[1], H[3], H[4]
-        A2 = H2 + np.swapaxes(H2, 1, 2) + np.einsum("nki,nkj->nij", H2, H2)
-        mu = np.empty((n, 3))
-        mu[:, :2], Q2 = _eigen2(A2)
-        mu[:, 2] = H[2] * (2.0 + H[2])
-        self.mu = mu  # eigenvalues of C - I
-        lam = 1.0 + mu
-        Q = np.zeros((n, 3, 3))
-        Q[:, :2, :2] = Q2
-        Q[:, 2, 2] = 1.0
-        self.lam, self.Q = lam, Q
-        self.admissible = bool(np.all(self.J > 0) and np.all(mu > -1.0))
-        li, lj = lam[:, :, None], lam[:, None, :]
-        self.f1 = divided_log(li, lj)  # (n, 3, 3)
+        a = 2.0 * hrr + hrr**2 + hzr**2
+        b = 2.0 * hzz + hzz**2 + hrz**2
+        e = hrz + hzr + hrr * hrz + hzr * hzz
+        mu0, mu1, c, s = _eigen2(a, b, e)
+        self.mu = np.stack((mu0, mu1, htt * (2.0 + htt)), axis=1)  # eigenvalues of C - I
+        lam = 1.0 + self.mu
+        self.lam = lam
+        self.admissible = bool(np.all(self.J > 0) and np.all(self.mu > -1.0))
+        n = len(lam)
+        M = np.zeros((n, 4, 4))
+        s2, c2, sc = s * s, c * c, s * c
+        M[:, 0, 0], M[:, 0, 1], M[:, 0, 3] = s2, c2, -2.0 * sc
+        M[:, 1, 0], M[:, 1, 1], M[:, 1, 3] = c2, s2, 2.0 * sc
+        M[:, 2, 2] = 1.0
+        M[:, 3, 0], M[:, 3, 1], M[:, 3, 3] = -sc, sc, c2 - s2
+        self.M = M
+        # 2 f[lambda_i, lambda_j] on the stored components of the eigenbasis
+        self.p = 2.0 * divided_log(lam[:, [0, 1, 2, 0]], lam[:, [0, 1, 2, 1]])  # (n, 4)
 
-    def rotated(self, A):
-        """Q^T A Q of (n, ..., 3, 3) tensors."""
-        return np.einsum("nki,n...kl,nlj->n...ij", self.Q, A, self.Q, optimize=True)
-
-    def back(self, A):
-        """Q A Q^T."""
-        return np.einsum("nik,n...kl,njl->n...ij", self.Q, A, self.Q, optimize=True)
+    def _map(self, v):
+        """Q A Q^T of stored components (n, 4)."""
+        return np.einsum("nab,nb->na", self.M, v)
 
     def log_strain(self):
         """E = 1/2 ln C, stored components (4, n)."""
-        E = self.back(np.einsum("ni,ij->nij", 0.5 * np.log1p(self.mu), np.eye(3)))
-        return _components(E).T
+        e = np.zeros((len(self.lam), 4))
+        e[:, :3] = 0.5 * np.log1p(self.mu)
+        return self._map(e).T
 
     def projection(self):
-        """P = 2 dE/dC as a (n, 4, 4) matrix on stored components: the
-        components of P[basis tensor b] in column b."""
-        Bp = self.rotated(np.broadcast_to(_BASIS, (len(self.lam), 4, 3, 3)))
-        return np.swapaxes(_components(self.back(2.0 * self.f1[:, None] * Bp)), 1, 2)
+        """P = 2 dE/dC as a (n, 4, 4) matrix on stored components."""
+        return np.einsum("nab,nb,nbc->nac", self.M, self.p, self.M)
 
     def second_piola(self, T):
         """S = P[T] (stored components (4, n)) of the log-space stress T."""
-        Tp = self.rotated(_tensor(T))
-        return _components(self.back(2.0 * self.f1 * Tp)).T
+        return self._map(self.p * self._map(T.T)).T
 
     def geometric(self, T):
-        """T : L = 4 d^2E/dC^2 [T, .] as a (n, 4, 4) matrix on stored components."""
+        """T : L = 4 d^2E/dC^2 [T, .] as a (n, 4, 4) matrix on stored components.
+
+        In the eigenbasis, Y_ij = sum_k f[l_i, l_k, l_j] (T_ik B_kj + B_ik T_kj)
+        is linear in B; with T and B without in-plane/hoop coupling only five
+        second divided differences enter."""
         lam = self.lam
-        f2 = divided_log2(lam[:, :, None, None], lam[:, None, :, None], lam[:, None, None, :])
-        Tp = self.rotated(_tensor(T))  # (n, 3, 3)
-        Bp = self.rotated(np.broadcast_to(_BASIS, (len(lam), 4, 3, 3)))  # (n, 4, 3, 3)
-        X = (np.einsum("nikj,nik,nbkj->nbij", f2, Tp, Bp, optimize=True)
-             + np.einsum("nikj,nbik,nkj->nbij", f2, Bp, Tp, optimize=True))
-        return np.swapaxes(_components(self.back(4.0 * X)), 1, 2)
+        l0, l1, l2 = lam[:, 0], lam[:, 1], lam[:, 2]
+        g000, g111, g222 = -0.25 / l0**2, -0.25 / l1**2, -0.25 / l2**2
+        g001, g011 = divided_log2(l0, l0, l1), divided_log2(l0, l1, l1)
+        t = self._map(T.T)  # T in the eigenbasis, (n, 4)
+        L = np.zeros((len(lam), 4, 4))
+        L[:, 0, 0], L[:, 0, 3] = 2.0 * g000 * t[:, 0], 2.0 * g001 * t[:, 3]
+        L[:, 1, 1], L[:, 1, 3] = 2.0 * g111 * t[:, 1], 2.0 * g011 * t[:, 3]
+        L[:, 2, 2] = 2.0 * g222 * t[:, 2]
+        L[:, 3, 0], L[:, 3, 1] = g001 * t[:, 3], g011 * t[:, 3]
+        L[:, 3, 3] = g001 * t[:, 0] + g011 * t[:, 1]
+        return 4.0 * np.einsum("nab,nbc,ncd->nad", self.M, L, self.M, optimize=True)
 
     def strain_variation(self):
         """B_NL (n, 4, 5): delta E_GL = sym(F^T delta H) in stored components
         of the gradient components [rr, zz, 33, rz, zr] (`FiniteStrain`)."""
-        F = self.F
-        n = len(F)
-        Bn = np.zeros((n, 4, 5))
-        Frr, Fzz, Ftt, Frz, Fzr = F[:, 0, 0], F[:, 1, 1], F[:, 2, 2], F[:, 0, 1], F[:, 1, 0]
+        Frr, Fzz, Ftt, Frz, Fzr = self.F
+        Bn = np.zeros((len(Frr), 4, 5))
         Bn[:, 0, 0], Bn[:, 0, 4] = Frr, Fzr
         Bn[:, 1, 1], Bn[:, 1, 3] = Fzz, Frz
         Bn[:, 2, 2] = Ftt
@@ -257,7 +243,11 @@ class FiniteStrain:
         self.Gsp = sp.csr_matrix((G.ravel(), (rows.ravel(), cols.ravel())),
                                  shape=(5 * ne * nq, disc.ndofs))
         self.GspT = self.Gsp.T.tocsr()
-        self._Gm = np.ascontiguousarray(np.transpose(G, (2, 3, 0, 1)))  # (ne, nq, 5, 12)
+        Gm = np.transpose(G, (2, 3, 0, 1))  # (ne, nq, 5, 12)
+        self._Gm = np.ascontiguousarray(Gm.reshape(ne * nq, 5, nloc))
+        # (ne, 12, nq * 5): Grad^T of all points of an element side by side
+        self._GmT = np.ascontiguousarray(np.swapaxes(Gm, 2, 3).transpose(0, 2, 1, 3)
+                                         .reshape(ne, nloc, nq * 5))
         self.w = disc.weights.ravel()
 
     def strain(self, u):
@@ -265,8 +255,7 @@ class FiniteStrain:
 
         An inverted point (det F <= 0) fails the Newton try (`StepFailed`),
         so that the step is cut."""
-        H = (self.Gsp @ u).reshape(5, -1)
-        d = Deformation(H)
+        d = Deformation((self.Gsp @ u).reshape(5, -1))
         if not d.admissible:
             raise StepFailed("an element is inverted (det F <= 0)", 0)
         return d.log_strain().reshape((4,) + self.shape), d
@@ -279,20 +268,19 @@ class FiniteStrain:
 
     def element_matrices(self, deformation, stress, D):
         """int Grad^T (B_NL^T M B_NL + Sigma) Grad dV_0 per element, (ne, 12, 12):
-        M = P^T D P + T : L the material tangent dS/dE_GL, Sigma the initial
+        M = P D P + T : L the material tangent dS/dE_GL, Sigma the initial
         stress matrix of S on the gradient components."""
         ne, nq = self.shape
         n = ne * nq
         T = stress.reshape(4, -1)
         D = np.asarray(D)
-        Dn = np.broadcast_to(D, (n, 4, 4)) if D.ndim == 2 else \
-            np.transpose(D.reshape(4, 4, n), (2, 0, 1))
+        Dn = D[None] if D.ndim == 2 else np.transpose(D.reshape(4, 4, n), (2, 0, 1))
         P = deformation.projection()
-        M = np.matmul(P, np.matmul(Dn, P)) + deformation.geometric(T)
+        M = np.einsum("nab,nbc,ncd->nad", P, np.broadcast_to(Dn, (n, 4, 4)), P, optimize=True)
+        M += deformation.geometric(T)
         Bn = deformation.strain_variation()
-        K5 = np.matmul(np.swapaxes(Bn, 1, 2), METRIC[None, :, None] * np.matmul(M, Bn))
-        S = deformation.second_piola(T)  # (4, n)
-        Srr, Szz, Stt, Srz = S
+        K5 = np.einsum("nai,a,nab,nbj->nij", Bn, METRIC, M, Bn, optimize=True)
+        Srr, Szz, Stt, Srz = deformation.second_piola(T)
         K5[:, 0, 0] += Srr
         K5[:, 4, 4] += Srr
         K5[:, 3, 3] += Szz
@@ -303,9 +291,8 @@ class FiniteStrain:
         K5[:, 4, 1] += Srz
         K5[:, 1, 4] += Srz
         K5 *= self.w[:, None, None]
-        Gm = self._Gm.reshape(n, 5, -1)
-        Ke = np.matmul(np.swapaxes(Gm, 1, 2), np.matmul(K5, Gm))  # (n, 12, 12)
-        return Ke.reshape(ne, nq, *Ke.shape[1:]).sum(axis=1)
+        KG = np.matmul(K5, self._Gm)  # (n, 5, 12)
+        return np.matmul(self._GmT, KG.reshape(ne, nq * 5, -1))
 
 
 def kinematics_for(disc, name: str):

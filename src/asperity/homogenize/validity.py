@@ -30,7 +30,9 @@ checked against the assumptions this rests on, with limits set in the scene
    density (`peak_statistics`).  GW: psi < 0.6 deforms elastically at all but
    extreme loads, psi > 1 plastically at the lightest.
 3. **Small strain** (report 7.3: every strain below 8 %):
-   ``large_strain_fraction`` = 1 - ``small_strain_fraction`` of FE asperities.
+   ``large_strain_fraction`` = 1 - ``small_strain_fraction`` of FE asperities;
+   recorded, not limited, where the jobs are in finite-strain kinematics
+   (effect ``finite_strain``, `asperity.fe.kinematics`).
 4. **Independent asperities.**  The expectation (2.5) sums asperities that do
    not feel each other.  ``contact_area_ratio`` grows with the load, and
    ``interaction`` is the mean contact radius over half the mean spacing of
@@ -119,6 +121,8 @@ class Plasticity:
     by_flag  first yield is the FE jobs' ``elastic`` flag
     modelled  the asperities are inelastic (effect ``plasticity``): the yielded
         share is recorded, not limited
+    finite_strain  their FE jobs are in finite-strain kinematics (effect
+        ``finite_strain``): the large-strain share is recorded, not limited
     """
 
     plane_strain_modulus: float
@@ -128,6 +132,7 @@ class Plasticity:
     yield_rule: str
     by_flag: bool
     modelled: bool
+    finite_strain: bool = False
 
 
 def hardness_of(material: Material) -> tuple[float, str]:
@@ -174,7 +179,8 @@ def plasticity_of(material: Material, effects, fe_flag: bool = False) -> Plastic
         p_lim, p_rule = h, f"mean contact pressure F/A above the hardness {h / 1e6:.4g} MPa"
     else:
         p_lim, p_rule = math.nan, "not checked: " + rule
-    return Plasticity(e_prime, h, rule, p_lim, p_rule, by_flag, modelled)
+    return Plasticity(e_prime, h, rule, p_lim, p_rule, by_flag, modelled,
+                      modelled and "finite_strain" in set(effects))
 
 
 def with_indicators(asperities: xr.Dataset, plasticity: Plasticity | None) -> xr.Dataset:
@@ -315,11 +321,13 @@ def _limit_attrs(limits: Limits) -> dict[str, float]:
 def _checks(out: xr.Dataset, plasticity: Plasticity | None, psi: float, limits: Limits):
     """(name, values (array or scalar), limit) in the order they are reported."""
     elastic = plasticity is not None and not plasticity.modelled
+    finite = plasticity is not None and plasticity.finite_strain
     checks = []
     if elastic and limits.plasticity_index is not None and math.isfinite(psi):
         checks.append(("plasticity_index", psi, limits.plasticity_index))
     for name in INDICATORS:
-        if name not in out or (name == "yielded_fraction" and not elastic):
+        if name not in out or (name == "yielded_fraction" and not elastic) or \
+                (name == "large_strain_fraction" and finite):
             continue
         checks.append((name, out[name], getattr(limits, name)))
     return checks
@@ -333,6 +341,9 @@ def _unchecked(out: xr.Dataset, plasticity: Plasticity | None, limits: Limits) -
         notes.append("yield: the asperities are inelastic (yielded_fraction recorded, not limited)")
     if limits.plasticity_index is None:
         notes.append("plasticity_index: no limit set (validity.plasticity_index)")
+    if plasticity is not None and plasticity.finite_strain and "large_strain_fraction" in out:
+        notes.append("large_strain_fraction: finite-strain FE asperities (effect finite_strain; "
+                     "recorded, not limited)")
     for name, why in (("extrapolated_load_fraction", "no extrapolated responses (analytic asperities)"),
                       ("large_strain_fraction", "no strain record (elastic or analytic asperities)"),
                       ("interaction", "no contact radius")):

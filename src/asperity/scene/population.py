@@ -11,7 +11,7 @@ from asperity.scene.units import Units, parses
 Config = Mapping[str, Any]
 
 #: what a scene may ask for (config/schema.yaml, `effects`)
-EFFECTS = ("plasticity", "damage", "adhesion", "unloading", "friction", "sliding")
+EFFECTS = ("plasticity", "damage", "adhesion", "unloading", "friction", "sliding", "finite_strain")
 NM = 1e-9
 
 

@@ -52,6 +52,9 @@ class Kind:
         if "unloading" in effects:
             raise ValueError("effect `unloading` needs an FE asperity with effect `plasticity` "
                              "(an elastic asperity unloads along its loading curve)")
+        if "finite_strain" in effects:
+            raise ValueError("effect `finite_strain` needs an FE asperity with effect `plasticity` "
+                             "(the finite-strain kinematics are the inelastic asperity's)")
 
     def grid(self, base: np.ndarray, largest: float, count: int, adhesion: Adhesion | None) -> np.ndarray:
         """The interference grid [m] of the plan; `base` is the geometric grid of

@@ -9,7 +9,9 @@ range, or to its unloading level and back to zero force
 level (`asperity.population.geometry.unloading_levels`), on one mesh adapted to the
 asperity's whole range so that the loading branches of its levels coincide (the
 corners of the blend, 8.3). Coupled cosine hills (2.5.1) are loaded only: one job per
-sample, or per aspect of their family under ``scaling: self_similar`` (8.2.2).
+sample, or per aspect of their family under ``scaling: self_similar`` (8.2.2). With the
+effect ``finite_strain`` the jobs are in finite-strain kinematics (`asperity.fe.kinematics`);
+the effect enters the spec with the others, so it reruns them.
 """
 
 from __future__ import annotations
@@ -39,6 +41,11 @@ def history(level: float, top: float, velocity: float | None):
     return fe.History.load_unload(w_max, v)
 
 
+def kinematics(effects) -> str:
+    """The FE job's kinematics: finite strain with the effect ``finite_strain``."""
+    return "finite" if "finite_strain" in effects else "small"
+
+
 class Inelastic(FiniteElementKind):
     name = "inelastic"
 
@@ -46,7 +53,7 @@ class Inelastic(FiniteElementKind):
         if "unloading" in effects and not asperity.shift_invariant:
             raise ValueError("effect `unloading` needs an asperity whose response does not depend "
                              "on its peak height (mapping: representative, sphere or paraboloid)")
-        super().check(asperity, material, effects - {"unloading"})
+        super().check(asperity, material, effects - {"unloading", "finite_strain"})
 
     def scalable(self, asperity, material, effects):
         return self_similar(asperity, material, effects)
@@ -84,7 +91,8 @@ class Inelastic(FiniteElementKind):
             path = history(level, top, spec.get("velocity"))
             ds = fe.solve_asperity_history(geometry, material, path, accuracy=spec["accuracy"],
                                            mesh_levels=np.geomspace(0.01 * top, top, 6),
-                                           initial_time_step=FIRST_STEP * top / path.velocity(0.0))
+                                           initial_time_step=FIRST_STEP * top / path.velocity(0.0),
+                                           kinematics=kinematics(spec["effects"]))
         except (fe.ConvergenceError, fe.ContactZoneError) as err:
             detail = "" if math.isnan(level) else f", unloading from {level:.6g} m"
             raise self.failed(key, curvature, err, detail) from err
