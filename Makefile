@@ -8,7 +8,7 @@ CORES ?= 2
 export OPENBLAS_NUM_THREADS = 1
 export OMP_NUM_THREADS = 1
 
-.PHONY: all reproduce test test-fast bench time-scenes time-jobs time-adhesion time-plane-strain time-reference time-surface time-sliding time-remesh compare-results figures clean-results
+.PHONY: all reproduce test test-fast bench time-scenes time-jobs time-adhesion time-plane-strain time-reference time-surface time-sliding time-remesh time-finite-strain compare-results figures clean-results
 
 all: reproduce
 
@@ -81,6 +81,12 @@ time-sliding: $(STAMP)
 REMESH_ARGS ?= --remesh on off
 time-remesh: $(STAMP)
 	$(BIN)/python benchmarks/remesh.py $(REMESH_ARGS)
+
+# Finite against small strain (a J2 sphere at 2 % strain, the steepest coupled steel
+# hill pressed to its amplitude) at draft and standard: CPU, force, area, strain.
+# Writes benchmarks/results/finite-strain.json.
+time-finite-strain: $(STAMP)
+	$(BIN)/python benchmarks/finite_strain.py
 
 # Form removal, statistics and peaks of a 2048 x 2048 map with 10 % undefined points,
 # beside SurfaceTopography's rms height, gradient and curvature of the same map;

@@ -186,3 +186,21 @@ def test_scene_accuracy_figure_lines():
             and line.get_linestyle() != ":"]
     assert len(data) == 3
     assert len(unloading.get_lines()) == 2 + 1  # unloads' pressure, area; its reference line
+
+
+def test_deviation_over_the_valid_range_only():
+    """With the reference's `valid`, the deviation is also taken where it holds: valid at
+    0..2 um leaves the 3 % at 2 um the largest (the 4 % at 4 um is in the invalid part)."""
+    mask = np.array([True, True, True, False, False, False, False])
+    dev, at, n = branch_deviation(H_REF, P_REF * (1 + ERR), H_REF, P_REF, mask=mask)
+    assert dev == pytest.approx(0.03, rel=1e-12) and at == pytest.approx(2 * UM, rel=1e-12) and n == 3
+    runs = _study()
+    for preset in ("draft", "standard", "fine"):
+        runs[("loads", preset)]["valid"] = ("separation", mask, {"units": "1", "long_name": "valid"})
+    ds = scene_accuracy(runs, ["unloads", "loads"], ["draft", "standard", "fine"])
+    sel = dict(scene="loads", branch="loading", quantity="nominal_pressure")
+    assert float(ds["valid_deviation"].sel(**sel, preset="draft")) == pytest.approx(0.03, rel=1e-12)
+    assert float(ds["valid_deviation"].sel(**sel, preset="standard")) == pytest.approx(0.0075, rel=1e-12)
+    assert int(ds["valid_separations"].sel(**sel, preset="draft")) == 3
+    # a scene without `valid` has no valid deviation
+    assert np.isnan(ds["valid_deviation"].sel(scene="unloads")).all()

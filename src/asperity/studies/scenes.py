@@ -27,6 +27,8 @@ and where the largest deviation lies, are stored beside it, as is the largest
 share of contacting asperities the gather extrapolated beyond their FE job's
 last level: where it is large, the deviation measures the extrapolation (the
 secant of the last two steps, `asperity.population.gather`) as much as the mesh.
+The same deviation over the separations where the reference run holds (its
+``valid``, `asperity.homogenize.validity`) is ``valid_deviation``.
 """
 
 from __future__ import annotations
@@ -66,13 +68,14 @@ SAME_SEPARATION = 1e-9
 def branch_deviation(
     separation: np.ndarray, values: np.ndarray,
     reference_separation: np.ndarray, reference: np.ndarray,
-    threshold: float = 1e-3,
+    threshold: float = 1e-3, mask: np.ndarray | None = None,
 ) -> tuple[float, float, int]:
     """Largest relative deviation of `values` from `reference` on one branch.
 
     Compared at the separations both grids hold (to `SAME_SEPARATION`
     relative), where the reference is finite and above `threshold` times its
-    largest value, and `values` finite.  Returns (deviation, separation of
+    largest value, and `values` finite; with `mask` (on the reference's
+    separations) only where it is true.  Returns (deviation, separation of
     the largest deviation (nan where the deviation is 0), number of
     separations compared); (nan, nan, 0) when none qualifies.
     """
@@ -89,6 +92,8 @@ def branch_deviation(
     top = np.nanmax(np.abs(qr))
     qp = np.where(common, q[match], np.nan)
     use = common & np.isfinite(qr) & (np.abs(qr) > threshold * top) & np.isfinite(qp)
+    if mask is not None:
+        use &= np.asarray(mask, bool)
     if not use.any():
         return np.nan, np.nan, 0
     rel = np.abs(qp[use] - qr[use]) / np.abs(qr[use])
@@ -136,6 +141,7 @@ def scene_accuracy(
     shape = (len(scenes), len(presets), len(quantities), len(BRANCHES))
     deviation, where = np.full(shape, np.nan), np.full(shape, np.nan)
     count = np.zeros(shape, int)
+    valid_deviation, valid_count = np.full(shape, np.nan), np.zeros(shape, int)
     cost = {name: np.full((len(scenes), len(presets)), np.nan) for name in COST_ATTRS}
     extrapolated = np.full((len(scenes), len(presets)), np.nan)
     for i, s in enumerate(scenes):
@@ -158,6 +164,11 @@ def scene_accuracy(
                                          f"{reference} and {p}")
                     deviation[i, j, k, b], where[i, j, k, b], count[i, j, k, b] = branch_deviation(
                         run["separation"].values, qp, ref["separation"].values, qr, threshold)
+                    valid = _branch(ref, "valid", branch) if "valid" in ref else None
+                    if valid is not None:
+                        valid_deviation[i, j, k, b], _, valid_count[i, j, k, b] = branch_deviation(
+                            run["separation"].values, qp, ref["separation"].values, qr, threshold,
+                            mask=valid)
     dims4 = ("scene", "preset", "quantity", "branch")
     data = {
         "deviation": (dims4, deviation, attrs(
@@ -167,6 +178,11 @@ def scene_accuracy(
             "m", "separation at which the largest deviation occurs")),
         "compared_separations": (dims4, count, attrs(
             "1", "number of separations compared (common to both runs, above the threshold)")),
+        "valid_deviation": (dims4, valid_deviation, attrs(
+            "1", f"the deviation over the separations where the {reference} run is valid "
+            "(its interface.nc `valid`; NaN where none is)")),
+        "valid_separations": (dims4, valid_count, attrs(
+            "1", f"number of separations compared where the {reference} run is valid")),
     }
     for name, (units, long_name) in COST_ATTRS.items():
         data[name] = (("scene", "preset"), cost[name], attrs(units, long_name))
