@@ -186,3 +186,39 @@ def test_finite_kinematics_agree_with_small_at_small_strain(spheres):
         a = [float(np.interp(w, ds.interference, ds.contact_area)) for ds in (small, finite)]
         assert f[1] == pytest.approx(f[0], rel=2e-3)
         assert a[1] == pytest.approx(a[0], rel=1e-2)
+
+
+#: the steel hill of `benchmarks/finite_strain.py` at standard (make time-finite-strain,
+#: benchmarks/results/finite-strain.json): force [N] and contact area [m^2] at w = C/2 and C
+STEEL_HILL_STANDARD = {0.5: (0.08503, 9.372e-11), 1.0: (0.2303, 2.641e-10)}
+
+
+@pytest.mark.slow
+def test_steepest_coupled_steel_hill_flattened_in_finite_strain():
+    """Hard case: the steepest hill of steel_glass_bead_coupled (aspect q = 1.28, slope
+    k C = 1.13, SAE 1020) pressed to its amplitude C as its FE job is, where small strain
+    reports strains of 600-775 %. In finite strain the draft run completes and is within
+    3 % of the standard run of the benchmark in force and contact area (measured: 1.4 %
+    and 0.7 % at C/2, 2.0 % and 2.4 % at C); the mean contact pressure lies between the
+    saturated flow stress and Tabor's 2.8 times it (a plastic contact's constraint)."""
+    from asperity.fe.bodner_partom import BodnerPartom
+    from asperity.fe.geometry import CosineHill
+    from asperity.uniaxial.point import uniaxial_flow_stress
+
+    C = 5e-6
+    hill = CosineHill(C, math.sqrt(1.28) / C)
+    steel = BodnerPartom.sae_1020()
+    ds = solve_asperity_history(hill, steel, History.loading(C, 0.25e-6), accuracy="draft",
+                                kinematics="finite", mesh_levels=np.geomspace(0.01 * C, C, 6),
+                                initial_time_step=1e-4 * C / 0.25e-6)
+    assert ds.attrs["completed"] == 1
+    assert np.all(np.isfinite(ds.force.values)) and np.all(np.isfinite(ds.contact_area.values))
+    w = ds.interference.values / C
+    flow = uniaxial_flow_stress(steel, 1e-3, hardness=steel.Z1)  # saturated, as for the hardness
+    for at, (force, area) in STEEL_HILL_STANDARD.items():
+        f = float(np.interp(at, w, ds.force.values))
+        a = float(np.interp(at, w, ds.contact_area.values))
+        assert f == pytest.approx(force, rel=0.03)
+        assert a == pytest.approx(area, rel=0.03)
+        assert flow < f / a < 2.8 * flow
+    assert float(ds.max_equivalent_strain[-1]) > 0.5  # far beyond small strain
