@@ -44,6 +44,18 @@ before the fold and the state after the jump are both recorded,
 physical path under displacement control; the unstable branch that joins
 the two is not traced.
 
+At a large Tabor parameter the branch before the jump-off fold is steep
+over a long stretch (du/dw ~ (w - w_fold)^(-1/2) over many ring elements
+peeling one by one) and the bisection in w can stall there: where it has
+cut a requested step MAX_HALVINGS times (or a jump fails at the smallest
+step), the branch is instead followed by its arc length in (u, w)
+(pseudo-arc-length continuation, `_FoldPath`), which stays regular
+through the fold, until dw/ds changes sign; the fold so bracketed is
+located to ``min_step * d`` and the jump solved from the stable state
+there to ``min_step * d`` beyond it (`_through_fold`).  A stretch that
+turns out to have no fold is followed to the step's end.  Paths on which
+the bisection does not stall are unchanged.
+
 Sign convention: ``force`` is the total normal force of the flat on the
 asperity, compressive positive as in `solve_asperity`; adhesion makes it
 negative (attractive).  ``contact_force`` (>= 0, the penalty) and
@@ -133,7 +145,8 @@ ENERGY_ROUNDOFF = 1e-10
 #: backtracking on Pi (Armijo), trial points projected if the full step fails
 #: (`AdhesiveNewton.project`), the residual where Pi drowns in round-off
 LINE_SEARCH = EnergySearch(halvings=50, projected=True, roundoff=ENERGY_ROUNDOFF)
-#: halvings of one requested step (failed Newton or discontinuity) before giving up
+#: halvings of one requested step (failed Newton or discontinuity) before the
+#: branch is followed through its fold instead (`_through_fold`)
 MAX_HALVINGS = 60
 #: a mesh following the contact (`AdhesiveModel.window_for`): the fine band
 #: spans the contact edge and the surface within FINE_SEPARATION d of the
@@ -958,10 +971,13 @@ def _advance(state: AdhesiveState, target: float, pre: dict, step: int = 0):
     position reached continuously after all (a steep stretch) is dropped
     and the bracket reopens to the next one, never to the target.  Each
     state reached (after a jump too) is moved onto a mesh that follows its
-    contact edge (`_follow`) before the next step.  Returns (final state,
+    contact edge (`_follow`) before the next step.  Where the bisection
+    stalls (more than MAX_HALVINGS halvings since the start or the last
+    fold, or a failed solve at the smallest step) the branch is followed
+    through its fold instead (`_through_fold`).  Returns (final state,
     [(state before, state after) of each jump], iterations, halvings);
     raises `ConvergenceError` (naming `step` and the last position reached)
-    when a step fails even at the smallest size.
+    when that fails too.
     """
     d = state.model.adhesion.d
     smallest = pre["min_step"] * d
