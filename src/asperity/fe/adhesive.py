@@ -878,6 +878,7 @@ class _FoldPath:
         self.iterations = 0
 
     def inner(self, x, y) -> float:
+        """<x, y> of two (u, w) pairs (class docstring)."""
         return float(x[0] @ y[0] / self.m + x[1] * y[1])
 
     def tangent(self, s: AdhesiveState, along=None) -> tuple:
@@ -916,8 +917,7 @@ class _FoldPath:
         d, sign = self.d, self.sign
         lo, t_lo = state, self.tangent(state)
         # the first arc: the tangent's move to the goal, within FOLD_ARC
-        h = min(max(abs(goal - lo.w) / abs(t_lo[1]) / math.sqrt(self.m), FOLD_ARC[0] * d),
-                FOLD_ARC[1] * d)
+        h = min(max(abs(goal - lo.w) / abs(t_lo[1]), FOLD_ARC[0] * d), FOLD_ARC[1] * d)
         for _ in range(FOLD_POINTS):
             try:
                 new, t_new, stable = self.point(lo, t_lo, h)
