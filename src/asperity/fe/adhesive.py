@@ -809,46 +809,6 @@ def _follow(state: AdhesiveState, step: int = 0) -> tuple[AdhesiveState, int]:
                            f"the fine band does not settle on the contact (at w = {state.w:.6g} m)")
 
 
-def _on_branch(newton: AdhesiveNewton, u: np.ndarray, w: float, tangent: tuple,
-               origin: AdhesiveState, arc: float, max_iterations: int):
-    """The equilibrium an arc `arc` along `tangent` from `origin` (`_FoldPath`).
-
-    Newton on the bordered system of pseudo-arc-length continuation,
-    R(u, w) = 0 and <t, (u, w) - (u0, w0)> = arc, by block elimination:
-    J a = -R, J b = -R_w (b is du/dw), dw from the linearized arc
-    condition, du = a + dw b.  <.,.> is `_FoldPath.inner`.  J may be
-    indefinite (the unstable branch): it is factored by LU there
-    (`_Tangent.factor`).  No line search: the start is the tangent predictor
-    a small arc away.  Returns (u, w, parts, tangent J, iterations); raises
-    `StepFailed`.
-    """
-    tu, tw = tangent
-    n = u.size
-    for it in range(max_iterations + 1):
-        R, scale, parts = newton.residual(u, w)
-        tp, dtp, ta, dta = parts
-        rn = np.linalg.norm(R)
-        if not np.isfinite(rn):
-            raise StepFailed("non-finite residual on the fold path", it)
-        T = newton.tangent(dtp, dta, u, w)
-        T.factor(definite=False)
-        g = tu @ (u - origin.u) / n + tw * (w - origin.w) - arc
-        if it and rn <= max(newton.tolerance * scale,
-                            ROUNDOFF_FACTOR * newton.floor(u, w, dtp, dta)):
-            return u, w, parts, T, it
-        if it == max_iterations:
-            break
-        a = T.solve(-R)
-        b = T.solve(-(newton.zone.nodal(dtp) + newton.azone.nodal(dta)))
-        dw = (-g - tu @ a / n) / (tu @ b / n + tw)
-        step = a + dw * b
-        if not (np.all(np.isfinite(step)) and np.isfinite(dw)):
-            raise StepFailed("non-finite correction on the fold path", it)
-        u, w = u + step, w + dw
-    raise StepFailed(f"no convergence in {max_iterations} iterations on the fold path",
-                     max_iterations)
-
-
 class _FoldPath:
     """The branch of a state followed through its fold (module docstring,
     "Control and jumps").
@@ -858,7 +818,7 @@ class _FoldPath:
     (u, w) instead, with the inner product <x, y> = x_u . y_u / m + x_w y_w
     (m surface dofs: the root mean square of the surface displacement), a
     parametrization that stays regular through a fold (pseudo-arc-length
-    continuation, `_on_branch`).  The unit tangent t is +-(du/dw, 1)
+    continuation, `corrector`).  The unit tangent t is +-(du/dw, 1)
     normalized, oriented at the start towards the target and then along
     the previous one.  Steps in s (tangent predictor; an arc is halved if
     the corrector fails, moves farther than FOLD_MOVE d from the predictor
@@ -890,6 +850,42 @@ class _FoldPath:
         flip = self.inner(t, along) < 0 if along is not None else t[1] * self.sign < 0
         return (-t[0], -t[1]) if flip else t
 
+    def corrector(self, u: np.ndarray, w: float, t: tuple, origin: AdhesiveState, arc: float):
+        """The equilibrium an arc `arc` along `t` from `origin`, from (u, w).
+
+        Newton on the bordered system of pseudo-arc-length continuation,
+        R(u, w) = 0 and <t, (u, w) - (u0, w0)> = arc, by block elimination:
+        J a = -R, J b = -R_w (b is du/dw), dw from the linearized arc
+        condition, du = a + dw b.  J may be indefinite (the unstable
+        branch): it is factored by LU there (`_Tangent.factor`).  No line
+        search: the start is the tangent predictor a small arc away.
+        Returns (u, w, parts, tangent J, iterations); raises `StepFailed`.
+        """
+        newton = self.newton
+        limit = newton.max_iterations
+        for it in range(limit + 1):
+            R, scale, parts = newton.residual(u, w)
+            tp, dtp, ta, dta = parts
+            rn = np.linalg.norm(R)
+            if not np.isfinite(rn):
+                raise StepFailed("non-finite residual on the fold path", it)
+            T = newton.tangent(dtp, dta, u, w)
+            T.factor(definite=False)
+            if it and rn <= max(newton.tolerance * scale,
+                                ROUNDOFF_FACTOR * newton.floor(u, w, dtp, dta)):
+                return u, w, parts, T, it
+            if it == limit:
+                break
+            a = T.solve(-R)
+            b = T.solve(-(newton.zone.nodal(dtp) + newton.azone.nodal(dta)))
+            g = self.inner(t, (u - origin.u, w - origin.w)) - arc
+            dw = -(g + self.inner(t, (a, 0.0))) / self.inner(t, (b, 1.0))
+            step = a + dw * b
+            if not (np.all(np.isfinite(step)) and np.isfinite(dw)):
+                raise StepFailed("non-finite correction on the fold path", it)
+            u, w = u + step, w + dw
+        raise StepFailed(f"no convergence in {limit} iterations on the fold path", limit)
+
     def point(self, s: AdhesiveState, t: tuple, arc: float):
         """The branch an arc `arc` from s along t, its tangent and whether it
         is stable (J positive definite); `StepFailed` if the corrector fails
@@ -897,7 +893,7 @@ class _FoldPath:
         newton = self.newton
         u0, w0 = s.u + arc * t[0], s.w + arc * t[1]
         try:
-            u, w, parts, T, its = _on_branch(newton, u0, w0, t, s, arc, newton.max_iterations)
+            u, w, parts, T, its = self.corrector(u0, w0, t, s, arc)
         except StepFailed as exc:
             self.iterations += exc.iterations
             raise
