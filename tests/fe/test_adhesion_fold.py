@@ -66,7 +66,7 @@ def test_forced_fold_path_finds_the_bisections_jumps(monkeypatch):
     assert forced.attrs["pull_off_force"] == pytest.approx(P, rel=1e-6)
     # both locate the folds to min_step d = 0.002 d, on a branch whose edge peels
     # node by node in snaps of a few thousandths of d (measured: jump-in 3e-4 d,
-    # jump-off 5e-4 d apart; 0.0056 d with a first arc 1 / sqrt(m) too short)
+    # jump-off 5e-4 d apart)
     for attr in ("jump_in_interference", "jump_off_interference"):
         assert abs(forced.attrs[attr] - plain.attrs[attr]) <= 0.02 * D, attr
     # and land on the same branch: the force after each jump
