@@ -24,9 +24,10 @@ is asserted: speed is measured here, not in the tests.
     python benchmarks/adhesion_cost.py --no-large   # parts 1-3, part 4 kept
     python benchmarks/adhesion_cost.py --only-large # part 4 alone, the other
                                                     # parts kept from the JSON
-    python benchmarks/adhesion_cost.py --only-large --radii 300  # one radius: the
-                                                    # other radii's rows kept (two
-                                                    # such runs may go side by side)
+    python benchmarks/adhesion_cost.py --only-large --radii 300 --accuracies draft
+                                                    # one radius and preset: the other
+                                                    # rows kept (such runs may go side
+                                                    # by side)
 """
 
 from __future__ import annotations
@@ -89,12 +90,24 @@ def jkr_jump_off(mu: float, d: float) -> float:
     return -0.75 * math.pi ** (2 / 3) * mu * d
 
 
+def draft_vs_standard(rows: list[dict]) -> list[dict]:
+    """The rows, each standard one with ``pull_off_draft_vs_standard`` (draft / standard
+    - 1) where the same radius has a draft row."""
+    pulls = {(r["tip_radius_um"], r["accuracy"]): r["pull_off_force_N"]
+             for r in rows if "pull_off_force_N" in r}
+    for r in rows:
+        if r["accuracy"] == "standard" and (r["tip_radius_um"], "draft") in pulls \
+                and "pull_off_force_N" in r:
+            r["pull_off_draft_vs_standard"] = (pulls[(r["tip_radius_um"], "draft")]
+                                               / r["pull_off_force_N"] - 1.0)
+    return rows
+
+
 def large_rows(radii=LARGE_RADII, accuracies=("draft", "standard"), done=None) -> list[dict]:
     """Part 4: R = 150, 300 um at d = 0.3 nm, draft and standard; `done(rows)`
     is called after each run (the JSON keeps what finished)."""
     rows = []
     for radius in radii:
-        pulls = {}
         for accuracy in accuracies:
             t0 = time.process_time()
             try:
@@ -108,7 +121,6 @@ def large_rows(radii=LARGE_RADII, accuracies=("draft", "standard"), done=None) -
                 continue
             cpu = time.process_time() - t0
             pull = float(ds["pull_off_force"][0])
-            pulls[accuracy] = pull
             rows.append(dict(tip_radius_um=radius * 1e6, d_nm=0.3, accuracy=accuracy, cpu_time_s=cpu,
                              tabor_parameter=float(ds["tabor_parameter"][0]), pull_off_force_N=pull,
                              pull_off_over_jkr=pull / float(ds["pull_off_force_jkr"][0]),
@@ -119,8 +131,6 @@ def large_rows(radii=LARGE_RADII, accuracies=("draft", "standard"), done=None) -
                                      float(ds["tabor_parameter"][0]), 0.3e-9))))
             print(f"R = {radius * 1e6:.4g} um, {accuracy}: {cpu:.1f} s, pull-off "
                   f"{rows[-1]['pull_off_over_jkr']:.4f} JKR", flush=True)
-            if len(pulls) == 2:
-                rows[-1]["pull_off_draft_vs_standard"] = pulls["draft"] / pulls["standard"] - 1.0
             if done is not None:
                 done(rows)
     return rows
@@ -146,16 +156,17 @@ def main(argv: list[str] | None = None) -> int:
         date = time.strftime("%Y-%m-%dT%H:%M:%S%z")
 
         def done(rows):
-            # re-read: another --only-large run (other radii) may have written meanwhile;
-            # its rows are kept, this run's radii replaced
+            # re-read: another --only-large run (other radii or presets) may have written
+            # meanwhile; its rows are kept, this run's (radius, preset) rows replaced
             record = json.loads(args.out.read_text())
-            mine = {r["tip_radius_um"] for r in rows}
-            kept = [r for r in record.get("large_radii", []) if r["tip_radius_um"] not in mine]
-            record["large_radii"] = sorted(kept + [dict(r, commit=commit, uncommitted_changes=dirty,
-                                                        date=date) for r in rows],
-                                           key=lambda r: (r["tip_radius_um"], r["accuracy"]))
-            for key in ("large_radii_commit", "large_radii_uncommitted_changes", "large_radii_date"):
-                record.pop(key, None)  # per row now
+            key = lambda r: (r["tip_radius_um"], r["accuracy"])  # noqa: E731
+            mine = {key(r) for r in rows}
+            kept = [r for r in record.get("large_radii", []) if key(r) not in mine]
+            large = sorted(kept + [dict(r, commit=commit, uncommitted_changes=dirty, date=date)
+                                   for r in rows], key=key)
+            record["large_radii"] = draft_vs_standard(large)
+            for old in ("large_radii_commit", "large_radii_uncommitted_changes", "large_radii_date"):
+                record.pop(old, None)  # per row now
             args.out.write_text(json.dumps(record, indent=1) + "\n")
 
         large_rows(radii, tuple(args.accuracies), done)
@@ -181,7 +192,7 @@ def main(argv: list[str] | None = None) -> int:
     if args.no_large:
         large = json.loads(args.out.read_text()).get("large_radii", [])
     else:
-        large = large_rows(radii, tuple(args.accuracies))
+        large = draft_vs_standard(large_rows(radii, tuple(args.accuracies)))
     commit, dirty = _commit()
     record = dict(date=time.strftime("%Y-%m-%dT%H:%M:%S%z"), commit=commit, uncommitted_changes=dirty,
                   scene=SCENE, scene_jobs=rows, scene_cpu_time_s=totals, radius_100um=wider,
