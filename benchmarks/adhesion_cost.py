@@ -13,7 +13,8 @@ script measures it (CPU time of this process, `time.process_time`):
 4. the flat end of report 7.3's range, R = 150 and 300 um at d = 0.3 nm
    (Tabor parameter 10 and 13: meshes that follow the contact), at draft
    and at standard: CPU time, the pull-off force against JKR's
-   3/2 pi R W_c, and the draft pull-off against standard's.
+   3/2 pi R W_c, the jump-off interference against JKR's, and the draft
+   pull-off against standard's.
 
 Writes benchmarks/results/adhesion-cost.json and prints a table.  Nothing
 is asserted: speed is measured here, not in the tests.
@@ -23,18 +24,24 @@ is asserted: speed is measured here, not in the tests.
     python benchmarks/adhesion_cost.py --no-large   # parts 1-3, part 4 kept
     python benchmarks/adhesion_cost.py --only-large # part 4 alone, the other
                                                     # parts kept from the JSON
+    python benchmarks/adhesion_cost.py --only-large --radii 300 --accuracies draft
+                                                    # one radius and preset: the other
+                                                    # rows kept (such runs may go side
+                                                    # by side)
 """
 
 from __future__ import annotations
 
 import argparse
 import json
+import math
 import subprocess
 import sys
 import tempfile
 import time
 from pathlib import Path
 
+import numpy as np
 import xarray as xr
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))  # run as a script: `benchmarks` importable
@@ -77,12 +84,30 @@ def job_row(spec: dict, accuracy: str) -> dict:
                 tabor_parameter=float(ds.attrs["tabor_parameter"]))
 
 
+def jkr_jump_off(mu: float, d: float) -> float:
+    """JKR's jump-off under displacement control, -(3/4) pi^(2/3) mu d (the fold of
+    delta(a) = a^2 / R - sqrt(2 pi a W / E*))."""
+    return -0.75 * math.pi ** (2 / 3) * mu * d
+
+
+def draft_vs_standard(rows: list[dict]) -> list[dict]:
+    """The rows, each standard one with ``pull_off_draft_vs_standard`` (draft / standard
+    - 1) where the same radius has a draft row."""
+    pulls = {(r["tip_radius_um"], r["accuracy"]): r["pull_off_force_N"]
+             for r in rows if "pull_off_force_N" in r}
+    for r in rows:
+        if r["accuracy"] == "standard" and (r["tip_radius_um"], "draft") in pulls \
+                and "pull_off_force_N" in r:
+            r["pull_off_draft_vs_standard"] = (pulls[(r["tip_radius_um"], "draft")]
+                                               / r["pull_off_force_N"] - 1.0)
+    return rows
+
+
 def large_rows(radii=LARGE_RADII, accuracies=("draft", "standard"), done=None) -> list[dict]:
     """Part 4: R = 150, 300 um at d = 0.3 nm, draft and standard; `done(rows)`
     is called after each run (the JSON keeps what finished)."""
     rows = []
     for radius in radii:
-        pulls = {}
         for accuracy in accuracies:
             t0 = time.process_time()
             try:
@@ -96,15 +121,16 @@ def large_rows(radii=LARGE_RADII, accuracies=("draft", "standard"), done=None) -
                 continue
             cpu = time.process_time() - t0
             pull = float(ds["pull_off_force"][0])
-            pulls[accuracy] = pull
             rows.append(dict(tip_radius_um=radius * 1e6, d_nm=0.3, accuracy=accuracy, cpu_time_s=cpu,
                              tabor_parameter=float(ds["tabor_parameter"][0]), pull_off_force_N=pull,
                              pull_off_over_jkr=pull / float(ds["pull_off_force_jkr"][0]),
-                             jumps=int(ds["jump"].sum()), steps=int(ds["valid"].sum())))
+                             jumps=int(ds["jump"].sum()), steps=int(ds["valid"].sum()),
+                             step_cuts=int(np.nansum(ds["step_cuts"].values)),
+                             jump_off_interference_over_jkr=float(
+                                 ds["jump_off_interference"][0] / jkr_jump_off(
+                                     float(ds["tabor_parameter"][0]), 0.3e-9))))
             print(f"R = {radius * 1e6:.4g} um, {accuracy}: {cpu:.1f} s, pull-off "
                   f"{rows[-1]['pull_off_over_jkr']:.4f} JKR", flush=True)
-            if len(pulls) == 2:
-                rows[-1]["pull_off_draft_vs_standard"] = pulls["draft"] / pulls["standard"] - 1.0
             if done is not None:
                 done(rows)
     return rows
@@ -126,12 +152,21 @@ def main(argv: list[str] | None = None) -> int:
 
     radii = tuple(r * 1e-6 for r in args.radii)
     if args.only_large:
-        record = json.loads(args.out.read_text())
-        record["large_radii_commit"], record["large_radii_uncommitted_changes"] = _commit()
-        record["large_radii_date"] = time.strftime("%Y-%m-%dT%H:%M:%S%z")
+        commit, dirty = _commit()
+        date = time.strftime("%Y-%m-%dT%H:%M:%S%z")
 
         def done(rows):
-            record["large_radii"] = rows
+            # re-read: another --only-large run (other radii or presets) may have written
+            # meanwhile; its rows are kept, this run's (radius, preset) rows replaced
+            record = json.loads(args.out.read_text())
+            key = lambda r: (r["tip_radius_um"], r["accuracy"])  # noqa: E731
+            mine = {key(r) for r in rows}
+            kept = [r for r in record.get("large_radii", []) if key(r) not in mine]
+            large = sorted(kept + [dict(r, commit=commit, uncommitted_changes=dirty, date=date)
+                                   for r in rows], key=key)
+            record["large_radii"] = draft_vs_standard(large)
+            for old in ("large_radii_commit", "large_radii_uncommitted_changes", "large_radii_date"):
+                record.pop(old, None)  # per row now
             args.out.write_text(json.dumps(record, indent=1) + "\n")
 
         large_rows(radii, tuple(args.accuracies), done)
@@ -157,7 +192,7 @@ def main(argv: list[str] | None = None) -> int:
     if args.no_large:
         large = json.loads(args.out.read_text()).get("large_radii", [])
     else:
-        large = large_rows(radii, tuple(args.accuracies))
+        large = draft_vs_standard(large_rows(radii, tuple(args.accuracies)))
     commit, dirty = _commit()
     record = dict(date=time.strftime("%Y-%m-%dT%H:%M:%S%z"), commit=commit, uncommitted_changes=dirty,
                   scene=SCENE, scene_jobs=rows, scene_cpu_time_s=totals, radius_100um=wider,

@@ -44,6 +44,18 @@ before the fold and the state after the jump are both recorded,
 physical path under displacement control; the unstable branch that joins
 the two is not traced.
 
+At a large Tabor parameter the branch before the jump-off fold is steep
+over a long stretch (du/dw ~ (w - w_fold)^(-1/2) over many ring elements
+peeling one by one) and the bisection in w can stall there: where it has
+cut a requested step MAX_HALVINGS times (or a jump fails at the smallest
+step), the branch is instead followed by its arc length in (u, w)
+(pseudo-arc-length continuation, `_FoldPath`), which stays regular
+through the fold, until dw/ds changes sign; the fold so bracketed is
+located to ``min_step * d`` and the jump solved from the stable state
+there to ``min_step * d`` beyond it (`_through_fold`).  A stretch that
+turns out to have no fold is followed to the step's end.  Paths on which
+the bisection does not stall are unchanged.
+
 Sign convention: ``force`` is the total normal force of the flat on the
 asperity, compressive positive as in `solve_asperity`; adhesion makes it
 negative (attractive).  ``contact_force`` (>= 0, the penalty) and
@@ -133,7 +145,8 @@ ENERGY_ROUNDOFF = 1e-10
 #: backtracking on Pi (Armijo), trial points projected if the full step fails
 #: (`AdhesiveNewton.project`), the residual where Pi drowns in round-off
 LINE_SEARCH = EnergySearch(halvings=50, projected=True, roundoff=ENERGY_ROUNDOFF)
-#: halvings of one requested step (failed Newton or discontinuity) before giving up
+#: halvings of one requested step (failed Newton or discontinuity) before the
+#: branch is followed through its fold instead (`_through_fold`)
 MAX_HALVINGS = 60
 #: a mesh following the contact (`AdhesiveModel.window_for`): the fine band
 #: spans the contact edge and the surface within FINE_SEPARATION d of the
@@ -145,6 +158,13 @@ FINE_SEPARATION = 4.0
 FOLLOW_MARGIN = 0.15
 FOLLOW_MIN_FACETS = 40
 MAX_REMESH = 8
+#: the fold path (`_FoldPath`): the first arc between FOLD_ARC d (root mean
+#: square surface displacement); a corrector may move at most FOLD_MOVE d
+#: from the predictor; at most FOLD_POINTS points to reach the fold and as
+#: many to locate it
+FOLD_ARC = (0.01, 0.5)
+FOLD_MOVE = 0.5
+FOLD_POINTS = 60
 
 
 class _Overflow(Exception):
@@ -291,10 +311,15 @@ class _Tangent:
             self.CA = C[:, nodes]
         self.shift = 0.0
         self.cS = None
+        self.luS = None
 
-    def factor(self, shift: float = 0.0) -> bool:
-        """Cholesky of S + shift diag K_AA; False if not positive definite."""
+    def factor(self, shift: float = 0.0, definite: bool = True) -> bool:
+        """Cholesky of S + shift diag K_AA; False if not positive definite.
+        With ``definite`` False an indefinite S is factored by LU instead
+        (the unstable branch beyond a fold, `_FoldPath`) and the result
+        says only whether it is positive definite."""
         self.shift = shift
+        self.luS = None
         if not self.nodes.size:
             return True
         S = self.G + self.D
@@ -305,14 +330,17 @@ class _Tangent:
             return True
         except np.linalg.LinAlgError:
             self.cS = None
+            if not definite:
+                self.luS = sla.lu_factor(S, check_finite=False)
             return False
 
     def solve(self, b: np.ndarray) -> np.ndarray:
         y = self.C @ b
         if not self.nodes.size:
             return y
-        xA = sla.cho_solve(self.cS, sla.cho_solve(self.cC, y[self.nodes], check_finite=False),
-                           check_finite=False)
+        yA = sla.cho_solve(self.cC, y[self.nodes], check_finite=False)
+        xA = (sla.lu_solve(self.luS, yA, check_finite=False) if self.luS is not None
+              else sla.cho_solve(self.cS, yA, check_finite=False))
         Dp = self.D + np.diag(self.shift * self.kdiag) if self.shift else self.D
         return y - self.CA @ (Dp @ xA)
 
@@ -781,6 +809,150 @@ def _follow(state: AdhesiveState, step: int = 0) -> tuple[AdhesiveState, int]:
                            f"the fine band does not settle on the contact (at w = {state.w:.6g} m)")
 
 
+class _FoldPath:
+    """The branch of a state followed through its fold (module docstring,
+    "Control and jumps").
+
+    Near a fold du/dw blows up and the step control in w can only bisect
+    towards it.  Here the branch is parametrized by its arc length s in
+    (u, w) instead, with the inner product <x, y> = x_u . y_u / m + x_w y_w
+    (m surface dofs: the root mean square of the surface displacement), a
+    parametrization that stays regular through a fold (pseudo-arc-length
+    continuation, `corrector`).  The unit tangent t is +-(du/dw, 1)
+    normalized, oriented at the start towards the target and then along
+    the previous one.  Steps in s (tangent predictor; an arc is halved if
+    the corrector fails, moves farther than FOLD_MOVE d from the predictor
+    or turns the tangent by more than 60 degrees, and grows by half after a
+    success) go on until dw/ds changes sign: w turned back, the fold is
+    between the last two points.  The bracket is bisected in s until the
+    stable side is within ``min_step * d`` in w of the fold's position
+    estimated by the quadratic w(s) with the slopes dw/ds at both ends.
+    """
+
+    def __init__(self, state: AdhesiveState, target: float, pre: dict):
+        self.newton = state.model.newton
+        self.pre = pre
+        self.d = state.model.adhesion.d
+        self.sign = math.copysign(1.0, target - state.w)
+        self.m = state.u.size
+        self.iterations = 0
+
+    def inner(self, x, y) -> float:
+        """<x, y> of two (u, w) pairs (class docstring)."""
+        return float(x[0] @ y[0] / self.m + x[1] * y[1])
+
+    def tangent(self, s: AdhesiveState, along=None) -> tuple:
+        """Unit tangent at s, oriented along `along` (a tangent) or, without
+        it, towards the target."""
+        t = (s.dudw, 1.0)
+        norm = math.sqrt(self.inner(t, t))
+        t = (s.dudw / norm, 1.0 / norm)
+        flip = self.inner(t, along) < 0 if along is not None else t[1] * self.sign < 0
+        return (-t[0], -t[1]) if flip else t
+
+    def corrector(self, u: np.ndarray, w: float, t: tuple, origin: AdhesiveState, arc: float):
+        """The equilibrium an arc `arc` along `t` from `origin`, from (u, w).
+
+        Newton on the bordered system of pseudo-arc-length continuation,
+        R(u, w) = 0 and <t, (u, w) - (u0, w0)> = arc, by block elimination:
+        J a = -R, J b = -R_w (b is du/dw), dw from the linearized arc
+        condition, du = a + dw b.  J may be indefinite (the unstable
+        branch): it is factored by LU there (`_Tangent.factor`).  No line
+        search: the start is the tangent predictor a small arc away.
+        Returns (u, w, parts, tangent J, iterations); raises `StepFailed`.
+        """
+        newton = self.newton
+        limit = newton.max_iterations
+        for it in range(limit + 1):
+            R, scale, parts = newton.residual(u, w)
+            tp, dtp, ta, dta = parts
+            rn = np.linalg.norm(R)
+            if not np.isfinite(rn):
+                raise StepFailed("non-finite residual on the fold path", it)
+            T = newton.tangent(dtp, dta, u, w)
+            T.factor(definite=False)
+            if it and rn <= max(newton.tolerance * scale,
+                                ROUNDOFF_FACTOR * newton.floor(u, w, dtp, dta)):
+                return u, w, parts, T, it
+            if it == limit:
+                break
+            a = T.solve(-R)
+            b = T.solve(-(newton.zone.nodal(dtp) + newton.azone.nodal(dta)))
+            g = self.inner(t, (u - origin.u, w - origin.w)) - arc
+            dw = -(g + self.inner(t, (a, 0.0))) / self.inner(t, (b, 1.0))
+            step = a + dw * b
+            if not (np.all(np.isfinite(step)) and np.isfinite(dw)):
+                raise StepFailed("non-finite correction on the fold path", it)
+            u, w = u + step, w + dw
+        raise StepFailed(f"no convergence in {limit} iterations on the fold path", limit)
+
+    def point(self, s: AdhesiveState, t: tuple, arc: float):
+        """The branch an arc `arc` from s along t, its tangent and whether it
+        is stable (J positive definite); `StepFailed` if the corrector fails
+        or the point is not a continuation (see the class docstring)."""
+        newton = self.newton
+        u0, w0 = s.u + arc * t[0], s.w + arc * t[1]
+        try:
+            u, w, parts, T, its = self.corrector(u0, w0, t, s, arc)
+        except StepFailed as exc:
+            self.iterations += exc.iterations
+            raise
+        self.iterations += its
+        if np.max(np.abs(u - u0), initial=0.0) > FOLD_MOVE * self.d:
+            raise StepFailed("the corrector left the predictor", its)
+        new = newton.state(w, u, parts, T)
+        new.model = s.model
+        t1 = self.tangent(new, t)
+        if self.inner(t1, t) < 0.5:
+            raise StepFailed("the tangent turned", its)
+        return new, t1, T.factor()
+
+    def fold(self, state: AdhesiveState, goal: float):
+        """(stable state at the fold, estimated fold position), or (the state
+        at `goal`, None) if the branch reaches it without turning."""
+        d, sign = self.d, self.sign
+        lo, t_lo = state, self.tangent(state)
+        # the first arc: the tangent's move to the goal, within FOLD_ARC
+        h = min(max(abs(goal - lo.w) / abs(t_lo[1]), FOLD_ARC[0] * d), FOLD_ARC[1] * d)
+        for _ in range(FOLD_POINTS):
+            try:
+                new, t_new, stable = self.point(lo, t_lo, h)
+            except StepFailed:
+                h *= 0.5
+                if h < 1e-3 * FOLD_ARC[0] * d:
+                    raise
+                continue
+            if t_new[1] * t_lo[1] < 0:
+                hi = new
+                break
+            if (new.w - goal) * sign >= 0:  # no fold before the goal: solve there
+                u, parts, T, its = self.newton.solve(goal, _predictor(new, goal))
+                self.iterations += its
+                out = self.newton.state(goal, u, parts, T)
+                out.model = new.model
+                return out, None
+            if not stable:
+                raise StepFailed("the branch lost stability without a fold", 0)
+            lo, t_lo, h = new, t_new, 1.5 * h
+        else:
+            raise StepFailed("the fold path did not turn", 0)
+        smallest = self.pre["min_step"] * d
+        for _ in range(FOLD_POINTS):
+            x = (hi.u - lo.u, hi.w - lo.w)
+            arc = self.inner(t_lo, x)
+            s0 = t_lo[1]
+            s1 = self.tangent(hi, t_lo)[1]
+            w_fold = lo.w - 0.5 * s0 * s0 * arc / (s1 - s0)
+            if abs(lo.w - w_fold) <= smallest:
+                return lo, w_fold
+            mid, t_mid, stable = self.point(lo, t_lo, 0.5 * arc)
+            if t_mid[1] * s0 > 0 and stable:
+                lo, t_lo = mid, t_mid
+            else:
+                hi = mid
+        raise StepFailed("the fold was not located", 0)
+
+
 def _advance(state: AdhesiveState, target: float, pre: dict, step: int = 0):
     """From a converged state to the flat position `target`, with step control.
 
@@ -795,16 +967,20 @@ def _advance(state: AdhesiveState, target: float, pre: dict, step: int = 0):
     position reached continuously after all (a steep stretch) is dropped
     and the bracket reopens to the next one, never to the target.  Each
     state reached (after a jump too) is moved onto a mesh that follows its
-    contact edge (`_follow`) before the next step.  Returns (final state,
+    contact edge (`_follow`) before the next step.  Where the bisection
+    stalls (more than MAX_HALVINGS halvings since the start or the last
+    fold, or a failed solve at the smallest step) the branch is followed
+    through its fold instead (`_through_fold`).  Returns (final state,
     [(state before, state after) of each jump], iterations, halvings);
     raises `ConvergenceError` (naming `step` and the last position reached)
-    when a step fails even at the smallest size.
+    when that fails too.
     """
     d = state.model.adhesion.d
     smallest = pre["min_step"] * d
     target = float(target)
     goals = [target]
     halvings = iterations = 0
+    cuts = 0  # halvings since the last pass through a fold
     jumps = []
     bads = []  # positions known to fail or to be discontinuous, nearest last
     steep = None  # a bad position to retry once after the next advance
@@ -824,45 +1000,50 @@ def _advance(state: AdhesiveState, target: float, pre: dict, step: int = 0):
                 continue
         model = state.model
         newton = model.newton
-        dw = goal - state.w
-        small = abs(dw) <= smallest
-        # tangent predictor, its move capped at d + 2 |dw| (du/dw blows up near
-        # a fold; `AdhesiveModel.continuity` allows d / 2 + 2 |dw| off it)
-        step_u = dw * state.dudw
-        big = np.max(np.abs(step_u), initial=0.0)
-        cap = d + 2.0 * abs(dw)
-        pred = state.u + (step_u if big <= cap else step_u * (cap / big))
+        small = abs(goal - state.w) <= smallest
+        pred = _predictor(state, goal)
+        failure = None
         try:
             u, parts, T, its = newton.solve(
                 goal, pred, JUMP_ITERATION_FACTOR * newton.max_iterations if small else None)
             iterations += its
         except StepFailed as exc:
             iterations += exc.iterations
-            halvings += 0 if retry and goal == steep else 1  # a failed retry halves nothing
-            if small or halvings > MAX_HALVINGS:
-                raise ConvergenceError(step, target, state.w, halvings - 1,
-                                       f"{exc} (at w = {goal:.6g} m)") from None
-            bads.append(goal)
-            goals = [target]
-            steep = None if goal == steep else steep
-            retry = False
-            continue
-        new = newton.state(goal, u, parts, T)
-        new.model = model
-        verdict = model.continuity(state, new, pred, pre)
-        jumped = verdict != "continuous"
-        if jumped and not small:
-            retried = retry and goal == steep
-            halvings += 0 if retried else 1  # a failed retry halves nothing
-            if halvings > MAX_HALVINGS:
-                raise ConvergenceError(step, target, state.w, halvings - 1,
-                                       "the path stays discontinuous")
-            # a steep position is retried once: not when this was its retry
-            steep = goal if verdict == "steep" and not retried else None
-            bads.append(goal)
-            goals = [target]
-            retry = False
-            continue
+            cut = 0 if retry and goal == steep else 1  # a failed retry halves nothing
+            halvings, cuts = halvings + cut, cuts + cut
+            if small or cuts > MAX_HALVINGS:
+                failure = f"{exc} (at w = {goal:.6g} m)"
+            else:
+                bads.append(goal)
+                goals = [target]
+                steep = None if goal == steep else steep
+                retry = False
+                continue
+        if failure is None:
+            new = newton.state(goal, u, parts, T)
+            new.model = model
+            verdict = model.continuity(state, new, pred, pre)
+            jumped = verdict != "continuous"
+            if jumped and not small:
+                retried = retry and goal == steep
+                cut = 0 if retried else 1  # a failed retry halves nothing
+                halvings, cuts = halvings + cut, cuts + cut
+                if cuts > MAX_HALVINGS:
+                    failure = "the path stays discontinuous"
+                else:
+                    # a steep position is retried once: not when this was its retry
+                    steep = goal if verdict == "steep" and not retried else None
+                    bads.append(goal)
+                    goals = [target]
+                    retry = False
+                    continue
+        if failure is not None:  # the bisection stalled: follow the branch through its fold
+            passed = _through_fold(state, target, pre)
+            if passed is None:
+                raise ConvergenceError(step, target, state.w, halvings - 1, failure)
+            state, new, jumped, its = passed
+            iterations += its
+            cuts = 0
         new, its = _follow(new, step)
         iterations += its
         if jumped:
@@ -872,8 +1053,57 @@ def _advance(state: AdhesiveState, target: float, pre: dict, step: int = 0):
             raise _Overflow()
         state = new
         retry = True
-        goals.pop()
+        if failure is None:
+            goals.pop()
+        else:  # the pass landed at a position of its own
+            goals = [target]
     return state, jumps, iterations, halvings
+
+
+def _predictor(state: AdhesiveState, goal: float) -> np.ndarray:
+    """The tangent predictor from `state` to the flat position `goal`, its move
+    capped at d + 2 |dw| (du/dw blows up near a fold;
+    `AdhesiveModel.continuity` allows d / 2 + 2 |dw| off it)."""
+    dw = goal - state.w
+    step_u = dw * state.dudw
+    big = np.max(np.abs(step_u), initial=0.0)
+    cap = state.model.adhesion.d + 2.0 * abs(dw)
+    return state.u + (step_u if big <= cap else step_u * (cap / big))
+
+
+def _through_fold(state: AdhesiveState, target: float, pre: dict):
+    """The jump from the fold of `state`'s branch towards `target` (`_FoldPath`).
+
+    The branch is followed to its fold, and the equilibrium ``min_step * d``
+    beyond the fold solved from the stable state there (the tangent
+    predictor, JUMP_ITERATION_FACTOR times the iterations).  Returns (the
+    state at the fold, the state after, whether it jumped (moved more than
+    jump_tolerance * d off the predictor), Newton iterations); if the
+    branch reaches `target` without a fold, (`state`, the state at the
+    target, False, iterations); None if a solve fails.
+    """
+    if not np.any(state.dudw):  # the surface does not move with w: no branch to follow
+        return None
+    path = _FoldPath(state, target, pre)
+    try:
+        before, w_fold = path.fold(state, target)
+    except StepFailed:
+        return None
+    if w_fold is None:  # no fold: the branch followed to the target
+        return state, before, False, path.iterations
+    d = state.model.adhesion.d
+    goal = w_fold + path.sign * pre["min_step"] * d
+    newton = before.model.newton
+    pred = _predictor(before, goal)
+    try:
+        u, parts, T, its = newton.solve(goal, pred,
+                                        JUMP_ITERATION_FACTOR * newton.max_iterations)
+    except StepFailed:
+        return None
+    after = newton.state(goal, u, parts, T)
+    after.model = before.model
+    jumped = np.max(np.abs(u - pred), initial=0.0) > pre["jump_tolerance"] * d
+    return before, after, jumped, path.iterations + its
 
 
 def _trace(model: AdhesiveModel, path, pre: dict, label: str = "") -> list[_Record]:

@@ -1,0 +1,99 @@
+"""The adhesive path through a fold (`asperity.fe.adhesive._FoldPath`, module docstring
+"Control and jumps"): where the bisection in w stalls, the branch is followed by its arc
+length to the fold and the jump solved from there.
+
+Checked by forcing it (the bisection allowed 2 halvings instead of MAX_HALVINGS) on a
+case the bisection alone passes, against that run; and on the asperity that needed it,
+R = 150 um at d = 0.3 nm (report 7.3, Tabor parameter 10), against JKR.
+"""
+
+import math
+
+import numpy as np
+import pytest
+
+from asperity.fe import LennardJones, LinearElastic, Paraboloid, solve_asperity_adhesive
+from asperity.fe import adhesive
+from asperity.fe.adhesive import smooth_aluminum_curves
+
+D = 0.3e-9
+
+
+def _jkr_jump_off(mu):
+    """JKR's jump-off under displacement control: the fold of
+    delta(a) = a^2 / R - sqrt(2 pi a W / E*), at -(3/4) pi^(2/3) mu d."""
+    return -0.75 * math.pi ** (2 / 3) * mu * D
+
+
+def _landing(ds, which):
+    """(before, after) indices of the largest jump of a branch."""
+    jump = ds.jump.values.astype(bool) & (ds.branch.values.astype(str) == which)
+    k = np.nonzero(jump)[0]
+    k = k[np.argmax(np.abs(ds.force.values[k] - ds.force.values[k - 1]))]
+    return k - 1, k
+
+
+def test_forced_fold_path_finds_the_bisections_jumps(monkeypatch):
+    """mu = 5 on a 15 um asperity (as tests/fe/test_adhesion_hard_cases.py), draft: the
+    bisection alone finds the jump-in and the jump-off; with the bisection cut short,
+    both are passed by the fold path and must be the same jumps."""
+    R, mu = 15e-6, 5.0
+    E_star = math.sqrt(R / D**3) / mu**1.5
+
+    def run():
+        return solve_asperity_adhesive(Paraboloid(R), LinearElastic(E_star * 0.91, 0.3),
+                                       LennardJones(1.0, D), w_max=2 * D, accuracy="draft")
+
+    plain = run()
+    passes = []
+    through = adhesive._through_fold
+
+    def counted(*args):
+        out = through(*args)
+        passes.append(out)
+        return out
+
+    monkeypatch.setattr(adhesive, "MAX_HALVINGS", 2)
+    monkeypatch.setattr(adhesive, "_through_fold", counted)
+    forced = run()
+    # the fold path took over, and jumped at least twice (in and off)
+    assert all(p is not None for p in passes)
+    assert sum(bool(p[2]) for p in passes) >= 2
+    assert forced.attrs["jumps"] == plain.attrs["jumps"] == 2
+    # the pull-off is on the branch before the jump-off fold: the same state
+    # (measured 5e-13 apart)
+    P = plain.attrs["pull_off_force"]
+    assert forced.attrs["pull_off_force"] == pytest.approx(P, rel=1e-6)
+    # both locate the folds to min_step d = 0.002 d, on a branch whose edge peels
+    # node by node in snaps of a few thousandths of d (measured: jump-in 3e-4 d,
+    # jump-off 5e-4 d apart)
+    for attr in ("jump_in_interference", "jump_off_interference"):
+        assert abs(forced.attrs[attr] - plain.attrs[attr]) <= 0.02 * D, attr
+    # and land on the same branch: the force after each jump
+    for which in ("approach", "retract"):
+        _, kp = _landing(plain, which)
+        _, kf = _landing(forced, which)
+        assert abs(forced.force.values[kf] - plain.force.values[kp]) <= 2e-3 * P, which
+    _, kf = _landing(forced, "retract")
+    assert forced.contact_radius.values[kf] == 0  # let go
+    # the jump-off near JKR's fold (measured -8.17 d, JKR -8.04 d at mu = 5)
+    assert forced.attrs["jump_off_interference"] == pytest.approx(_jkr_jump_off(mu), rel=0.03)
+
+
+@pytest.mark.slow
+def test_large_radius_passes_the_jump_off_fold():
+    """R = 150 um, d = 0.3 nm, draft (report 7.3's flat end, mu = 10): the bisection
+    alone stalls at the jump-off fold.  With the fold path the run ends; at mu = 10 the
+    contact is JKR's to within the Maugis correction (of order 1 / mu, under 1 %): the
+    pull-off within 1 % of 3/2 pi R W_c (measured +0.48 %), the jump-off within 1 % of
+    JKR's fold (measured 0.3 % beyond it), and the contact let go after it."""
+    ds = smooth_aluminum_curves(radii=(150e-6,), accuracy="draft")
+    mu = float(ds.tabor_parameter[0])
+    assert 9.5 < mu < 11
+    assert float(ds.pull_off_force[0]) == pytest.approx(float(ds.pull_off_force_jkr[0]), rel=0.01)
+    assert float(ds.jump_off_interference[0]) == pytest.approx(_jkr_jump_off(mu), rel=0.01)
+    run = ds.isel(radius=0)
+    run = run.isel(step=np.nonzero(run.valid.values)[0])
+    _, k = _landing(run, "retract")
+    assert run.contact_radius.values[k] == 0 and run.force.values[k] > -1e-3 * float(
+        ds.pull_off_force[0])
