@@ -49,6 +49,8 @@ the tangent, to 1e-8 relative.
 
 from __future__ import annotations
 
+import functools
+
 import numpy as np
 import scipy.sparse as sp
 
@@ -170,6 +172,7 @@ class Deformation:
         self.M = M
         # 2 f[lambda_i, lambda_j] on the stored components of the eigenbasis
         self.p = 2.0 * divided_log(lam[:, [0, 1, 2, 0]], lam[:, [0, 1, 2, 1]])  # (n, 4)
+        self._piola = None
 
     def _map(self, v):
         """Q A Q^T of stored components (n, 4)."""
@@ -186,8 +189,12 @@ class Deformation:
         return np.einsum("nab,nb,nbc->nac", self.M, self.p, self.M)
 
     def second_piola(self, T):
-        """S = P[T] (stored components (4, n)) of the log-space stress T."""
-        return self._map(self.p * self._map(T.T)).T
+        """S = P[T] (stored components (4, n)) of the log-space stress T (4, ...);
+        the last one is kept, as the residual and the tangent of a Newton
+        iterate both ask for it."""
+        if self._piola is None or self._piola[0] is not T:
+            self._piola = (T, self._map(self.p * self._map(T.reshape(4, -1).T)).T)
+        return self._piola[1]
 
     def geometric(self, T):
         """T : L = 4 d^2E/dC^2 [T, .] as a (n, 4, 4) matrix on stored components.
@@ -208,6 +215,7 @@ class Deformation:
         L[:, 3, 3] = g001 * t[:, 0] + g011 * t[:, 1]
         return 4.0 * np.einsum("nab,nbc,ncd->nad", self.M, L, self.M, optimize=True)
 
+    @functools.cached_property
     def strain_variation(self):
         """B_NL (n, 4, 5): delta E_GL = sym(F^T delta H) in stored components
         of the gradient components [rr, zz, 33, rz, zr] (`FiniteStrain`)."""
@@ -261,8 +269,8 @@ class FiniteStrain:
         return d.log_strain().reshape((4,) + self.shape), d
 
     def internal_force(self, deformation, stress):
-        S = deformation.second_piola(stress.reshape(4, -1))
-        Bn = deformation.strain_variation()  # (n, 4, 5)
+        S = deformation.second_piola(stress)
+        Bn = deformation.strain_variation  # (n, 4, 5)
         h = np.einsum("nai,an->in", Bn, METRIC[:, None] * S * self.w)
         return self.GspT @ h.ravel()
 
@@ -278,9 +286,9 @@ class FiniteStrain:
         P = deformation.projection()
         M = np.einsum("nab,nbc,ncd->nad", P, np.broadcast_to(Dn, (n, 4, 4)), P, optimize=True)
         M += deformation.geometric(T)
-        Bn = deformation.strain_variation()
+        Bn = deformation.strain_variation
         K5 = np.einsum("nai,a,nab,nbj->nij", Bn, METRIC, M, Bn, optimize=True)
-        Srr, Szz, Stt, Srz = deformation.second_piola(T)
+        Srr, Szz, Stt, Srz = deformation.second_piola(stress)
         K5[:, 0, 0] += Srr
         K5[:, 4, 4] += Srr
         K5[:, 3, 3] += Szz

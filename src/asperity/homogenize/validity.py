@@ -321,16 +321,26 @@ def _limit_attrs(limits: Limits) -> dict[str, float]:
 def _checks(out: xr.Dataset, plasticity: Plasticity | None, psi: float, limits: Limits):
     """(name, values (array or scalar), limit) in the order they are reported."""
     elastic = plasticity is not None and not plasticity.modelled
-    finite = plasticity is not None and plasticity.finite_strain
     checks = []
     if elastic and limits.plasticity_index is not None and math.isfinite(psi):
         checks.append(("plasticity_index", psi, limits.plasticity_index))
+    recorded = _recorded_only(plasticity)
     for name in INDICATORS:
-        if name not in out or (name == "yielded_fraction" and not elastic) or \
-                (name == "large_strain_fraction" and finite):
-            continue
-        checks.append((name, out[name], getattr(limits, name)))
+        if name in out and name not in recorded:
+            checks.append((name, out[name], getattr(limits, name)))
     return checks
+
+
+def _recorded_only(plasticity: Plasticity | None) -> set[str]:
+    """Indicators the asperities model themselves: recorded, not limited. Yield where
+    they are inelastic (or nothing says whether they are), large strain where their
+    FE jobs are in finite strain."""
+    out = set()
+    if plasticity is None or plasticity.modelled:
+        out.add("yielded_fraction")
+    if plasticity is not None and plasticity.finite_strain:
+        out.add("large_strain_fraction")
+    return out
 
 
 def _unchecked(out: xr.Dataset, plasticity: Plasticity | None, limits: Limits) -> list[str]:
