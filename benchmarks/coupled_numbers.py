@@ -4,7 +4,7 @@ scenes with the representative hill (8.2.2).
 
 Reads a results tree made by the pipeline (default ``results/``), e.g. after
 
-    snakemake --cores 1 --config 'scenes=[rough_aluminum_coupled,steel_glass_bead_coupled]' \
+    snakemake --cores 1 --config 'scenes=[rough_aluminum,steel_glass_bead]' \
         studies=False accuracy=draft
 
 (each coupled scene compares with its representative one, which the run makes too), and
@@ -25,7 +25,7 @@ Writes benchmarks/results/coupled_<accuracy>.json.
     python benchmarks/coupled_numbers.py [results] [--inelastic]
 
 and the family against one FE job per sample: the elastic hills of asperity_shape_coupled,
-and with ``--inelastic`` the Bodner-Partom hills of rough_aluminum_coupled on a small
+and with ``--inelastic`` the Bodner-Partom hills of rough_aluminum on a small
 population (8 heights x 4 curvatures: 32 jobs, minutes).
 """
 
@@ -38,7 +38,8 @@ from pathlib import Path
 import numpy as np
 
 REPO = Path(__file__).resolve().parents[1]
-PAIRS = (("steel_glass_bead_coupled", "steel_glass_bead"), ("rough_aluminum_coupled", "rough_aluminum"))
+PAIRS = (("steel_glass_bead", "steel_glass_bead_representative"),
+         ("rough_aluminum", "rough_aluminum_representative"))
 INDICATORS = ("extrapolated_load_fraction", "extrapolated_fraction", "large_strain_fraction",
               "yielded_fraction", "contact_area_ratio", "interaction")
 
@@ -208,7 +209,7 @@ def main(argv: list[str]) -> int:
     out = REPO / "benchmarks" / "results" / f"coupled_{accuracy}.json"
     checks = [family_against_direct()]
     if "--inelastic" in argv:  # one Bodner-Partom job per sample of a small population: minutes
-        checks.append(family_against_direct(scene_name="rough_aluminum_coupled",
+        checks.append(family_against_direct(scene_name="rough_aluminum",
                                             samples={"height": 8, "curvature": 4}))
     elif out.exists():  # keep the inelastic comparison of an earlier run
         checks += [c for c in json.loads(out.read_text()).get("family_against_direct", [])

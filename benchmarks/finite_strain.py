@@ -7,7 +7,7 @@ Two cases, each with ``kinematics`` small and finite, CPU time by
   50 times its critical interference, where strains stay near 2 %: the two
   kinematics should agree to the strain's order, and the finite one's cost is
   the price of the kinematics alone.
-* ``steel_hill``: the steepest coupled hill of ``steel_glass_bead_coupled``
+* ``steel_hill``: the steepest coupled hill of ``steel_glass_bead``
   (aspect q = kappa z_p = 1.28, slope k C = 1.13; SAE 1020 Bodner-Partom, 8.2.1)
   pressed to its amplitude C = 5 um at 0.25 um/s, as its FE job is: the
   strains the small-strain theory reports there, and what finite strain gives.

@@ -1,16 +1,19 @@
-"""The numbers of the README's section "Validity": how much of the default FE scenes
-rests on extrapolated responses, why rough_aluminum's friction coefficient is half the
-report's, and what the yielded-share limit costs in pressure (smooth aluminum).
+"""The numbers of the README's section "Validity": how much of the FE scenes with the
+report's representative hills rests on extrapolated responses, why their rough
+aluminum's friction coefficient is half the report's, and what the yielded-share limit
+costs in pressure (smooth aluminum).
 
 Reads a results tree made by the pipeline (default ``results/``), e.g. after
 
-    snakemake --cores 2 --config 'scenes=[steel_glass_bead,rough_aluminum,asperity_shape]' studies=False
+    snakemake --cores 2 --config \
+        'scenes=[steel_glass_bead_representative,rough_aluminum_representative,asperity_shape]' \
+        studies=False
 
 and prints, per separation of the loading branch of each scene, the share of the
 contacting asperities pressed beyond their FE job's range (``extrapolated_fraction``)
 and the share of the nominal pressure they carry (``extrapolated_load_fraction``).
 
-For rough_aluminum it splits mu = tau_s A_c / p (report 9.41) into what it rests on:
+For rough_aluminum_representative it splits mu = tau_s A_c / p (report 9.41) into what it rests on:
 
 - the mean real contact pressure p / A_c (mu = tau_s / (p / A_c)), against the
   hardness of the interface file (2.8 x the saturated Bodner-Partom flow stress);
@@ -39,7 +42,7 @@ from pathlib import Path
 import numpy as np
 
 REPO = Path(__file__).resolve().parents[1]
-SCENES = ("steel_glass_bead", "rough_aluminum", "asperity_shape")
+SCENES = ("steel_glass_bead_representative", "rough_aluminum_representative", "asperity_shape")
 
 
 def _loading(ds):
@@ -109,7 +112,7 @@ def _part(asperities, inside: bool):
     return out
 
 
-def friction_split(results: Path, scene: str = "rough_aluminum") -> dict:
+def friction_split(results: Path, scene: str = "rough_aluminum_representative") -> dict:
     from asperity.io.netcdf import read_dataset
     from asperity.stages.homogenize import interface_dataset
     from asperity.uniaxial.point import uniaxial_flow_stress
@@ -201,10 +204,10 @@ def main(argv: list[str]) -> int:
         report[f"{scene}_beyond_height"] = reach
         for k, v in reach.items():
             print(f"  {k}: {v if isinstance(v, float) else [round(100 * x, 1) for x in v]}")
-    if (results / "rough_aluminum" / "friction.nc").exists():
+    if (results / "rough_aluminum_representative" / "friction.nc").exists():
         split = friction_split(results)
-        report["rough_aluminum_friction"] = split
-        print("\nrough_aluminum friction, mu = tau_s A_c / p = tau_s / (p / A_c):")
+        report["rough_aluminum_representative_friction"] = split
+        print("\nrough_aluminum_representative friction, mu = tau_s A_c / p = tau_s / (p / A_c):")
         for k, v in split.items():
             print(f"  {k}: {v}")
     if (results / "smooth_aluminum_elastic" / "interface.nc").exists():

@@ -116,8 +116,8 @@ def test_fe_range_stops_short_of_the_foot_of_sphere_and_paraboloid():
 def test_tail_slope_ignores_one_jumping_step():
     """Beyond its last level a curve continues with the median step slope over the last
     10 % of its range: a force jump in one step (an inelastic contact node snapping onto
-    the flat, seen on steel_glass_bead at standard) does not set it; a straight line's
-    slope is kept exactly."""
+    the flat, seen on steel_glass_bead_representative at standard) does not set it; a
+    straight line's slope is kept exactly."""
     w = np.linspace(1.0, 2.0, 41)
     line = 3.0 + 0.5 * w
     assert gathering.tail_slope(w, line) == pytest.approx(0.5, rel=1e-12)

@@ -195,7 +195,7 @@ STEEL_HILL_STANDARD = {0.5: (0.08503, 9.372e-11), 1.0: (0.2303, 2.641e-10)}
 
 @pytest.mark.slow
 def test_steepest_coupled_steel_hill_flattened_in_finite_strain():
-    """Hard case: the steepest hill of steel_glass_bead_coupled (aspect q = 1.28, slope
+    """Hard case: the steepest hill of steel_glass_bead (aspect q = 1.28, slope
     k C = 1.13, SAE 1020) pressed to its amplitude C as its FE job is, where small strain
     reports strains of 600-775 %. In finite strain the draft run completes and is within
     3 % of the standard run of the benchmark in force and contact area (measured: 1.4 %

@@ -1,5 +1,7 @@
 """The inelastic scenes end to end at `draft`: loading and unloading of the steel
-interface of section 8, and elastic against elasto-plastic smooth aluminum (7.3)."""
+interface of section 8 with the report's representative hills, the rough aluminum
+interface of 7.4 with coupled finite-strain hills (valid without extrapolation), and
+elastic against elasto-plastic smooth aluminum (7.3)."""
 
 from __future__ import annotations
 
@@ -12,7 +14,8 @@ from .conftest import result, run_scenes
 
 pytestmark = [pytest.mark.workflow, pytest.mark.slow]
 
-SCENES = ["steel_glass_bead", "smooth_aluminum", "smooth_aluminum_elastic"]
+SCENES = ["steel_glass_bead_representative", "rough_aluminum", "smooth_aluminum",
+          "smooth_aluminum_elastic"]
 ONLY = ("--config", f"scenes=[{','.join(SCENES)}]", "accuracy=draft")
 
 
@@ -23,7 +26,7 @@ def run(tmp_path_factory):
 
 def test_steel_unloads_steeply_from_where_it_was_loaded(run):
     """8.3, Fig. 8.28: the unloading branch starts on the loading branch and is much steeper."""
-    ds = result(run, "steel_glass_bead", "interface.nc")
+    ds = result(run, "steel_glass_bead_representative", "interface.nc")
     assert list(ds["branch"].values) == ["loading", "unloading"]
     h = ds["separation"].values
     h0 = ds.attrs["unloading_from"]
@@ -43,7 +46,7 @@ def test_steel_blend_against_its_left_out_path(run):
     """8.3, Fig. 8.27: the blended path from the left-out level is within 5 % of the computed
     one's peak force (measured 0.6-3.4 % at draft, where the computed corners themselves miss
     the loading curve by up to 4.3 %: the largest level's coarser time steps)."""
-    unl = result(run, "steel_glass_bead", "unloading.nc")
+    unl = result(run, "steel_glass_bead_representative", "unloading.nc")
     err = unl["check_force_error"].values
     assert np.all(np.isfinite(err)) and np.all(err < 0.05), err
     assert np.all(unl["corner_mismatch"].values < 0.1)
@@ -65,3 +68,25 @@ def test_smooth_aluminum_elastic_share_and_small_strains(run):
     # the report: "less than 5 %" apart; measured 5 to 9 % at draft (J2 perfectly plastic)
     assert np.all(p >= 0.85 * pe), p / pe
     assert result(run, "smooth_aluminum", "friction.nc")["mu"].notnull().any()
+
+
+def test_rough_aluminum_valid_without_extrapolated_load(run):
+    """Issue #15, item 2: a coupled hill (2.5.1) is pressed at separations >= 0 by at most
+    its amplitude, which its finite-strain FE job computes, so no load comes from
+    extrapolated responses at any separation, and the scene is valid wherever its
+    contacts do not interact: only at the smallest separations (1 sigma). Its
+    representative counterpart, drawn beside it, is invalid everywhere for extrapolation."""
+    ds = result(run, "rough_aluminum", "interface.nc")
+    np.testing.assert_array_equal(ds["extrapolated_load_fraction"].values, 0.0)
+    valid = ds["valid"].values.astype(bool)
+    h = ds["separation"].values
+    assert valid.sum() >= 0.9 * h.size, ds["validity"].values
+    assert all(str(r).startswith("interaction") for r in ds["validity"].values[~valid])
+    assert h[~valid].max() < h[valid].min()
+    # strains beyond small-strain theory are computed (finite strain), recorded, not limited
+    assert ds["large_strain_fraction"].max() > 0.1
+    assert "large_strain_fraction: finite-strain" in ds["valid"].attrs["not_checked"]
+    representative = result(run, "rough_aluminum_representative", "interface.nc")
+    assert not representative["valid"].values.any()
+    reasons = representative["validity"].values
+    assert all(str(r).startswith("extrapolated_load_fraction") for r in reasons)

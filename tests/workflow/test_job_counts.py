@@ -67,18 +67,19 @@ SCENES = {
     # and unloaded (8.3): one job per unloading level (and the check path), per curvature without scaling
     "jc_j2_unloading": (unloading(), LEVELS + CHECK),
     "jc_j2_unloading_none": (unloading(scaling="none"), CURVATURES * (LEVELS + CHECK)),
-    # Bodner-Partom cosine hills (rough_aluminum): rate dependent, so `auto` runs every curvature;
-    # `self_similar` imposes the report's scaling (8.2.2); without `plasticity` the body is elastic
-    "jc_bp": (variant("rough_aluminum", scaling=None), CURVATURES),
-    "jc_bp_self_similar": (variant("rough_aluminum", scaling="self_similar"), 1),
-    "jc_bp_elastic": (variant("rough_aluminum", effects=[], scaling=None), 1),
+    # Bodner-Partom representative cosine hills (rough_aluminum_representative): rate dependent,
+    # so `auto` runs every curvature; `self_similar` imposes the report's scaling (8.2.2);
+    # without `plasticity` the body is elastic
+    "jc_bp": (variant("rough_aluminum_representative", scaling=None), CURVATURES),
+    "jc_bp_self_similar": (variant("rough_aluminum_representative", scaling="self_similar"), 1),
+    "jc_bp_elastic": (variant("rough_aluminum_representative", effects=[], scaling=None), 1),
     # the coupled cosine hill (2.5.1) depends on its height too: one job per sample
     "jc_coupled": (variant("asperity_shape_coupled"), HEIGHTS * CURVATURES),
     # ... or, with scaling self_similar, the family of aspects (2.5.1, 8.2.2): one job per aspect,
     # whatever the number of samples, and the left-out check job
     "jc_coupled_family": (variant("asperity_shape_coupled", scaling="self_similar", aspects=ASPECTS),
                           ASPECTS),
-    "jc_coupled_family_bp": (variant("rough_aluminum_coupled", aspects=ASPECTS, aspect_check=True),
+    "jc_coupled_family_bp": (variant("rough_aluminum", aspects=ASPECTS, aspect_check=True),
                              ASPECTS + CHECK),
     # analytic Hertz asperities: no job at all
     "jc_hertz": (variant("asperity_shape_hertz"), 0),
