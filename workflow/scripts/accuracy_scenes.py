@@ -14,10 +14,13 @@ with job_log(snakemake.log[0], "accuracy study of the scenes") as log:
     for scene in ds["scene"].values:
         for preset in ds["preset"].values:
             d = ds.sel(scene=scene, preset=preset)
-            log.info("%s@%s: %d FE jobs, %.1f s CPU; deviation pressure %s, area %s (loading, unloading)",
+            log.info("%s@%s: %d FE jobs, %.1f s CPU; deviation pressure %s, area %s; over the "
+                     "valid separations %s, %s (loading, unloading)",
                      scene, preset, d["fe_jobs"], d["fe_cpu_time"],
                      d["deviation"].sel(quantity="nominal_pressure").values,
-                     d["deviation"].sel(quantity="contact_area_ratio").values)
+                     d["deviation"].sel(quantity="contact_area_ratio").values,
+                     d["valid_deviation"].sel(quantity="nominal_pressure").values,
+                     d["valid_deviation"].sel(quantity="contact_area_ratio").values)
     write_dataset(ds, snakemake.output.data, scene="accuracy",
                   title="what accuracy costs for a whole scene: deviation from the finest preset "
                         "against CPU time", config={"accuracy_scenes": s},

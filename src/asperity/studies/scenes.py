@@ -26,7 +26,8 @@ and are compared only where they coincide.  How many separations entered,
 and where the largest deviation lies, are stored beside it, as is the largest
 share of contacting asperities the gather extrapolated beyond their FE job's
 last level: where it is large, the deviation measures the extrapolation (the
-secant of the last two steps, `asperity.population.gather`) as much as the mesh.
+median step slope of the last tenth of the range, `asperity.population.gather`) as
+much as the mesh.
 The same deviation over the separations where the reference run holds (its
 ``valid``, `asperity.homogenize.validity`) is ``valid_deviation``.
 """
