@@ -16,7 +16,8 @@ def test_accuracy_scenes_target_runs_every_scene_at_every_preset(workflow_copy):
     proc = snakemake(workflow_copy, "-n", "accuracy_scenes")
     jobs = planned_jobs(proc)
     assert jobs["accuracy_scenes"] == 1
-    assert jobs["interface"] == len(study["scenes"]) * len(study["presets"]) == 6
+    # steel_glass_bead, rough_aluminum and smooth_aluminum at draft, standard and fine
+    assert jobs["interface"] == len(study["scenes"]) * len(study["presets"]) == 9
     for name in study["scenes"]:
         for preset in study["presets"]:
             assert f"results/{name}@{preset}/interface.nc" in proc.stdout, (name, preset)
