@@ -859,7 +859,8 @@ class _FoldPath:
         condition, du = a + dw b.  J may be indefinite (the unstable
         branch): it is factored by LU there (`_Tangent.factor`).  No line
         search: the start is the tangent predictor a small arc away.
-        Returns (u, w, parts, tangent J, iterations); raises `StepFailed`.
+        Returns (u, w, parts, tangent J, iterations, whether J is positive
+        definite); raises `StepFailed`.
         """
         newton = self.newton
         limit = newton.max_iterations
@@ -870,10 +871,10 @@ class _FoldPath:
             if not np.isfinite(rn):
                 raise StepFailed("non-finite residual on the fold path", it)
             T = newton.tangent(dtp, dta, u, w)
-            T.factor(definite=False)
+            definite = T.factor(definite=False)
             if it and rn <= max(newton.tolerance * scale,
                                 ROUNDOFF_FACTOR * newton.floor(u, w, dtp, dta)):
-                return u, w, parts, T, it
+                return u, w, parts, T, it, definite
             if it == limit:
                 break
             a = T.solve(-R)
@@ -893,7 +894,7 @@ class _FoldPath:
         newton = self.newton
         u0, w0 = s.u + arc * t[0], s.w + arc * t[1]
         try:
-            u, w, parts, T, its = self.corrector(u0, w0, t, s, arc)
+            u, w, parts, T, its, stable = self.corrector(u0, w0, t, s, arc)
         except StepFailed as exc:
             self.iterations += exc.iterations
             raise
@@ -905,7 +906,7 @@ class _FoldPath:
         t1 = self.tangent(new, t)
         if self.inner(t1, t) < 0.5:
             raise StepFailed("the tangent turned", its)
-        return new, t1, T.factor()
+        return new, t1, stable
 
     def fold(self, state: AdhesiveState, goal: float):
         """(stable state at the fold, estimated fold position), or (the state
