@@ -34,7 +34,6 @@ from __future__ import annotations
 
 import argparse
 import json
-import math
 import subprocess
 import sys
 import tempfile
@@ -50,7 +49,7 @@ from benchmarks.workflow_copy import SNAKEMAKE, copy_workflow  # noqa: E402
 
 from asperity.population import samples  # noqa: E402
 from asperity.fe import ConvergenceError  # noqa: E402
-from asperity.fe.adhesive import smooth_aluminum_curves  # noqa: E402
+from asperity.fe.adhesive import jkr_jump_off, smooth_aluminum_curves  # noqa: E402
 
 SCENE = "smooth_aluminum_adhesion"
 RESULTS = Path(__file__).with_name("results")
@@ -82,12 +81,6 @@ def job_row(spec: dict, accuracy: str) -> dict:
     return dict(tip_radius_um=1e6 / s["curvature"], accuracy=accuracy, cpu_time_s=cpu,
                 pull_off_force_N=float(ds.attrs["pull_off_force"]),
                 tabor_parameter=float(ds.attrs["tabor_parameter"]))
-
-
-def jkr_jump_off(mu: float, d: float) -> float:
-    """JKR's jump-off under displacement control, -(3/4) pi^(2/3) mu d (the fold of
-    delta(a) = a^2 / R - sqrt(2 pi a W / E*))."""
-    return -0.75 * math.pi ** (2 / 3) * mu * d
 
 
 def draft_vs_standard(rows: list[dict]) -> list[dict]:

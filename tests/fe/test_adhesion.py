@@ -14,7 +14,7 @@ from scipy.integrate import quad
 
 from asperity.fe import LennardJones, LinearElastic, Paraboloid, solve_asperity_adhesive
 from asperity.fe.adhesion import adhesion_zone, composite_gauss, derjaguin_force
-from asperity.fe.adhesive import adhesive_model, adhesive_path, interpolate_adhesive
+from asperity.fe.adhesive import adhesive_model, adhesive_path, interpolate_adhesive, jkr_jump_off
 
 D = 0.3e-9
 R = 15e-6
@@ -168,6 +168,19 @@ def jkr_run():
     return solve_asperity_adhesive(Paraboloid(R), material_for(3.0), LAW, accuracy="draft")
 
 
+@pytest.mark.parametrize("radius, contact_modulus, work", [(15e-6, 70e9, 1.0), (3e-4, 2e9, 0.05)])
+def test_jkr_jump_off_is_the_fold_of_the_jkr_curve(radius, contact_modulus, work):
+    """jkr_jump_off(mu, d) against the least interference of w(a) = a^2 / R -
+    sqrt(2 pi a W / E*) found on a grid of a (1e-6 relative spacing around it)."""
+    d = 0.3e-9
+    mu = (radius * work**2 / (contact_modulus**2 * d**3)) ** (1 / 3)
+    a_fold = (math.pi * work * radius**2 / (8 * contact_modulus)) ** (1 / 3)
+    a = a_fold * np.linspace(0.5, 1.5, 1_000_001)
+    w = a**2 / radius - np.sqrt(2 * math.pi * a * work / contact_modulus)
+    assert jkr_jump_off(mu, d) == pytest.approx(w.min(), rel=1e-9)
+    assert a[np.argmin(w)] == pytest.approx(a_fold, rel=1e-5)
+
+
 def test_compliant_sphere_jumps_in_and_out(jkr_run):
     ds = jkr_run
     mu = ds.attrs["tabor_parameter"]
@@ -179,8 +192,7 @@ def test_compliant_sphere_jumps_in_and_out(jkr_run):
     # jump-in from a gap, jump-off at a larger pull: hysteresis
     assert w_off < w_in < 0
     # JKR's jump-off under displacement control: -(3/4) pi^(2/3) mu d; measured -4.98 d vs -4.83 d
-    jkr_off = -0.75 * math.pi ** (2 / 3) * mu * D
-    assert w_off == pytest.approx(jkr_off, rel=0.05)
+    assert w_off == pytest.approx(jkr_jump_off(mu, D), rel=0.05)
     # pull-off between JKR's 3/2 and DMT's 2 pi R W; measured 1.548 pi R W_c
     P = ds.attrs["pull_off_force"] / (np.pi * R * LAW.work_of_adhesion)
     assert 1.5 <= P <= 1.6

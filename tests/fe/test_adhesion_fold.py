@@ -20,12 +20,6 @@ from asperity.fe import adhesive
 D = 0.3e-9
 
 
-def _jkr_jump_off(mu):
-    """JKR's jump-off under displacement control: the fold of
-    delta(a) = a^2 / R - sqrt(2 pi a W / E*), at -(3/4) pi^(2/3) mu d."""
-    return -0.75 * math.pi ** (2 / 3) * mu * D
-
-
 def _landing(ds, which):
     """(before, after) indices of the largest jump of a branch."""
     jump = ds.jump.values.astype(bool) & (ds.branch.values.astype(str) == which)
@@ -78,5 +72,5 @@ def test_forced_fold_path_finds_the_bisections_jumps(monkeypatch):
     _, kf = _landing(forced, "retract")
     assert forced.contact_radius.values[kf] == 0  # let go
     # the jump-off near JKR's fold (measured -8.17 d, JKR -8.04 d at mu = 5)
-    assert forced.attrs["jump_off_interference"] == pytest.approx(_jkr_jump_off(mu), rel=0.03)
+    assert forced.attrs["jump_off_interference"] == pytest.approx(adhesive.jkr_jump_off(mu, D), rel=0.03)
 

@@ -194,6 +194,14 @@ def jkr_contact_radius(radius: float, contact_modulus: float, work: float, w: fl
     return hi
 
 
+def jkr_jump_off(tabor_parameter: float, d: float) -> float:
+    """JKR's jump-off interference under displacement control: the fold of
+    w(a) = a^2 / R - sqrt(2 pi a W / E*) (`jkr_contact_radius`), at
+    a^3 = pi W R^2 / (8 E*), where w = -3 a^2 / R = -(3/4) pi^(2/3) mu d with
+    the Tabor parameter mu = (R W^2 / (E*^2 d^3))^(1/3) (report 3.4.1)."""
+    return -0.75 * math.pi ** (2 / 3) * tabor_parameter * d
+
+
 # --- mesh ----------------------------------------------------------------------------
 def band_mesh(geometry: Profile, window: tuple[float, float], h_ring: float, grading: float,
               spec: MeshSpec, max_rounds: int = 80) -> AsperityMesh:
