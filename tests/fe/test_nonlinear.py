@@ -3,8 +3,9 @@
 Before the four drivers (elastic, adhesive, inelastic, 3-D sliding) were
 put on the one Newton routine, a small fast case of each was run and its
 per-step Newton iterations, step cuts, forces and contact areas recorded
-in tests/data/nonlinear_reference.json (with the commit they came from;
-regenerate with ``python tests/fe/test_nonlinear.py``, only on purpose).
+in tests/data/nonlinear_reference.json (with the commit they came from: the
+file's, or the case's own; re-record a case with ``python
+tests/fe/test_nonlinear.py <case>``, only on purpose).
 On the same mesh and steps the routine must do exactly what the four
 loops did: iteration counts and cuts equal, forces and areas to 1e-10
 relative.
@@ -13,7 +14,10 @@ One deliberate change since: the adhesive path retries a steep position
 once before bisecting (`adhesive._advance`), so the adhesive case's
 iteration counts were re-recorded after it (297 instead of 279 in all,
 one path level 73 instead of 63); its states, cuts, forces and areas are
-the recorded ones of 8ed8f79 unchanged.
+the recorded ones of 8ed8f79 unchanged.  When the step control of all four
+moved to `nonlinear` (`StepCuts`, `Pace`), the time-marching drivers got a
+case each with cut steps (``j2_cuts``, ``sliding_cuts``), recorded on the
+code before the move.
 """
 
 from __future__ import annotations
@@ -52,9 +56,9 @@ def _adhesive():
                                    LennardJones(1.0, d), w_max=d, accuracy="draft")
 
 
-def _j2():
+def _j2(accuracy="draft"):
     return solve_asperity_history(Paraboloid(1.0), J2Plasticity(1000.0, 0.3, 30.0, H=50.0),
-                                  History.load_unload(0.01, 1.0), accuracy="draft")
+                                  History.load_unload(0.01, 1.0), accuracy=accuracy)
 
 
 def _bodner_partom():
@@ -63,7 +67,7 @@ def _bodner_partom():
                                   History.load_unload(0.01e-6, 0.25e-6), accuracy="draft")
 
 
-def _sliding():
+def _sliding(accuracy="draft"):
     from asperity.fe.solid3d import MeshSpec
 
     a = math.sqrt(0.005)
@@ -72,7 +76,7 @@ def _sliding():
     motion = FlatMotion.press_and_slide(0.005, 0.5 * a, (0.0, 1.0), (1.0, 2.0))
     return solve_sliding(Paraboloid(1.0), LinearElastic(1000.0, 0.3), motion,
                          FrictionLaw(ShearResistance.coulomb(0.3), 1e-3 * a),
-                         accuracy="draft", mesh=spec, contact_radius=3 * a)
+                         accuracy=accuracy, mesh=spec, contact_radius=3 * a)
 
 
 CASES = {
@@ -87,6 +91,12 @@ CASES = {
     "j2": (_j2, ("time", "interference", "force", "contact_area")),
     "bodner_partom": (_bodner_partom, ("time", "interference", "force", "contact_area")),
     "sliding": (_sliding, ("time", "normal_force", "tangential_force", "contact_area")),
+    # the time-marching drivers with their steps cut (recorded on 9e6dc8a, before
+    # their step control moved to `nonlinear`): 15 and 14 cuts, steps grown after
+    "j2_cuts": (lambda: _j2(dict(base="draft", max_iterations=4)),
+                ("time", "interference", "force", "contact_area")),
+    "sliding_cuts": (lambda: _sliding(dict(base="draft", max_iterations=3)),
+                     ("time", "normal_force", "tangential_force", "contact_area")),
 }
 
 
@@ -129,14 +139,17 @@ if __name__ == "__main__":
 
     commit = subprocess.run(["git", "rev-parse", "HEAD"], capture_output=True, text=True,
                             cwd=DATA.parent, check=True).stdout.strip()
-    cases = {}
+    # the cases named on the command line are (re-)recorded, each with its
+    # commit; the others are kept (with the file's commit, unless their own)
+    old = json.loads(DATA.read_text()) if DATA.exists() else {"commit": commit, "cases": {}}
+    cases = dict(old["cases"])
     for name in (sys.argv[1:] or CASES):
         t0 = time.process_time()
-        cases[name] = _record(name)
+        cases[name] = dict(commit=commit, **_record(name))
         print(name, f"{time.process_time() - t0:.1f} s CPU", len(cases[name]["step_cuts"]),
               "steps", sum(cases[name]["newton_iterations"]), "iterations",
               sum(cases[name]["step_cuts"]), "cuts")
-    DATA.write_text(_dumps(commit, cases))
+    DATA.write_text(_dumps(old["commit"], cases))
 
 
 def test_convergence_error_names_the_sample_and_the_step():
@@ -271,3 +284,64 @@ def test_the_sliding_trace_sees_every_iteration():
     assert [t[0] for t in sm.trace] == list(range(its + 1)) and its >= 2
     it, rn, scale, touching, slipping = sm.trace[-1]
     assert rn <= 1e-9 * scale and touching > 0 and slipping <= touching
+
+
+# --- the step control ------------------------------------------------------------------
+def test_step_cuts_run_out_after_the_limit_and_name_the_step():
+    """Limit 2: the third cut exhausts the allowance; the error names the step,
+    the position tried and reached, and the cuts before the last; a restart
+    (the adhesive path after a fold) gives a fresh allowance, the count goes on."""
+    from asperity.fe.nonlinear import StepCuts
+
+    cuts = StepCuts(step=7, limit=2)
+    seen = []
+    for _ in range(3):
+        cuts.cut()
+        seen.append(cuts.exhausted)
+    assert seen == [False, False, True] and cuts.count == 3
+    err = cuts.error(2e-7, 1.5e-7, "no convergence in 40 iterations")
+    assert (err.step, err.interference, err.reached, err.cuts) == (7, 2e-7, 1.5e-7, 2)
+    assert str(err).startswith("Newton iterations did not converge at step 7 "
+                               "(interference 2e-07 m) after 2 step cuts")
+    cuts.restart()
+    cuts.cut()
+    cuts.cut()
+    assert not cuts.exhausted and cuts.count == 5
+    cuts.cut()
+    assert cuts.exhausted
+
+
+@pytest.mark.parametrize("iterations, cuts, proposed, factor", [
+    (3, 0, None, 2.0),   # easy: the growth
+    (4, 0, None, 2.0),   # at `fast`: still easy
+    (5, 0, None, 1.0),   # more than `fast`: no growth
+    (9, 0, 0.6, 0.6),    # a smaller proposal (time error) stands
+    (10, 0, None, 0.7),  # `slow`: shrink
+    (12, 0, 1.5, 0.7),
+    (3, 1, None, 1.0),   # cut: no growth
+    (3, 2, 0.3, 0.3),
+    (10, 1, None, 0.7),
+])
+def test_pace_sizes_the_next_step_by_newton(iterations, cuts, proposed, factor):
+    from asperity.fe.nonlinear import Pace
+
+    assert Pace(fast=4, growth=2.0, slow=10, shrink=0.7).factor(
+        iterations, cuts, proposed) == factor
+    # without `slow` (the 3-D driver): never below 1 for Newton's sake
+    expected = 1.0 if (cuts or iterations > 4) else 2.0
+    assert Pace(fast=4, growth=2.0).factor(iterations, cuts) == expected
+
+
+def test_steps_end_on_knots_and_follow_the_inelastic_strain():
+    from asperity.fe.nonlinear import next_time, strain_limited
+
+    assert next_time(1.0, 0.25, 2.0) == 1.25
+    assert next_time(1.0, 3.0, 2.0) == 2.0                     # not past the knot
+    assert next_time(1.0, 1.0 - 5e-10, 2.0) == 2.0             # no sliver before it
+    assert next_time(1.0, 1.0 - 2e-9, 2.0) == 1.0 + (1.0 - 2e-9)
+    # the last step (h = 2) made 0.05 of strain, 0.05 allowed: 0.8 h
+    assert strain_limited(4.0, 2.0, 0.05, 0.05) == pytest.approx(1.6, rel=1e-15)
+    assert strain_limited(4.0, 2.0, 0.08, 0.05) == pytest.approx(1.0, rel=1e-15)
+    assert strain_limited(4.0, 2.0, 1.0, 0.05) == 1.0          # never below h / 2
+    assert strain_limited(0.5, 2.0, 0.01, 0.05) == 0.5         # a smaller step stands
+    assert strain_limited(4.0, 2.0, 0.0, 0.05) == 4.0          # elastic: no limit

@@ -18,8 +18,8 @@ sliding).  Modules: `geometry` (profiles), `mesh` (graded curved meshes,
 refinement), `material`, `j2`, `bodner_partom` (stress and tangent at
 quadrature points), `assembly` (P2 fields, stiffness, condensation onto the
 surface), `contact` (penalty law, contact points, contact edge),
-`nonlinear` (the one Newton iteration of every driver, line searches),
-`newton` (the elastic contact problem, step control, Uzawa), `adapt` (ZZ
+`nonlinear` (the one Newton iteration and step control of every driver,
+line searches), `newton` (the elastic contact problem, Uzawa), `adapt` (ZZ
 estimator, marking), `presets` (accuracy of every kind of model),
 `outputs` (the variables of every driver's Dataset), `solve`,
 `inelastic`, `adhesion` and `adhesive`, `sliding` and `solid3d` (drivers

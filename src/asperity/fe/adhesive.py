@@ -988,8 +988,8 @@ def _advance(state: AdhesiveState, target: float, pre: dict, step: int = 0):
     smallest = pre["min_step"] * d
     target = float(target)
     goals = [target]
-    halvings = iterations = 0
-    cuts = 0  # halvings since the last pass through a fold
+    iterations = 0
+    cuts = nonlinear.StepCuts(step, MAX_HALVINGS)  # halvings; restarted after a fold
     jumps = []
     bads = []  # positions known to fail or to be discontinuous, nearest last
     steep = None  # a bad position to retry once after the next advance
@@ -1018,9 +1018,9 @@ def _advance(state: AdhesiveState, target: float, pre: dict, step: int = 0):
             iterations += its
         except StepFailed as exc:
             iterations += exc.iterations
-            cut = 0 if retry and goal == steep else 1  # a failed retry halves nothing
-            halvings, cuts = halvings + cut, cuts + cut
-            if small or cuts > MAX_HALVINGS:
+            if not (retry and goal == steep):  # a failed retry halves nothing
+                cuts.cut()
+            if small or cuts.exhausted:
                 failure = f"{exc} (at w = {goal:.6g} m)"
             else:
                 bads.append(goal)
@@ -1035,9 +1035,9 @@ def _advance(state: AdhesiveState, target: float, pre: dict, step: int = 0):
             jumped = verdict != "continuous"
             if jumped and not small:
                 retried = retry and goal == steep
-                cut = 0 if retried else 1  # a failed retry halves nothing
-                halvings, cuts = halvings + cut, cuts + cut
-                if cuts > MAX_HALVINGS:
+                if not retried:  # a failed retry halves nothing
+                    cuts.cut()
+                if cuts.exhausted:
                     failure = "the path stays discontinuous"
                 else:
                     # a steep position is retried once: not when this was its retry
@@ -1049,10 +1049,10 @@ def _advance(state: AdhesiveState, target: float, pre: dict, step: int = 0):
         if failure is not None:  # the bisection stalled: follow the branch through its fold
             passed = _through_fold(state, target, pre)
             if passed is None:
-                raise ConvergenceError(step, target, state.w, halvings - 1, failure)
+                raise cuts.error(target, state.w, failure)
             state, new, jumped, its = passed
             iterations += its
-            cuts = 0
+            cuts.restart()
         new, its = _follow(new, step)
         iterations += its
         if jumped:
@@ -1066,7 +1066,7 @@ def _advance(state: AdhesiveState, target: float, pre: dict, step: int = 0):
             goals.pop()
         else:  # the pass landed at a position of its own
             goals = [target]
-    return state, jumps, iterations, halvings
+    return state, jumps, iterations, cuts.count
 
 
 def _predictor(state: AdhesiveState, goal: float) -> np.ndarray:

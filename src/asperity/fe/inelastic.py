@@ -154,10 +154,11 @@ import xarray as xr
 
 from . import nonlinear
 from .contact import PENALTY_FACTOR, C1Penalty, ContactZone, contact_edge_pressure
-from .errors import ContactZoneError, ConvergenceError, RuptureError, StepFailed
+from .errors import ContactZoneError, RuptureError, StepFailed
 from .kinematics import KINEMATICS, SmallStrain, kinematics_for
 from .material import LinearElastic, equivalent_strain, von_mises
-from .nonlinear import Problem, ResidualSearch, check_local_update
+from .nonlinear import (Pace, Problem, ResidualSearch, StepCuts, check_local_update, next_time,
+                        strain_limited)
 from .outputs import INELASTIC_THRESHOLD, SMALL_STRAIN_LIMIT, dataset
 from .presets import resolve
 from .remesh import ContactMeshes, Transfer
@@ -165,12 +166,12 @@ from .solve import adapted_model, check_levels, run_attrs
 
 #: on unloading, a force below this fraction of the largest force counts as zero
 ZERO_FORCE = 1e-6
-#: Newton: the next time step does not grow after more than FAST iterations,
-#: and shrinks by SHRINK after SLOW or more
-FAST, SLOW, SHRINK = 4, 10, 0.7
 #: time-error controller: safety factor, largest growth, smallest factor, and
 #: a step is rejected when its indicator exceeds REJECT x the tolerance
 SAFETY, MAX_GROWTH, MIN_FACTOR, REJECT = 0.9, 2.0, 0.2, 2.0
+#: Newton's say on the next time step: no growth after more than 4
+#: iterations, a shrink by 0.7 after 10 or more
+PACE = Pace(fast=4, growth=MAX_GROWTH, slow=10, shrink=0.7)
 #: default time tolerance when the accuracy preset has none
 TIME_TOLERANCE = 0.1
 #: Newton tolerance of a rate-dependent material: this x time_tolerance where
@@ -833,7 +834,7 @@ def solve_asperity_history(geometry, material, history: History, accuracy="stand
     while t < t_end * (1 - 1e-12) and n < max_steps:
         n += 1
         step_start = time.perf_counter()
-        cuts = 0
+        cuts = StepCuts(n, max_cuts)
         iterations, carried = carried, 0
         branch = history.branch(t)
         # BDF2 from the second step on, restarted with backward Euler after a
@@ -842,11 +843,7 @@ def solve_asperity_history(geometry, material, history: History, accuracy="stand
         order = 2 if (integration == "bdf2" and rate_dependent and state_prev is not None
                       and not at_knot) else 1
         while True:
-            dt_try = min(dt, dt_cap)
-            knot = history.next_knot(t)
-            t_new = min(t + dt_try, knot)
-            if knot - t_new < 1e-9 * (knot - t):  # snap onto the knot
-                t_new = knot
+            t_new = next_time(t, min(dt, dt_cap), history.next_knot(t))
             h = t_new - t
             w_new = float(history(t_new))
             reason = None
@@ -901,13 +898,13 @@ def solve_asperity_history(geometry, material, history: History, accuracy="stand
                     dt = 0.5 * h  # locate the zero force crossing: not a cut
                     continue
                 break
-            cuts += 1
-            if cuts > max_cuts:
+            cuts.cut()
+            if cuts.exhausted:
                 detail = reason
                 if rupture is not None:
                     detail += (f" ({rows[-1]['ruptured_points']} points ruptured since step "
                                f"{rupture['step']})")
-                raise ConvergenceError(n, w_new, w, cuts - 1, detail)
+                raise cuts.error(w_new, w, detail)
             dt = shrink * h
         # remesh: a new mesh around the contact and the plastic zone of the
         # step, the state at its start transferred, the step re-solved on it
@@ -943,7 +940,7 @@ def solve_asperity_history(geometry, material, history: History, accuracy="stand
         r_prev, r_n = r_n, r_new
         u, t, w, state = u_new, t_new, w_new, new
         f_ref = float(np.linalg.norm(model.zone.nodal(out["traction"])))
-        append(rec, time=t, branch=branch, newton_iterations=iterations, step_cuts=cuts,
+        append(rec, time=t, branch=branch, newton_iterations=iterations, step_cuts=cuts.count,
                time_step=h, integration_order=order, time_error=err,
                wall_time=time.perf_counter() - step_start, dofs=model.dofs)
         # next time step: the error controller, limited by Newton and the caps
@@ -952,18 +949,11 @@ def solve_asperity_history(geometry, material, history: History, accuracy="stand
         else:
             fac = min(MAX_GROWTH, max(MIN_FACTOR,
                                       SAFETY * (time_tolerance / err) ** (1.0 / (order + 1))))
-        if cuts:
-            fac = min(fac, 1.0)
-        if iterations >= SLOW:
-            fac = min(fac, SHRINK)
-        elif iterations > FAST:
-            fac = min(fac, 1.0)
-        dt = fac * h
+        dt = PACE.factor(iterations, cuts.count, fac) * h
         v = history.velocity(t)
         if v > 0:
             dt = min(dt, dw_max / v)
-        if eps_step > 0:
-            dt = min(dt, h * max(0.5, 0.8 * max_inelastic_step / eps_step))
+        dt = strain_limited(dt, h, eps_step, max_inelastic_step)
         f_zero = ZERO_FORCE * f_max
         f_max = max(f_max, rec["force"])
         if rec["ruptured_points"] and rupture is None:

@@ -14,11 +14,12 @@ Newton step is safeguarded by a backtracking line search on that energy
 Converged when ||R|| <= tolerance * ||f_contact|| or, for very stiff
 penalties, when ||R|| reaches its round-off level (`ContactNewton.floor`).
 
-Step control in the spirit of report 3.5: each requested interference is
-reached from the last converged state with the tangent predictor
-u + dw du/dw; a step that does not converge within `max_iterations` (or
-diverges, or gives non-finite values) is cut in half and retried, up to
-`max_cuts` times per requested step; then `ConvergenceError` names the step.
+Step control in the spirit of report 3.5 (`nonlinear.StepCuts`): each
+requested interference is reached from the last converged state with the
+tangent predictor u + dw du/dw; a step that does not converge within
+`max_iterations` (or diverges, or gives non-finite values) is cut in half
+and retried, up to `max_cuts` times per requested step; then
+`ConvergenceError` names the step.
 """
 
 from __future__ import annotations
@@ -31,7 +32,7 @@ import scipy.linalg as sla
 
 from . import nonlinear
 from .contact import AugmentedPenalty, C1Penalty, ContactZone
-from .errors import ConvergenceError, StepFailed
+from .errors import StepFailed
 from .nonlinear import EnergySearch, Problem
 
 
@@ -211,7 +212,7 @@ def continuation(newton: ContactNewton, law: C1Penalty, levels, max_cuts: int = 
             state = untouched(zone)
             lam = np.zeros(zone.weights.shape)
             continue
-        cuts = 0
+        cuts = nonlinear.StepCuts(int(steps[n]), max_cuts)
         iterations = 0
         start = time.perf_counter()
         goals = [target]
@@ -229,10 +230,9 @@ def continuation(newton: ContactNewton, law: C1Penalty, levels, max_cuts: int = 
                     lam = lam_new
             except StepFailed as exc:
                 iterations += exc.iterations
-                cuts += 1
-                if cuts > max_cuts:
-                    raise ConvergenceError(int(steps[n]), target, state.w, cuts - 1,
-                                           str(exc)) from None
+                cuts.cut()
+                if cuts.exhausted:
+                    raise cuts.error(target, state.w, str(exc)) from None
                 goals.append(0.5 * (state.w + goal))
                 continue
             if exact_tolerance is not None:
@@ -242,7 +242,7 @@ def continuation(newton: ContactNewton, law: C1Penalty, levels, max_cuts: int = 
             state = newton.state(goal, u, t, dt, 0, 0)
             goals.pop()
         state.iterations = iterations
-        state.cuts = cuts
+        state.cuts = cuts.count
         state.wall_time = time.perf_counter() - start
         out.append(state)
     return out

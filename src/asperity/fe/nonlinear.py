@@ -26,6 +26,18 @@ A try that fails (non-finite values, a diverging or stalled residual, a
 failed linear solve) raises `errors.StepFailed` with the iterations it
 took; the drivers cut the step and retry, and raise
 `errors.ConvergenceError` when the cuts run out.
+
+Step control (report 3.5), the same rules in every driver:
+
+* `StepCuts` counts the cuts of one requested step (a failed try, or a
+  state the driver rejects) and makes the `ConvergenceError` that names
+  the step once they run out.  The elastic and adhesive drivers bisect in
+  the interference (the adhesive one turns to its fold path, not to the
+  error, when its cuts run out: `StepCuts.restart` after a fold);
+* the time-marching drivers (inelastic, 3-D) end each try on the next knot
+  of their history (`next_time`), cut a rejected try, and size the next
+  step from the accepted one by its Newton iterations and cuts (`Pace`)
+  and by the largest inelastic strain increment (`strain_limited`).
 """
 
 from __future__ import annotations
@@ -34,7 +46,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .errors import StepFailed
+from .errors import ConvergenceError, StepFailed
 
 #: Armijo's sufficient decrease: merit(x + d) <= merit(x) + ARMIJO R.d
 ARMIJO = 1e-4
@@ -197,3 +209,82 @@ def newton(problem: Problem, x0, tolerance: float, max_iterations: int, search,
         x, evaluated = search(problem, x, R, rn, d)
         R, data = problem.evaluate(x) if evaluated is None else evaluated
     raise StepFailed(f"no convergence in {max_iterations} iterations", max_iterations)
+
+
+# ----------------------------------------------------------------------------- step control
+class StepCuts:
+    """The cuts of one requested step.
+
+    `cut` counts one (a try that failed or was rejected); `exhausted` says
+    when more than ``limit`` were made since the start or the last
+    `restart`; `error` is then the `ConvergenceError` naming ``step``, the
+    position tried and the last one reached, with the cuts made in all
+    but the last.  ``count`` is the cuts made in all (``step_cuts`` of the
+    drivers' output).
+    """
+
+    def __init__(self, step: int, limit: int):
+        self.step, self.limit = step, limit
+        self.count = 0
+        self._window = 0
+
+    def cut(self) -> None:
+        self.count += 1
+        self._window += 1
+
+    def restart(self) -> None:
+        """A fresh allowance of ``limit`` cuts (the adhesive path after a fold)."""
+        self._window = 0
+
+    @property
+    def exhausted(self) -> bool:
+        return self._window > self.limit
+
+    def error(self, tried: float, reached: float, detail: str) -> ConvergenceError:
+        return ConvergenceError(self.step, tried, reached, self.count - 1, detail)
+
+
+def next_time(t: float, dt: float, knot: float) -> float:
+    """The end of a try of time step ``dt`` from ``t``: not beyond the next
+    knot of the history, and snapped onto it when closer than 1e-9 of the
+    way (no sliver step before a knot)."""
+    t_new = min(t + dt, knot)
+    if knot - t_new < 1e-9 * (knot - t):
+        t_new = knot
+    return t_new
+
+
+@dataclass(frozen=True)
+class Pace:
+    """The next time step after an accepted one of length h, from how hard
+    Newton worked: ``factor`` x h.
+
+    The factor is ``growth`` (or the ``proposed`` one of a time-error
+    controller), at most 1 after a step that was cut or took more than
+    ``fast`` iterations, and at most ``shrink`` after one that took
+    ``slow`` or more.
+    """
+
+    fast: int
+    growth: float
+    slow: int | None = None
+    shrink: float = 1.0
+
+    def factor(self, iterations: int, cuts: int, proposed: float | None = None) -> float:
+        fac = self.growth if proposed is None else proposed
+        if cuts:
+            fac = min(fac, 1.0)
+        if self.slow is not None and iterations >= self.slow:
+            fac = min(fac, self.shrink)
+        elif iterations > self.fast:
+            fac = min(fac, 1.0)
+        return fac
+
+
+def strain_limited(dt: float, h: float, step_strain: float, largest: float) -> float:
+    """``dt`` limited so that the next step's largest inelastic strain
+    increment is about 0.8 ``largest`` if it scales with the step (the last
+    step of length ``h`` made ``step_strain``), and never below h / 2."""
+    if step_strain > 0:
+        dt = min(dt, h * max(0.5, 0.8 * largest / step_strain))
+    return dt

@@ -99,9 +99,10 @@ from skfem import Basis, ElementTetP2, ElementVector, FacetBasis, MeshTet, MeshT
 
 from . import nonlinear
 from .contact import SMOOTHING, C1Penalty
-from .errors import ContactZoneError, ConvergenceError, StepFailed
+from .errors import ContactZoneError, StepFailed
 from .material import METRIC6, equivalent_strain, von_mises
-from .nonlinear import Problem, ResidualSearch, check_local_update
+from .nonlinear import (Pace, Problem, ResidualSearch, StepCuts, check_local_update, next_time,
+                        strain_limited)
 from .outputs import INELASTIC_THRESHOLD, dataset, describe
 from .presets import resolve
 from .sliding import FrictionLaw, ShearResistance, contact_tangent, drag_anchor
@@ -119,10 +120,10 @@ PENALTY_FACTOR_3D = 100.0
 SMOOTHING_3D = SMOOTHING
 #: a point's tangent counts as elastic when |D - C| <= this * |C|
 TANGENT_ELASTIC_TOL = 1e-10
-#: time step growth after a step without cuts that took <= FAST Newton
-#: iterations (a sliding junction often takes more than 5 per step: a lower
-#: threshold never lets the step grow back after a cut)
-GROWTH, FAST = 1.5, 12
+#: time step growth by 1.5 after a step without cuts that took at most 12
+#: Newton iterations (a sliding junction often takes more than 5 per step: a
+#: lower threshold never lets the step grow back after a cut)
+PACE = Pace(fast=12, growth=1.5)
 #: "at the junction": the largest inelastic strain lies less than this
 #: fraction of the equivalent contact radius sqrt(A / pi) below the flat
 JUNCTION_DEPTH_FRACTION = 0.25
@@ -947,13 +948,10 @@ def solve_sliding(geometry, material, motion: FlatMotion, friction: FrictionLaw,
     while t < motion.end * (1 - 1e-12) and n < max_steps:
         n += 1
         step_start = time.perf_counter()
-        cuts = iterations = 0
+        cuts, iterations = StepCuts(n, max_cuts), 0
         phase = motion.phase(t)
         while True:
-            knot = motion.next_knot(t)
-            t_new = min(t + min(dt, caps[motion.segment(t)]), knot)
-            if knot - t_new < 1e-9 * (knot - t):
-                t_new = knot
+            t_new = next_time(t, min(dt, caps[motion.segment(t)]), motion.next_knot(t))
             h = t_new - t
             w_new, d_new = motion(t_new)
             reason = None
@@ -976,18 +974,17 @@ def solve_sliding(geometry, material, motion: FlatMotion, friction: FrictionLaw,
                         f"candidate zone (radius {model.contact_radius:.4g} m); give a larger "
                         f"contact_radius")
                 break
-            cuts += 1
-            if cuts > max_cuts:
-                raise ConvergenceError(n, w_new, w, cuts - 1,
-                                       f"t = {t_new:.6g} s, delta = {d_new:.6g} m: {reason}")
+            cuts.cut()
+            if cuts.exhausted:
+                raise cuts.error(w_new, w, f"t = {t_new:.6g} s, delta = {d_new:.6g} m: {reason}")
             dt = 0.5 * h
             say(f"step {n}: cut to dt = {dt:.4g} s ({reason})")
         iface = sm.commit(out, iface)
         u, t, w, delta, state = u_new, t_new, w_new, d_new, out["state"]
         # the converged state with the dragged anchors, for the next predictor
         _, out_last = sm.evaluate(u, w, delta, state, iface, h)
-        rows.append(dict(rec, time=t, phase=phase, newton_iterations=iterations, step_cuts=cuts,
-                         time_step=h, wall_time=time.perf_counter() - step_start))
+        rows.append(dict(rec, time=t, phase=phase, newton_iterations=iterations,
+                         step_cuts=cuts.count, time_step=h, wall_time=time.perf_counter() - step_start))
         for k, ts in snap_times.items():
             if k not in snap and t >= ts * (1 - 1e-12):
                 a_max = max(r["contact_area"] for r in rows)
@@ -997,13 +994,8 @@ def solve_sliding(geometry, material, motion: FlatMotion, friction: FrictionLaw,
         say(f"step {n}: t = {t:.6g} s, w = {w:.4g} m, delta = {delta:.4g} m, "
             f"F_N = {rec['normal_force']:.4g} N, F_T = {rec['tangential_force']:.4g} N, "
             f"A = {rec['contact_area']:.4g} m^2, "
-            f"{iterations} Newton iterations, {cuts} cuts")
-        if iterations <= FAST and cuts == 0:
-            dt = GROWTH * h
-        else:
-            dt = h
-        if step_inel > 0:
-            dt = min(dt, h * max(0.5, 0.8 * max_inel / step_inel))
+            f"{iterations} Newton iterations, {cuts.count} cuts")
+        dt = strain_limited(PACE.factor(iterations, cuts.count) * h, h, step_inel, max_inel)
 
     total = time.perf_counter() - t_start
     head = dataset({name: np.array([r[name] for r in rows]) for name in OUTPUTS}, geometry,
