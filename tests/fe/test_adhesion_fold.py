@@ -28,18 +28,26 @@ def _landing(ds, which):
     return k - 1, k
 
 
-def test_forced_fold_path_finds_the_bisections_jumps(monkeypatch):
-    """mu = 5 on a 15 um asperity (as tests/fe/test_adhesion_hard_cases.py), draft: the
-    bisection alone finds the jump-in and the jump-off; with the bisection cut short,
-    both are passed by the fold path and must be the same jumps."""
-    R, mu = 15e-6, 5.0
-    E_star = math.sqrt(R / D**3) / mu**1.5
+#: mu = 5 on a 15 um asperity (as tests/fe/test_adhesion_hard_cases.py)
+R, MU = 15e-6, 5.0
 
-    def run():
-        return solve_asperity_adhesive(Paraboloid(R), LinearElastic(E_star * 0.91, 0.3),
-                                       LennardJones(1.0, D), w_max=2 * D, accuracy="draft")
 
-    plain = run()
+def run():
+    E_star = math.sqrt(R / D**3) / MU**1.5
+    return solve_asperity_adhesive(Paraboloid(R), LinearElastic(E_star * 0.91, 0.3),
+                                   LennardJones(1.0, D), w_max=2 * D, accuracy="draft")
+
+
+@pytest.fixture(scope="module")
+def plain():
+    """The path by the bisection alone: it finds the jump-in and the jump-off."""
+    return run()
+
+
+def test_forced_fold_path_finds_the_bisections_jumps(monkeypatch, plain):
+    """With the bisection cut short, both jumps are passed by the fold path and
+    must be the same jumps as the bisection's (draft)."""
+    mu = MU
     passes = []
     through = adhesive._through_fold
 
@@ -52,7 +60,6 @@ def test_forced_fold_path_finds_the_bisections_jumps(monkeypatch):
     monkeypatch.setattr(adhesive, "_through_fold", counted)
     forced = run()
     # the fold path took over, and jumped at least twice (in and off)
-    assert all(p is not None for p in passes)
     assert sum(bool(p[2]) for p in passes) >= 2
     assert forced.attrs["jumps"] == plain.attrs["jumps"] == 2
     # the pull-off is on the branch before the jump-off fold: the same state
@@ -74,3 +81,56 @@ def test_forced_fold_path_finds_the_bisections_jumps(monkeypatch):
     # the jump-off near JKR's fold (measured -8.17 d, JKR -8.04 d at mu = 5)
     assert forced.attrs["jump_off_interference"] == pytest.approx(adhesive.jkr_jump_off(mu, D), rel=0.03)
 
+
+
+def test_a_jump_off_the_predictor_misses_lands_from_the_approach(monkeypatch, plain):
+    """The jump from the jump-off fold solved from the approach's state out of
+    contact (`adhesive._Landing`) where it fails from the tangent predictor: forced
+    by failing the jump solves from the predictor at every fold the fold path finds
+    beyond -7 d (JKR's jump-off is at -8.04 d; the approach jumps in at -3 d), with
+    the fold path forced as above. It must land where the predictor lands: the same
+    jump-off, pull-off and force after the jump as the bisection's path."""
+    from asperity.fe.errors import StepFailed
+
+    folds, predicted, guesses = [], [], []
+    fold, predictor = adhesive._FoldPath.fold, adhesive._predictor
+    guess, solve = adhesive._Landing.guess, adhesive.AdhesiveNewton.solve
+
+    def found(self, state, goal):
+        out = fold(self, state, goal)
+        if out[1] is not None and out[1] < -7 * D:
+            folds.append(out[0])
+        return out
+
+    def marked(state, goal):
+        out = predictor(state, goal)
+        if any(state is f for f in folds):
+            predicted.append(out)
+        return out
+
+    def landing(self, *args):
+        out = guess(self, *args)
+        guesses.append(out is not None)
+        return out
+
+    def missing(self, w, u0, max_iterations=None):
+        if any(u0 is p for p in predicted):
+            raise StepFailed("forced: the predictor misses", 1)
+        return solve(self, w, u0, max_iterations)
+
+    monkeypatch.setattr(adhesive, "MAX_HALVINGS", 2)
+    monkeypatch.setattr(adhesive._FoldPath, "fold", found)
+    monkeypatch.setattr(adhesive, "_predictor", marked)
+    monkeypatch.setattr(adhesive._Landing, "guess", landing)
+    monkeypatch.setattr(adhesive.AdhesiveNewton, "solve", missing)
+    landed = run()
+    assert predicted and guesses and all(guesses)  # forced, and the landing had a state
+    assert landed.attrs["jumps"] == plain.attrs["jumps"] == 2
+    P = plain.attrs["pull_off_force"]
+    assert landed.attrs["pull_off_force"] == pytest.approx(P, rel=1e-6)
+    assert abs(landed.attrs["jump_off_interference"]
+               - plain.attrs["jump_off_interference"]) <= 0.02 * D
+    _, kp = _landing(plain, "retract")
+    _, kl = _landing(landed, "retract")
+    assert abs(landed.force.values[kl] - plain.force.values[kp]) <= 2e-3 * P
+    assert landed.contact_radius.values[kl] == 0  # let go

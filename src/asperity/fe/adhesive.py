@@ -54,7 +54,11 @@ through the fold, until dw/ds changes sign; the fold so bracketed is
 located to ``min_step * d`` and the jump solved from the stable state
 there to ``min_step * d`` beyond it (`_through_fold`).  A stretch that
 turns out to have no fold is followed to the step's end.  Paths on which
-the bisection does not stall are unchanged.
+the bisection does not stall are unchanged.  Where the jump-off from the
+fold does not converge from the tangent predictor (the contact peels over
+a band of many elements at once), it is solved again from the state the
+approach passed at that flat position before it jumped in (`_Landing`):
+the branch out of contact that the asperity jumps off to.
 
 Sign convention: ``force`` is the total normal force of the flat on the
 asperity, compressive positive as in `solve_asperity`; adhesion makes it
@@ -962,7 +966,8 @@ class _FoldPath:
         raise StepFailed("the fold was not located", 0)
 
 
-def _advance(state: AdhesiveState, target: float, pre: dict, step: int = 0):
+def _advance(state: AdhesiveState, target: float, pre: dict, step: int = 0,
+             landing: _Landing | None = None):
     """From a converged state to the flat position `target`, with step control.
 
     A step that fails to converge, or is discontinuous
@@ -979,7 +984,8 @@ def _advance(state: AdhesiveState, target: float, pre: dict, step: int = 0):
     contact edge (`_follow`) before the next step.  Where the bisection
     stalls (more than MAX_HALVINGS halvings since the start or the last
     fold, or a failed solve at the smallest step) the branch is followed
-    through its fold instead (`_through_fold`).  Returns (final state,
+    through its fold instead (`_through_fold`, with `landing` for the jump
+    from the fold).  Returns (final state,
     [(state before, state after) of each jump], iterations, halvings);
     raises `ConvergenceError` (naming `step` and the last position reached)
     when that fails too.
@@ -1047,10 +1053,10 @@ def _advance(state: AdhesiveState, target: float, pre: dict, step: int = 0):
                     retry = False
                     continue
         if failure is not None:  # the bisection stalled: follow the branch through its fold
-            passed = _through_fold(state, target, pre)
-            if passed is None:
-                raise cuts.error(target, state.w, failure)
-            state, new, jumped, its = passed
+            try:
+                state, new, jumped, its = _through_fold(state, target, pre, landing)
+            except StepFailed as exc:
+                raise cuts.error(target, state.w, f"{failure}; then {exc}") from None
             iterations += its
             cuts.restart()
         new, its = _follow(new, step)
@@ -1080,39 +1086,84 @@ def _predictor(state: AdhesiveState, goal: float) -> np.ndarray:
     return state.u + (step_u if big <= cap else step_u * (cap / big))
 
 
-def _through_fold(state: AdhesiveState, target: float, pre: dict):
+def _through_fold(state: AdhesiveState, target: float, pre: dict,
+                  landing: "_Landing | None" = None):
     """The jump from the fold of `state`'s branch towards `target` (`_FoldPath`).
 
     The branch is followed to its fold, and the equilibrium ``min_step * d``
     beyond the fold solved from the stable state there (the tangent
-    predictor, JUMP_ITERATION_FACTOR times the iterations).  Returns (the
-    state at the fold, the state after, whether it jumped (moved more than
+    predictor, JUMP_ITERATION_FACTOR times the iterations); if that fails
+    and a `landing` is given, from its guess instead, kept only if its
+    energy is below the predictor's (a snap releases energy).  Returns (the state
+    at the fold, the state after, whether it jumped (moved more than
     jump_tolerance * d off the predictor), Newton iterations); if the
     branch reaches `target` without a fold, (`state`, the state at the
-    target, False, iterations); None if a solve fails.
+    target, False, iterations).  Raises `StepFailed` saying what failed.
     """
     if not np.any(state.dudw):  # the surface does not move with w: no branch to follow
-        return None
+        raise StepFailed("the surface does not move with w: no branch to follow")
     path = _FoldPath(state, target, pre)
     try:
         before, w_fold = path.fold(state, target)
-    except StepFailed:
-        return None
+    except StepFailed as exc:
+        raise StepFailed(f"following the branch by its arc length: {exc}",
+                         path.iterations) from None
     if w_fold is None:  # no fold: the branch followed to the target
         return state, before, False, path.iterations
     d = state.model.adhesion.d
     goal = w_fold + path.sign * pre["min_step"] * d
     newton = before.model.newton
     pred = _predictor(before, goal)
+    limit = JUMP_ITERATION_FACTOR * newton.max_iterations
+    its = 0
     try:
-        u, parts, T, its = newton.solve(goal, pred,
-                                        JUMP_ITERATION_FACTOR * newton.max_iterations)
-    except StepFailed:
-        return None
+        u, parts, T, its = newton.solve(goal, pred, limit)
+    except StepFailed as exc:
+        its = exc.iterations
+        guess = None if landing is None else landing.guess(goal, before.model)
+        if guess is None:
+            raise StepFailed(f"the jump from the fold at w = {w_fold:.6g} m: {exc}",
+                             path.iterations + its) from None
+        try:
+            u, parts, T, more = newton.solve(goal, guess, limit)
+        except StepFailed as exc2:
+            raise StepFailed(f"the jump from the fold at w = {w_fold:.6g} m: {exc}; from the "
+                             f"approach's state out of contact: {exc2}",
+                             path.iterations + its + exc2.iterations) from None
+        its += more
+        if newton.energy(u, goal) >= newton.energy(pred, goal):  # a snap only goes down
+            raise StepFailed(f"the jump from the fold at w = {w_fold:.6g} m: {exc}; the "
+                             "approach's state out of contact is not below the fold in "
+                             "energy", path.iterations + its)
     after = newton.state(goal, u, parts, T)
     after.model = before.model
     jumped = np.max(np.abs(u - pred), initial=0.0) > pre["jump_tolerance"] * d
     return before, after, jumped, path.iterations + its
+
+
+class _Landing:
+    """Where a jump-off lands: the states the approach passed out of contact.
+
+    Retracting, the asperity jumps off at a flat position w_off below the
+    jump-in w_in of its approach (the hysteresis of 7.3), where the
+    approach was still on the branch out of contact.  `guess` gives that
+    branch at a flat position w: the approach's state out of contact
+    nearest to w, moved to w along its du/dw and interpolated onto the
+    surface nodes of `model`; None beyond the approach's states out of
+    contact by more than d.
+    """
+
+    def __init__(self, states):
+        self.states = [s for s in states if s.contact_force <= 0.0]
+
+    def guess(self, w: float, model) -> np.ndarray | None:
+        if not self.states:
+            return None
+        near = min(self.states, key=lambda s: abs(s.w - w))
+        if abs(near.w - w) > near.model.adhesion.d:
+            return None
+        r = near.model.zone.coords[0]
+        return np.interp(model.zone.coords[0], r, near.u + (w - near.w) * near.dudw)
 
 
 def _trace(model: AdhesiveModel, path, pre: dict, label: str = "") -> list[_Record]:
@@ -1138,8 +1189,10 @@ def _trace(model: AdhesiveModel, path, pre: dict, label: str = "") -> list[_Reco
     for n in range(1, len(path)):
         target, branch = float(path[n]), branches[n]
         t0 = time.perf_counter()
+        landing = (_Landing(r.state for r in records if r.branch == "approach")
+                   if branch == "retract" else None)
         try:
-            state, jumps, iterations, halvings = _advance(state, target, pre, n)
+            state, jumps, iterations, halvings = _advance(state, target, pre, n, landing)
         except ConvergenceError as exc:
             exc.sample = label
             raise
