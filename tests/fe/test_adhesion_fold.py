@@ -134,3 +134,25 @@ def test_a_jump_off_the_predictor_misses_lands_from_the_approach(monkeypatch, pl
     _, kl = _landing(landed, "retract")
     assert abs(landed.force.values[kl] - plain.force.values[kp]) <= 2e-3 * P
     assert landed.contact_radius.values[kl] == 0  # let go
+
+
+def test_the_landing_guess_is_the_branch_out_of_contact():
+    """`_Landing.guess` on made-up states (two meshes): u = 0 where the undeformed
+    tip is beyond the cut-off, an approach state's own u at its w (interpolated onto
+    the nodes asked for), linear in w between two, and None above the last state
+    out of contact; states in contact are not used."""
+    from types import SimpleNamespace as NS
+
+    law = LennardJones(1.0, D)  # cut-off 16 d: the approach starts at -15 d
+    coarse = NS(zone=NS(coords=np.array([[0.0, 1.0, 2.0]])))
+    fine = NS(zone=NS(coords=np.array([[0.0, 0.5, 1.0, 1.5, 2.0]])))
+    a = NS(w=-10 * D, u=np.array([2.0, 1.0, 0.0]), contact_force=0.0, model=coarse)
+    b = NS(w=-6 * D, u=np.array([4.0, 3.0, 2.0, 1.0, 0.0]), contact_force=0.0, model=fine)
+    touching = NS(w=-2 * D, u=np.zeros(5), contact_force=1e-6, model=fine)
+    land = adhesive._Landing([b, touching, a], law)
+    np.testing.assert_array_equal(land.guess(-20 * D, fine), np.zeros(5))
+    np.testing.assert_array_equal(land.guess(-15 * D, fine), np.zeros(5))
+    np.testing.assert_allclose(land.guess(-10 * D, fine), [2.0, 1.5, 1.0, 0.5, 0.0], rtol=1e-15)
+    np.testing.assert_allclose(land.guess(-8 * D, fine), [3.0, 2.25, 1.5, 0.75, 0.0], rtol=1e-14)
+    np.testing.assert_allclose(land.guess(-12.5 * D, coarse), [1.0, 0.5, 0.0], rtol=1e-13)
+    assert land.guess(-5 * D, fine) is None  # above the last state out of contact

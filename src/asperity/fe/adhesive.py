@@ -56,9 +56,10 @@ there to ``min_step * d`` beyond it (`_through_fold`).  A stretch that
 turns out to have no fold is followed to the step's end.  Paths on which
 the bisection does not stall are unchanged.  Where the jump-off from the
 fold does not converge from the tangent predictor (the contact peels over
-a band of many elements at once), it is solved again from the state the
-approach passed at that flat position before it jumped in (`_Landing`):
-the branch out of contact that the asperity jumps off to.
+a band of many elements at once), it is solved again from the branch out
+of contact that the asperity jumps off to (`_Landing`): the states the
+approach passed before it jumped in, or the undeformed body where the tip
+is beyond the cut-off.
 
 Sign convention: ``force`` is the total normal force of the flat on the
 asperity, compressive positive as in `solve_asperity`; adhesion makes it
@@ -1115,7 +1116,6 @@ def _through_fold(state: AdhesiveState, target: float, pre: dict,
     newton = before.model.newton
     pred = _predictor(before, goal)
     limit = JUMP_ITERATION_FACTOR * newton.max_iterations
-    its = 0
     try:
         u, parts, T, its = newton.solve(goal, pred, limit)
     except StepFailed as exc:
@@ -1142,28 +1142,41 @@ def _through_fold(state: AdhesiveState, target: float, pre: dict,
 
 
 class _Landing:
-    """Where a jump-off lands: the states the approach passed out of contact.
+    """Where a jump-off lands: the branch out of contact the approach passed.
 
     Retracting, the asperity jumps off at a flat position w_off below the
     jump-in w_in of its approach (the hysteresis of 7.3), where the
-    approach was still on the branch out of contact.  `guess` gives that
-    branch at a flat position w: the approach's state out of contact
-    nearest to w, moved to w along its du/dw and interpolated onto the
-    surface nodes of `model`; None beyond the approach's states out of
-    contact by more than d.
+    approach was still on the branch out of contact; below the start of
+    the approach, -(s_c - d), the undeformed tip is beyond the cut-off and
+    that branch is u = 0 exactly.  `guess` gives the branch at w, on the
+    surface nodes of `model`: u = 0 below the cut-off, else interpolated
+    linearly in w between the two of those states that bracket w (each
+    interpolated onto the nodes); None above the last state out of
+    contact (the branch is not known there).
     """
 
-    def __init__(self, states):
-        self.states = [s for s in states if s.contact_force <= 0.0]
+    def __init__(self, states, adhesion: LennardJones):
+        self.states = sorted((s for s in states if s.contact_force <= 0.0), key=lambda s: s.w)
+        self.free = -(adhesion.range - adhesion.d)
 
     def guess(self, w: float, model) -> np.ndarray | None:
-        if not self.states:
+        r = model.zone.coords[0]
+        if w <= self.free:
+            return np.zeros(r.size)
+        if not self.states or w > self.states[-1].w:
             return None
-        near = min(self.states, key=lambda s: abs(s.w - w))
-        if abs(near.w - w) > near.model.adhesion.d:
-            return None
-        r = near.model.zone.coords[0]
-        return np.interp(model.zone.coords[0], r, near.u + (w - near.w) * near.dudw)
+        k = next(i for i, s in enumerate(self.states) if s.w >= w)
+        hi = self.states[k]
+        u_hi = np.interp(r, hi.model.zone.coords[0], hi.u)
+        if hi.w == w:
+            return u_hi
+        if k:
+            lo = self.states[k - 1]
+            w_lo, u_lo = lo.w, np.interp(r, lo.model.zone.coords[0], lo.u)
+        else:
+            w_lo, u_lo = self.free, np.zeros(r.size)
+        t = (w - w_lo) / (hi.w - w_lo)
+        return (1.0 - t) * u_lo + t * u_hi
 
 
 def _trace(model: AdhesiveModel, path, pre: dict, label: str = "") -> list[_Record]:
@@ -1189,8 +1202,8 @@ def _trace(model: AdhesiveModel, path, pre: dict, label: str = "") -> list[_Reco
     for n in range(1, len(path)):
         target, branch = float(path[n]), branches[n]
         t0 = time.perf_counter()
-        landing = (_Landing(r.state for r in records if r.branch == "approach")
-                   if branch == "retract" else None)
+        landing = (_Landing((r.state for r in records if r.branch == "approach"),
+                            model.adhesion) if branch == "retract" else None)
         try:
             state, jumps, iterations, halvings = _advance(state, target, pre, n, landing)
         except ConvergenceError as exc:
