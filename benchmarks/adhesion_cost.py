@@ -14,7 +14,8 @@ script measures it (CPU time of this process, `time.process_time`):
    (Tabor parameter 10 and 13: meshes that follow the contact), at draft
    and at standard: CPU time, the pull-off force against JKR's
    3/2 pi R W_c, the jump-off interference against JKR's, and the draft
-   pull-off against standard's.
+   pull-off against standard's, and against the Maugis-Dugdale pull-off at
+   lambda = 1.16 mu (`--compare` recomputes these comparisons alone).
 
 Writes benchmarks/results/adhesion-cost.json and prints a table.  Nothing
 is asserted: speed is measured here, not in the tests.
@@ -49,7 +50,7 @@ from benchmarks.workflow_copy import SNAKEMAKE, copy_workflow  # noqa: E402
 
 from asperity.population import samples  # noqa: E402
 from asperity.fe import ConvergenceError  # noqa: E402
-from asperity.fe.adhesive import jkr_jump_off, smooth_aluminum_curves  # noqa: E402
+from asperity.fe.adhesive import jkr_jump_off, maugis_pull_off, smooth_aluminum_curves  # noqa: E402
 
 SCENE = "smooth_aluminum_adhesion"
 RESULTS = Path(__file__).with_name("results")
@@ -83,11 +84,18 @@ def job_row(spec: dict, accuracy: str) -> dict:
                 tabor_parameter=float(ds.attrs["tabor_parameter"]))
 
 
-def draft_vs_standard(rows: list[dict]) -> list[dict]:
-    """The rows, each standard one with ``pull_off_draft_vs_standard`` (draft / standard
-    - 1) where the same radius has a draft row."""
+def compared(rows: list[dict]) -> list[dict]:
+    """The rows, each that finished with the Maugis-Dugdale pull-off at lambda = 1.16 mu
+    (``maugis_pull_off_over_jkr``) and its own against it (``pull_off_over_maugis``), and
+    each standard one with ``pull_off_draft_vs_standard`` (draft / standard - 1) where the
+    same radius has a draft row."""
     pulls = {(r["tip_radius_um"], r["accuracy"]): r["pull_off_force_N"]
              for r in rows if "pull_off_force_N" in r}
+    for r in rows:
+        if "pull_off_over_jkr" in r:
+            md = maugis_pull_off(1.16 * r["tabor_parameter"]) / 1.5
+            r["maugis_pull_off_over_jkr"] = md
+            r["pull_off_over_maugis"] = r["pull_off_over_jkr"] / md
     for r in rows:
         if r["accuracy"] == "standard" and (r["tip_radius_um"], "draft") in pulls \
                 and "pull_off_force_N" in r:
@@ -140,8 +148,16 @@ def main(argv: list[str] | None = None) -> int:
                     help="part 4's tip radii [um]")
     ap.add_argument("--accuracies", nargs="+", default=["draft", "standard"],
                     help="part 4's presets")
+    ap.add_argument("--compare", action="store_true",
+                    help="only recompute part 4's comparisons of the stored rows (no FE run)")
     ap.add_argument("--out", type=Path, default=RESULTS / "adhesion-cost.json")
     args = ap.parse_args(argv)
+    if args.compare:
+        record = json.loads(args.out.read_text())
+        record["large_radii"] = compared(record.get("large_radii", []))
+        args.out.write_text(json.dumps(record, indent=1) + "\n")
+        print(f"written: {args.out}")
+        return 0
 
     radii = tuple(r * 1e-6 for r in args.radii)
     if args.only_large:
@@ -157,7 +173,7 @@ def main(argv: list[str] | None = None) -> int:
             kept = [r for r in record.get("large_radii", []) if key(r) not in mine]
             large = sorted(kept + [dict(r, commit=commit, uncommitted_changes=dirty, date=date)
                                    for r in rows], key=key)
-            record["large_radii"] = draft_vs_standard(large)
+            record["large_radii"] = compared(large)
             for old in ("large_radii_commit", "large_radii_uncommitted_changes", "large_radii_date"):
                 record.pop(old, None)  # per row now
             args.out.write_text(json.dumps(record, indent=1) + "\n")
@@ -185,7 +201,7 @@ def main(argv: list[str] | None = None) -> int:
     if args.no_large:
         large = json.loads(args.out.read_text()).get("large_radii", [])
     else:
-        large = draft_vs_standard(large_rows(radii, tuple(args.accuracies)))
+        large = compared(large_rows(radii, tuple(args.accuracies)))
     commit, dirty = _commit()
     record = dict(date=time.strftime("%Y-%m-%dT%H:%M:%S%z"), commit=commit, uncommitted_changes=dirty,
                   scene=SCENE, scene_jobs=rows, scene_cpu_time_s=totals, radius_100um=wider,

@@ -331,3 +331,17 @@ def test_large_steps_in_contact_are_not_halved_and_land_on_the_branch():
         Fb = interpolate_adhesive(b, levels, which)["force"]
         # to the Newton tolerance (1e-6 of the forces at draft)
         np.testing.assert_allclose(Fa, Fb, rtol=1e-6, atol=1e-6 * np.max(np.abs(Fb)))
+
+
+def test_maugis_pull_off_spans_dmt_to_jkr():
+    """The Maugis-Dugdale pull-off over pi W R (`adhesive.maugis_pull_off`): DMT's 2 as
+    lam -> 0 and JKR's 3/2 as lam -> infinity (the JKR curve P = A^3 - sqrt(6 A^3) has
+    its minimum -3/2), falling in between."""
+    from asperity.fe.adhesive import maugis_pull_off
+
+    assert maugis_pull_off(1e-4) == pytest.approx(2.0, rel=1e-3)
+    assert maugis_pull_off(1e3) == pytest.approx(1.5, rel=1e-6)
+    lams = [0.01, 0.1, 0.3, 1.0, 3.0, 10.0, 30.0]
+    vals = [maugis_pull_off(lam) for lam in lams]
+    assert all(a > b for a, b in zip(vals, vals[1:]))
+    assert 1.5 < vals[-1] and vals[0] < 2.0
