@@ -144,8 +144,8 @@ def test_the_landing_guess_is_the_branch_out_of_contact():
     from types import SimpleNamespace as NS
 
     law = LennardJones(1.0, D)  # cut-off 16 d: the approach starts at -15 d
-    coarse = NS(zone=NS(coords=np.array([[0.0, 1.0, 2.0]])))
-    fine = NS(zone=NS(coords=np.array([[0.0, 0.5, 1.0, 1.5, 2.0]])))
+    coarse = NS(zone=NS(coords=np.array([[0.0, 1.0, 2.0]]), ndofs=3))
+    fine = NS(zone=NS(coords=np.array([[0.0, 0.5, 1.0, 1.5, 2.0]]), ndofs=5))
     a = NS(w=-10 * D, u=np.array([2.0, 1.0, 0.0]), contact_force=0.0, model=coarse)
     b = NS(w=-6 * D, u=np.array([4.0, 3.0, 2.0, 1.0, 0.0]), contact_force=0.0, model=fine)
     touching = NS(w=-2 * D, u=np.zeros(5), contact_force=1e-6, model=fine)

@@ -830,6 +830,12 @@ class _Record:
     step: int
 
 
+def _on_nodes(state: AdhesiveState, model: "AdhesiveModel") -> np.ndarray:
+    """The surface displacement of `state` interpolated onto the surface nodes of
+    `model` (linearly in r)."""
+    return np.interp(model.zone.coords[0], state.model.zone.coords[0], state.u)
+
+
 def _follow(state: AdhesiveState, step: int = 0) -> tuple[AdhesiveState, int]:
     """`state` moved onto a mesh whose fine band covers its contact edge.
 
@@ -847,7 +853,7 @@ def _follow(state: AdhesiveState, step: int = 0) -> tuple[AdhesiveState, int]:
         if window is None:
             return state, iterations
         model = old.remeshed(window)
-        u0 = np.interp(model.zone.coords[0], old.zone.coords[0], state.u)
+        u0 = _on_nodes(state, model)
         newton = model.newton
         try:
             u, parts, T, its = newton.solve(state.w, u0,
@@ -1201,21 +1207,20 @@ class _Landing:
         self.free = -(adhesion.range - adhesion.d)
 
     def guess(self, w: float, model) -> np.ndarray | None:
-        r = model.zone.coords[0]
         if w <= self.free:
-            return np.zeros(r.size)
+            return np.zeros(model.zone.ndofs)
         if not self.states or w > self.states[-1].w:
             return None
         k = next(i for i, s in enumerate(self.states) if s.w >= w)
         hi = self.states[k]
-        u_hi = np.interp(r, hi.model.zone.coords[0], hi.u)
+        u_hi = _on_nodes(hi, model)
         if hi.w == w:
             return u_hi
         if k:
             lo = self.states[k - 1]
-            w_lo, u_lo = lo.w, np.interp(r, lo.model.zone.coords[0], lo.u)
+            w_lo, u_lo = lo.w, _on_nodes(lo, model)
         else:
-            w_lo, u_lo = self.free, np.zeros(r.size)
+            w_lo, u_lo = self.free, np.zeros(model.zone.ndofs)
         t = (w - w_lo) / (hi.w - w_lo)
         return (1.0 - t) * u_lo + t * u_hi
 
@@ -1240,11 +1245,15 @@ def _trace(model: AdhesiveModel, path, pre: dict, label: str = "") -> list[_Reco
     state.iterations = its + more
     state.wall_time = time.perf_counter() - t0
     records = [_Record(state, branches[0], False, True, 0)]
+    landing = None  # of a retraction: built from the approach's records when it starts
     for n in range(1, len(path)):
         target, branch = float(path[n]), branches[n]
         t0 = time.perf_counter()
-        landing = (_Landing((r.state for r in records if r.branch == "approach"),
-                            model.adhesion) if branch == "retract" else None)
+        if branch != "retract":
+            landing = None
+        elif landing is None:
+            landing = _Landing((r.state for r in records if r.branch == "approach"),
+                               model.adhesion)
         try:
             state, jumps, iterations, halvings = _advance(state, target, pre, n, landing)
         except ConvergenceError as exc:
