@@ -7,6 +7,7 @@ interference -(3/4) (pi^2 dgamma^2 R / E*^2)^(1/3) at large.
 """
 
 import math
+import re
 
 import numpy as np
 import pytest
@@ -117,8 +118,18 @@ def test_quadrature_converges_to_derjaguin(coarse_rigid_model):
 def test_rigid_sphere_limit_against_derjaguin():
     mat = LinearElastic(1e16, 0.3)  # mu = 0.0017
     path = adhesive_path(LAW, 0.0, steps_per_d=3)  # from the cut-off to first touch and back
-    ds = solve_asperity_adhesive(Paraboloid(R), mat, LAW, interferences=path, accuracy="draft")
+    lines = []
+    ds = solve_asperity_adhesive(Paraboloid(R), mat, LAW, interferences=path, accuracy="draft",
+                                 progress=lines.append)
     w, F = ds.interference.values, ds.force.values
+    # one progress line per level after the first, with its position and force
+    assert len(lines) == path.size - 1
+    for n, line in enumerate(lines, start=1):
+        assert line.startswith(f"level {n} of {path.size - 1} (")
+        lw, lf = re.search(r"w = (\S+) m, force (\S+) N", line).groups()
+        k = np.flatnonzero(ds.requested.values)[n]
+        assert float(lw) == pytest.approx(path[n], rel=1e-5)
+        assert float(lf) == pytest.approx(F[k], rel=1e-5)
     ref = -derjaguin_force(LAW, R, D - w)
     # measured: 1.2e-4 of the largest force
     assert np.max(np.abs(F - ref)) <= 1e-3 * np.max(np.abs(ref))

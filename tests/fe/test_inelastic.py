@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+import re
 
 import numpy as np
 import pytest
@@ -199,10 +200,19 @@ def test_too_large_first_step_is_cut_and_recorded():
     mat = J2Plasticity(E, NU, Y, H=0.05 * E)
     hist = History.load_unload(W_MAX, 1.0)
     default_dt = 0.25 * 0.025 * W_MAX / 1.0
+    lines = []
     ds = solve_asperity_history(Paraboloid(1.0), mat, hist, accuracy=ACC,
-                                initial_time_step=1000 * default_dt)
+                                initial_time_step=1000 * default_dt, progress=lines.append)
     cuts = ds.step_cuts.values
     assert cuts[1] >= 5
+    # one progress line per accepted step, with its interference, force and cuts
+    assert len(lines) == ds.attrs["steps"]
+    for k, line in enumerate(lines, start=1):
+        w, f, c = re.search(r"w = (\S+) m, force (\S+) N, \d+ Newton iterations, (\d+) cuts",
+                            line).groups()
+        assert float(w) == pytest.approx(float(ds.interference[k]), rel=1e-5, abs=1e-12)
+        assert float(f) == pytest.approx(float(ds.force[k]), rel=1e-5, abs=1e-12)
+        assert int(c) == cuts[k]
     assert ds.attrs["total_step_cuts"] >= cuts[1]
     for name in ("force", "interference", "max_inelastic_strain", "contact_radius"):
         assert np.all(np.isfinite(ds[name].values))

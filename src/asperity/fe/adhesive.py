@@ -1225,9 +1225,11 @@ class _Landing:
         return (1.0 - t) * u_lo + t * u_hi
 
 
-def _trace(model: AdhesiveModel, path, pre: dict, label: str = "") -> list[_Record]:
+def _trace(model: AdhesiveModel, path, pre: dict, label: str = "",
+           progress=None) -> list[_Record]:
     """States along the path with step control and jumps (module docstring),
-    from `model`'s mesh (moved along with the contact if it follows it)."""
+    from `model`'s mesh (moved along with the contact if it follows it);
+    `progress(line)`, if given, hears of every level reached."""
     newton = model.newton
     branches = _branches(path)
     t0 = time.perf_counter()
@@ -1267,6 +1269,10 @@ def _trace(model: AdhesiveModel, path, pre: dict, label: str = "") -> list[_Reco
         state.wall_time = time.perf_counter() - t0
         if records[-1].state is not state:
             records.append(_Record(state, branch, False, True, n))
+        if progress is not None:
+            progress(f"level {n} of {len(path) - 1} ({branch}): w = {target:.6g} m, force "
+                     f"{state.force:.6g} N, {iterations} Newton iterations, {halvings} cuts, "
+                     f"{len(jumps)} jumps, {state.wall_time:.3g} s")
     return records
 
 
@@ -1344,7 +1350,8 @@ def _main_jump(w, F, branch, jump, which) -> float:
 def solve_asperity_adhesive(geometry: Profile, material, adhesion: LennardJones,
                             interferences=None, w_max: float | None = None,
                             w_min: float | None = None, accuracy="standard",
-                            penalty_factor: float | None = None, label: str = "") -> xr.Dataset:
+                            penalty_factor: float | None = None, label: str = "",
+                            progress=None) -> xr.Dataset:
     """Approach and retraction of a rigid flat on an adhesive elastic asperity.
 
     Parameters
@@ -1365,6 +1372,9 @@ def solve_asperity_adhesive(geometry: Profile, material, adhesion: LennardJones,
         `presets.ACCURACY`) or a dict of overrides.
     label
         a name for error messages (e.g. the pipeline's sample key).
+    progress
+        optional callable(str), told of every level of the path reached
+        (flat position, force, Newton iterations, cuts, jumps, wall time).
 
     Returns a Dataset on dim ``step`` (`outputs.dataset`; the states before a
     jump and those bisecting the path around the pull-off are added to the
@@ -1400,12 +1410,15 @@ def solve_asperity_adhesive(geometry: Profile, material, adhesion: LennardJones,
     for _ in range(4):
         model = adhesive_model(geometry, material, adhesion, float(path.max()), pre, factor, band)
         try:
-            records = _trace(model, path, pre, label)
+            records = _trace(model, path, pre, label, progress)
             break
         except _Overflow:
             if model.scales.r_band >= 0.9 * geometry.extent:
                 raise ContactZoneError("the adhesive ring reached the edge of the hill") from None
             band *= 1.5
+            if progress is not None:
+                progress("the adhesive ring outgrew the refined band: the path again, on a "
+                         "band 1.5 times wider")
     else:
         raise ContactZoneError("the adhesive ring outgrew the refined band")
     _refine_pull_off(records, pre, adhesion.d / 64.0)

@@ -646,7 +646,8 @@ def solve_asperity_history(geometry, material, history: History, accuracy="stand
                            time_tolerance: float | None = None,
                            integration: str = "bdf2",
                            on_rupture: str = "continue",
-                           remesh_times=(), kinematics: str = "small") -> xr.Dataset:
+                           remesh_times=(), kinematics: str = "small",
+                           progress=None) -> xr.Dataset:
     """Incremental solution of an inelastic asperity along `history`.
 
     Parameters
@@ -723,6 +724,9 @@ def solve_asperity_history(geometry, material, history: History, accuracy="stand
         small-strain range (report 7.3: about 8 %).  The strain outputs are
         then Hencky strains, the stresses their work conjugates (rotated
         Kirchhoff stresses), the contact radius that of the deformed surface.
+    progress
+        optional callable(str), told of every accepted step (time,
+        interference, force, Newton iterations, cuts, wall time).
 
     Returns an `xarray.Dataset` on dim ``step`` (variables `OUTPUTS`,
     step 0 the initial untouched state) with attributes including
@@ -943,6 +947,10 @@ def solve_asperity_history(geometry, material, history: History, accuracy="stand
         append(rec, time=t, branch=branch, newton_iterations=iterations, step_cuts=cuts.count,
                time_step=h, integration_order=order, time_error=err,
                wall_time=time.perf_counter() - step_start, dofs=model.dofs)
+        if progress is not None:
+            progress(f"step {n} ({branch}): t = {t:.6g} s, w = {w:.6g} m, force "
+                     f"{rec['force']:.6g} N, {iterations} Newton iterations, {cuts.count} cuts, "
+                     f"{rows[-1]['wall_time']:.3g} s")
         # next time step: the error controller, limited by Newton and the caps
         if math.isnan(err) or err <= 0:
             fac = MAX_GROWTH

@@ -281,7 +281,8 @@ class Adhesive(FiniteElementKind):
         cpu = time.process_time()
         try:
             ds = fe.solve_asperity_adhesive(geometry, material, law(spec["adhesion"]), w_max=top,
-                                            accuracy=spec["accuracy"], label=key)
+                                            accuracy=spec["accuracy"], label=key,
+                                            progress=self.progress(key))
         except (fe.ConvergenceError, fe.ContactZoneError) as err:
             raise self.failed(key, curvature, err, ", adhesive") from err
         return self.record(ds, spec, key, geometry, math.nan, time.process_time() - cpu)

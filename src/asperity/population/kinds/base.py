@@ -3,6 +3,7 @@ and what the finite element kinds share (`FiniteElementKind`)."""
 
 from __future__ import annotations
 
+import logging
 import math
 from dataclasses import dataclass
 from typing import Any, Callable, Mapping
@@ -13,6 +14,8 @@ import xarray as xr
 from asperity.scene import Adhesion, Asperity, Material
 
 Config = Mapping[str, Any]
+
+log = logging.getLogger("asperity")
 
 
 class SampleFailed(RuntimeError):
@@ -158,6 +161,12 @@ class FiniteElementKind(Kind):
             err.sample = who
             return SampleFailed(str(err))
         return SampleFailed(f"sample {who}: {err}")
+
+    @staticmethod
+    def progress(key: str) -> Callable[[str], None]:
+        """The progress of sample `key`'s solver as lines of the ``asperity`` log (the
+        job's log file in the pipeline)."""
+        return lambda line: log.info("sample %s: %s", key, line)
 
     @staticmethod
     def record(ds: xr.Dataset, spec: Config, key: str, geometry, level: float, cpu: float) -> xr.Dataset:

@@ -92,7 +92,8 @@ class Inelastic(FiniteElementKind):
             ds = fe.solve_asperity_history(geometry, material, path, accuracy=spec["accuracy"],
                                            mesh_levels=np.geomspace(0.01 * top, top, 6),
                                            initial_time_step=FIRST_STEP * top / path.velocity(0.0),
-                                           kinematics=kinematics(spec["effects"]))
+                                           kinematics=kinematics(spec["effects"]),
+                                           progress=self.progress(key))
         except (fe.ConvergenceError, fe.ContactZoneError) as err:
             detail = "" if math.isnan(level) else f", unloading from {level:.6g} m"
             raise self.failed(key, curvature, err, detail) from err
