@@ -356,3 +356,42 @@ def test_maugis_pull_off_spans_dmt_to_jkr():
     vals = [maugis_pull_off(lam) for lam in lams]
     assert all(a > b for a, b in zip(vals, vals[1:]))
     assert 1.5 < vals[-1] and vals[0] < 2.0
+
+
+def test_steps_off_the_predictor_pass_by_the_secant_and_land_on_the_branch(monkeypatch):
+    """At mu = 4 the nodes zipping into contact leave the tangent predictor by more
+    than d / 2 + 2 |dw| in steps of d / 3; such steps are judged by the secant
+    through a state solved halfway (`AdhesiveModel.midpoint`) instead of being
+    bisected.  The states must be those of a path with steps half as long, and the
+    jumps the same."""
+    from asperity.fe.adhesive import AdhesiveModel
+
+    verdicts = []
+    midpoint = AdhesiveModel.midpoint
+
+    def spy(self, old, new, pre):
+        out = midpoint(self, old, new, pre)
+        verdicts.append(out[0])
+        return out
+
+    monkeypatch.setattr(AdhesiveModel, "midpoint", spy)
+    mat = material_for(4.0)
+    coarse = adhesive_path(LAW, 12 * D, steps_per_d=3, far_steps=6)
+    fine = adhesive_path(LAW, 12 * D, steps_per_d=6, far_steps=12)
+    a = solve_asperity_adhesive(Paraboloid(R), mat, LAW, accuracy="draft", interferences=coarse)
+    assert verdicts.count("continuous") >= 5  # measured: 7 of 7
+    monkeypatch.setattr(AdhesiveModel, "midpoint", midpoint)
+    b = solve_asperity_adhesive(Paraboloid(R), mat, LAW, accuracy="draft", interferences=fine)
+    assert a.attrs["jumps"] == b.attrs["jumps"] == 2
+    for key in ("jump_in_interference", "jump_off_interference"):
+        assert a.attrs[key] == pytest.approx(b.attrs[key], abs=0.02 * D)
+    assert a.attrs["pull_off_force"] == pytest.approx(b.attrs["pull_off_force"], rel=1e-4)
+    for which in ("approach", "retract"):
+        sel = a.requested.values.astype(bool) & (a.branch.values.astype(str) == which)
+        levels = a.interference.values[sel]
+        levels = levels[np.min(np.abs(levels[:, None] - fine[None, :]), axis=1) < 1e-6 * D]
+        assert levels.size >= 20
+        Fa = interpolate_adhesive(a, levels, which)["force"]
+        Fb = interpolate_adhesive(b, levels, which)["force"]
+        # to the Newton tolerance (1e-6 of the forces at draft)
+        np.testing.assert_allclose(Fa, Fb, rtol=1e-6, atol=1e-6 * np.max(np.abs(Fb)))
