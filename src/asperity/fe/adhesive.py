@@ -34,10 +34,10 @@ continuous if the energy balance Pi*(w1) - Pi*(w0) = (F0 + F1)/2 (w1 - w0)
 holds (Pi* has the derivative F along a branch; a jump releases a finite
 energy) and the surface stayed near the predictor, or, where it did not
 (a contact zipping or peeling over many elements), near the secant
-through a state solved halfway (`AdhesiveModel.continuity`).  Otherwise, or if Newton fails, the step's
-end is marked bad and the bracket up to it is bisected: a continuous
-branch is followed with steps small enough to be smooth, and where the
-step stays discontinuous down to ``min_step * d`` the old branch has ended
+through a state solved halfway (`AdhesiveModel.continuity`).  Otherwise,
+or if Newton fails, the step's end is marked bad and the bracket up to
+it is bisected: a continuous branch is followed with steps small enough
+to be smooth, and where the step stays discontinuous down to ``min_step * d`` the old branch has ended
 (a fold of the equilibrium curve: jump-in on approach, jump-off on
 retraction) and the minimum reached is on the other branch.  The state
 before the fold and the state after the jump are both recorded,
