@@ -10,18 +10,18 @@ On the same mesh and steps the routine must do exactly what the four
 loops did: iteration counts and cuts equal, forces and areas to 1e-10
 relative.
 
-One deliberate change since: the adhesive path retries a steep position
-once before bisecting (`adhesive._advance`), so the adhesive case's
-iteration counts were re-recorded after it (297 instead of 279 in all,
-one path level 73 instead of 63); its states, cuts, forces and areas are
-the recorded ones of 8ed8f79 unchanged.  Likewise when a step off its
-predictor became continuous by the secant through a state solved halfway
+One deliberate change since: the adhesive path retries a steep position once
+before bisecting (`adhesive._advance`), so the adhesive case's iteration
+counts were re-recorded after it (297 instead of 279 in all, one path level
+73 instead of 63); its states, cuts, forces and areas are the recorded ones
+of 8ed8f79 unchanged. Likewise when a step off its predictor became
+continuous by the secant through a state solved halfway
 (`AdhesiveModel.continuity`), and a failed solve is retried once: 295
 iterations, two levels changed (65 instead of 73, 71 instead of 65), its
-states, cuts, forces and areas those of 8ed8f79 to the last digit.  When the step control of all four
-moved to `nonlinear` (`StepCuts`, `Pace`), the time-marching drivers got a
-case each with cut steps (``j2_cuts``, ``sliding_cuts``), recorded on the
-code before the move.
+states, cuts, forces and areas those of 8ed8f79 to the last digit. When the
+step control of all four moved to `nonlinear` (`StepCuts`, `Pace`), the
+time-marching drivers got a case each with cut steps (``j2_cuts``,
+``sliding_cuts``), recorded on the code before the move.
 """
 
 from __future__ import annotations

@@ -30,20 +30,20 @@ eigenvector.  The linear algebra works on the active surface nodes only
 (`_Tangent`: Schur complement with the compliance K_S^-1).
 
 Along the path, each step starts from the tangent predictor.  A step is
-continuous if the energy balance Pi*(w1) - Pi*(w0) = (F0 + F1)/2 (w1 - w0)
-holds (Pi* has the derivative F along a branch; a jump releases a finite
-energy) and the surface stayed near the predictor, or, where it did not
-(a contact zipping or peeling over many elements), near the secant
-through a state solved halfway (`AdhesiveModel.continuity`).  Otherwise,
-or if Newton fails, the step's end is marked bad and the bracket up to
-it is bisected: a continuous branch is followed with steps small enough
-to be smooth, and where the step stays discontinuous down to ``min_step * d`` the old branch has ended
-(a fold of the equilibrium curve: jump-in on approach, jump-off on
-retraction) and the minimum reached is on the other branch.  The state
-before the fold and the state after the jump are both recorded,
-``min_step * d`` apart, the second flagged ``jump``.  This is the
-physical path under displacement control; the unstable branch that joins
-the two is not traced.
+continuous if the energy balance Pi*(w1) - Pi*(w0) = (F0 + F1)/2
+(w1 - w0) holds (Pi* has the derivative F along a branch; a jump releases
+a finite energy) and the surface stayed near the predictor, or, where it
+did not (a contact zipping or peeling over many elements), near the
+secant through a state solved halfway (`AdhesiveModel.continuity`).
+Otherwise, or if Newton fails, the step's end is marked bad and the
+bracket up to it is bisected: a continuous branch is followed with steps
+small enough to be smooth, and where the step stays discontinuous down
+to ``min_step * d`` the old branch has ended (a fold of the equilibrium
+curve: jump-in on approach, jump-off on retraction) and the minimum
+reached is on the other branch.  The state before the fold and the state
+after the jump are both recorded, ``min_step * d`` apart, the second
+flagged ``jump``.  This is the physical path under displacement control;
+the unstable branch that joins the two is not traced.
 
 At a large Tabor parameter the branch before the jump-off fold is steep
 over a long stretch (du/dw ~ (w - w_fold)^(-1/2) over many ring elements
