@@ -673,27 +673,22 @@ class AdhesiveModel:
 
         Where a contact zips and peels over many ring elements (a large
         Tabor parameter) the predictor is no guide: the nodes that enter or
-        leave contact within a step move about 3 |dw| + d / 3 off it while
-        the energy balances (measured at R = 100 um at d = 0.3 nm, mu = 9,
-        draft, steps of d / 3 to 8 d, contact radius up to 2 um).  Such a
-        step is tested against the secant instead (`midpoint`): the state
-        halfway, solved from `old`, must balance its energy with both ends
-        and lie within d / 2 + |dw| of the mean of their surfaces.  A jump
-        J moves the secant's midpoint by J / 2 whichever half it lies in,
-        so the secant test misses the same jumps as the predictor test
-        (J below d + 2 |dw|, the predictor's allowance and d / 2 more).  On
-        continuous branches the largest departure from the secant
-        (measured, at the contact edge) was 0.41 |dw| + 0.21 d at
-        R = 100 um; at R = 300 um (mu = 13) 0.57 d in steps of d / 3,
-        1.05 d in 0.65 d and 1.68 d in 1.58 d.
-        A step whose energy balances but that
-        fails the secant test too (or whose midpoint does not converge) is
-        "steep": `_advance` retries it once from the first midpoint it
-        reaches before bisecting on.  At the smallest steps (min_step * d),
-        where a continuous branch cannot move far from its tangent, only
-        the predictor counts: a jump is a move of more than
-        jump_tolerance * d (0.25 d) away from it.  Jumps smaller than these
-        allowances are recorded as a steep continuous stretch.
+        leave contact within a step move several |dw| off it while the
+        energy balances (`benchmarks/adhesion_secant.py` records by how
+        much). Such a step is tested against the secant instead
+        (`midpoint`): the state halfway, solved from `old`, must balance its
+        energy with both ends and lie within d / 2 + |dw| of the mean of
+        their surfaces. A jump J moves the secant's midpoint by J / 2
+        whichever half it lies in, so the secant test misses the same jumps
+        as the predictor test (J below d + 2 |dw|, the predictor's allowance
+        and d / 2 more). A step whose energy balances but that fails the
+        secant test too (or whose midpoint does not converge) is "steep":
+        `_advance` retries it once from the first midpoint it reaches before
+        bisecting on. At the smallest steps (min_step * d), where a
+        continuous branch cannot move far from its tangent, only the
+        predictor counts: a jump is a move of more than jump_tolerance * d
+        (0.25 d) away from it. Jumps smaller than these allowances are
+        recorded as a steep continuous stretch.
         """
         d = self.adhesion.d
         dw = new.w - old.w
