@@ -699,7 +699,8 @@ class AdhesiveModel:
             return "jump", 0
         if off <= 0.5 * d + 2.0 * abs(dw):
             return "continuous", 0
-        return self.midpoint(old, new, pre)
+        verdict, iterations, _ = self.midpoint(old, new, pre)
+        return verdict, iterations
 
     def balanced(self, old: AdhesiveState, new: AdhesiveState, pre: dict) -> bool:
         """The energy balance of the step from `old` to `new` (`continuity`):
@@ -723,24 +724,27 @@ class AdhesiveModel:
         truncation = dw * dw * abs(new.stiffness - old.stiffness) / (6.0 * ff) if same_side else 0.0
         return abs(balance) <= pre["energy_tolerance"] * d * scale + truncation
 
-    def midpoint(self, old: AdhesiveState, new: AdhesiveState, pre: dict) -> tuple[str, int]:
+    def midpoint(self, old: AdhesiveState, new: AdhesiveState,
+                 pre: dict) -> tuple[str, int, float]:
         """The secant test of a step that left its predictor (`continuity`):
         the state at the middle of the step, solved from `old`'s predictor,
         balances its energy with both ends and its surface is within
         d / 2 + |dw| of theirs averaged ("continuous"); else "jump" if a
         half does not balance, "steep" if only the secant or the solve
-        fails.  Returns (verdict, iterations)."""
+        fails.  Returns (verdict, iterations, the largest departure from the
+        secant [m]; NaN if the solve failed)."""
         d = self.adhesion.d
         wm = 0.5 * (old.w + new.w)
         try:
             u, parts, T, its = self.newton.solve(wm, _predictor(old, wm))
         except StepFailed as exc:
-            return "steep", exc.iterations
+            return "steep", exc.iterations, math.nan
         mid = self.newton.state(wm, u, parts, T)
         secant = np.max(np.abs(u - 0.5 * (old.u + new.u)), initial=0.0)
         if not (self.balanced(old, mid, pre) and self.balanced(mid, new, pre)):
-            return "jump", its
-        return ("continuous" if secant <= 0.5 * d + abs(new.w - old.w) else "steep"), its
+            return "jump", its, secant
+        verdict = "continuous" if secant <= 0.5 * d + abs(new.w - old.w) else "steep"
+        return verdict, its, secant
 
     def window_for(self, state: AdhesiveState) -> tuple[float, float] | None:
         """The fine band `state` needs if this mesh's will not do, else None.
