@@ -395,3 +395,48 @@ def test_steps_off_the_predictor_pass_by_the_secant_and_land_on_the_branch(monke
         Fb = interpolate_adhesive(b, levels, which)["force"]
         # to the Newton tolerance (1e-6 of the forces at draft)
         np.testing.assert_allclose(Fa, Fb, rtol=1e-6, atol=1e-6 * np.max(np.abs(Fb)))
+
+
+def test_retraction_retraces_the_approach_where_it_was_continuous():
+    """Retracting, the levels the approach reached without a jump are its states
+    (`adhesive._retrace`: an elastic body's equilibria along a branch do not depend
+    on the direction of travel).  Each retraced state must be the one the step
+    control reaches when it solves that step from the state before (`_advance`):
+    no jump, the same force to the Newton tolerance (1e-6 of the forces at draft)
+    and the same surface to 1e-4 d; the level across the jump-in is solved, and
+    the contact hangs on there (in contact, where the approach was not)."""
+    from asperity.fe.adhesive import _advance, _trace
+    from asperity.fe.presets import resolve
+
+    pre = resolve("adhesive", "draft")
+    path = adhesive_path(LAW, 12 * D, steps_per_d=pre["steps_per_d"], far_steps=pre["far_steps"])
+    model = adhesive_model(Paraboloid(R), material_for(3.0), LAW, float(path.max()), pre)
+    records = _trace(model, path, pre)
+    levels = [r for r in records if r.requested]
+    top = int(np.argmax(path))
+    up, down = levels[:top + 1], levels[top + 1:]
+    jumped_into = [k for k in range(1, top + 1) if any(r.jump for r in records if r.step == k)]
+    assert len(jumped_into) == 1  # the jump-in
+    k_in = jumped_into[0]
+    # retraced: the levels from the turn down to the jump-in's target, no further
+    retraced = [r.state.iterations == 0 and r.state.cuts == 0 for r in down]
+    assert retraced == [k >= k_in for k in range(top - 1, top - 1 - len(down), -1)]
+    scale = max(abs(r.state.force) for r in levels)
+    previous = up[-1].state
+    for r in down[:top - k_in]:
+        solved, jumps, its, _ = _advance(previous, r.state.w, pre)
+        assert not jumps and its > 0
+        assert solved.force == pytest.approx(r.state.force, abs=1e-6 * scale)
+        assert np.max(np.abs(_on_same_nodes(solved, r.state))) <= 1e-4 * D
+        previous = r.state
+    # across the jump-in the contact hangs on: the approach there was out of contact
+    crossed = down[top - k_in]
+    assert up[k_in - 1].state.w == crossed.state.w and crossed.state.iterations > 0
+    assert up[k_in - 1].state.contact_force == 0 and crossed.state.contact_force > 0
+
+
+def _on_same_nodes(a, b):
+    """The difference of two states' surfaces on b's nodes."""
+    from asperity.fe.adhesive import _on_nodes
+
+    return _on_nodes(a, b.model) - b.u

@@ -62,6 +62,13 @@ of contact that the asperity jumps off to (`_Landing`): the states the
 approach passed before it jumped in, or the undeformed body where the tip
 is beyond the cut-off.
 
+Retracting, the flat first runs back over levels the approach reached
+continuously; an elastic body's equilibria along a branch without a fold
+depend on the flat's position only, so those levels are the approach's
+states, not solved again (`_retrace`), down to the level the approach
+jumped in at.  From there on, where the contact hangs on (the hysteresis
+of report 7.3), every step is solved.
+
 Sign convention: ``force`` is the total normal force of the flat on the
 asperity, compressive positive as in `solve_asperity`; adhesion makes it
 negative (attractive).  ``contact_force`` (>= 0, the penalty) and
@@ -117,7 +124,7 @@ from __future__ import annotations
 
 import math
 import time
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 import scipy.linalg as sla
@@ -1296,6 +1303,9 @@ def _trace(model: AdhesiveModel, path, pre: dict, label: str = "",
     state.wall_time = time.perf_counter() - t0
     records = [_Record(state, branches[0], False, True, 0)]
     landing = None  # of a retraction: built from the approach's records when it starts
+    # the approach's levels (state, whether the level into it jumped) while the path
+    # has only gone up; `mirror` indexes the one the retraction is at, if any (`_retrace`)
+    ups, mirror = [(state, False)], None
     for n in range(1, len(path)):
         target, branch = float(path[n]), branches[n]
         t0 = time.perf_counter()
@@ -1304,11 +1314,29 @@ def _trace(model: AdhesiveModel, path, pre: dict, label: str = "",
         elif landing is None:
             landing = _Landing((r.state for r in records if r.branch == "approach"),
                                model.adhesion)
+        if branch == "retract" and ups is not None:
+            mirror = len(ups) - 1 if mirror is None else mirror
+            back = _retrace(ups, mirror, target)
+            ups = None if back is None else ups
+        else:
+            back = None
+        if back is not None:
+            state, mirror = back
+            state.wall_time = time.perf_counter() - t0
+            records.append(_Record(state, branch, False, True, n))
+            if progress is not None:
+                progress(f"level {n} of {len(path) - 1} ({branch}): w = {target:.6g} m, force "
+                         f"{state.force:.6g} N, retraced (the approach's state)")
+            continue
         try:
             state, jumps, iterations, halvings = _advance(state, target, pre, n, landing)
         except ConvergenceError as exc:
             exc.sample = label
             raise
+        if ups is not None and branch == "approach":
+            ups.append((state, bool(jumps)))
+        else:
+            ups = None  # retraced no further once solved, nor after a second approach
         for before, after in jumps:
             if records[-1].state is not before:
                 records.append(_Record(before, branch, False, False, n))
@@ -1322,6 +1350,37 @@ def _trace(model: AdhesiveModel, path, pre: dict, label: str = "",
                      f"{state.force:.6g} N, {iterations} Newton iterations, {halvings} cuts, "
                      f"{len(jumps)} jumps, {state.wall_time:.3g} s")
     return records
+
+
+def _retrace(ups: list, mirror: int, target: float):
+    """The retraction's state at `target` when it runs back over a continuous
+    stretch of the approach: (that state, its index in `ups`) or None.
+
+    An elastic body with a conservative adhesion has no memory: its states
+    are the local minima of Pi(u; w), and along a branch without a fold
+    (Pi's Hessian positive definite) they are a function u(w) of the flat's
+    position alone (implicit function theorem), whichever way the flat
+    moves.  So while the retraction stands on the state the approach
+    reached at level k, `ups[mirror]` (at the turn: the same state; `_trace`
+    keeps `ups` only while every level of the retraction was retraced), and the
+    approach came to it from level k - 1 at `target` without a jump
+    (`_advance`'s continuity test, `AdhesiveModel.continuity`, passed on
+    every step in between), the retraction's equilibrium at `target` is the
+    approach's state there, on the same mesh; solving it again would
+    retrace the same branch, with the same tests, to the solver's
+    tolerance.  A step the approach crossed with a jump (the jump-in) is
+    solved: retracting, the contact hangs on past it (report 7.3's
+    hysteresis).  The state returned is a copy with no Newton iterations or
+    cuts of its own.  A jump smaller than the continuity test's allowance
+    (recorded on approach as a steep continuous stretch) is retraced as the
+    approach passed it.
+    """
+    if mirror < 1 or ups[mirror][1]:
+        return None
+    before = ups[mirror - 1][0]
+    if before.w != target:
+        return None
+    return replace(before, iterations=0, cuts=0, wall_time=0.0), mirror - 1
 
 
 # --- outputs -------------------------------------------------------------------------
@@ -1434,8 +1493,9 @@ def solve_asperity_adhesive(geometry: Profile, material, adhesion: LennardJones,
     recorded states lie on: more than one if the mesh follows the
     contact), and ``adhesion``.  A
     requested level's ``newton_iterations`` and ``step_cuts`` include
-    those of the states added before it.  Raises `ConvergenceError` naming
-    the step (and `label`).
+    those of the states added before it; a retraction's level that is the
+    approach's state (module docstring, "Control and jumps") has none.
+    Raises `ConvergenceError` naming the step (and `label`).
     """
     t_start = time.perf_counter()
     pre = resolve("adhesive", accuracy)
