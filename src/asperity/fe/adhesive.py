@@ -116,7 +116,10 @@ energy balance is checked between states of one mesh only).  A jump may
 land far outside the window (jump-in): the landing state is moved, and
 re-solved, until its window holds.  Each state keeps its mesh
 (``AdhesiveState.model``): the bisection around the pull-off and the
-outputs use it.  What the adhesive jobs cost is measured by
+outputs use it.  Only the current mesh keeps the sparse factors of its
+body; the states recorded on a mesh the path has left are evaluated and
+that mesh's factors dropped (`AdhesiveModel.release`), so the memory of a
+path does not grow with its meshes at the rate of their factors.  What the adhesive jobs cost is measured by
 `make time-adhesion` (README, "Adhesion").
 """
 
@@ -340,6 +343,8 @@ class AdhesiveState:
     wall_time: float = 0.0
     #: the `AdhesiveModel` (mesh) the state is an equilibrium of
     model: "AdhesiveModel | None" = None
+    #: its outputs on that mesh (`AdhesiveModel.evaluate`), once evaluated
+    fields: dict | None = None
 
     @property
     def force(self) -> float:
@@ -624,8 +629,6 @@ class AdhesiveModel:
                         preset["n_theta"])
         self.mesh = band_mesh(geometry, self.window, scales.h_ring, preset["grading"], spec)
         self.disc = Discretization(self.mesh)
-        _, D = material.response(np.zeros((4, 1)))
-        K = self.disc.stiffness(np.asarray(D))
         top = self.disc.top
         outer = top.coords[0, 2::2]
         nf = int(np.searchsorted(outer, scales.r_band)) + 1
@@ -633,7 +636,7 @@ class AdhesiveModel:
         self.zone = ContactZone(top, nf, geometry)
         self.azone = adhesion_zone(top, nf, geometry, preset["gauss_points"],
                                    preset["subdivisions"])
-        self.cond = CondensedStiffness(self.disc, K, self.zone.dofs)
+        self.cond = self._condensed()
         self.law = C1Penalty.for_zone(self.zone, material.contact_modulus, penalty_factor)
         self.newton = AdhesiveNewton(self.cond.stiffness, self.zone, self.law, self.azone,
                                      adhesion, preset["tolerance"], preset["max_iterations"])
@@ -653,6 +656,22 @@ class AdhesiveModel:
     @property
     def dofs(self) -> int:
         return len(self.disc.free)
+
+    def _condensed(self) -> CondensedStiffness:
+        _, D = self.material.response(np.zeros((4, 1)))
+        return CondensedStiffness(self.disc, self.disc.stiffness(np.asarray(D)), self.zone.dofs)
+
+    def release(self) -> None:
+        """Drop the sparse factors of the body, the bulk of a model's memory.
+
+        The path needs only the condensed stiffness (`AdhesiveNewton`); the
+        factors serve `evaluate` (the fields inside the body), which factors
+        the body again if they were dropped.  A path whose mesh follows the
+        contact keeps every mesh a recorded state lies on; `_trace` evaluates
+        those states and drops the factors when the path moves to another
+        mesh, so only the current mesh holds them.
+        """
+        self.cond.lu = None
 
     def continuity(self, old: AdhesiveState, new: AdhesiveState, pred: np.ndarray,
                    pre: dict) -> tuple[str, int]:
@@ -792,6 +811,8 @@ class AdhesiveModel:
 
     def evaluate(self, states) -> dict:
         """Contact radius and the field maxima of the states."""
+        if self.cond.lu is None:  # released (`release`)
+            self.cond = self._condensed()
         zone, disc, mat = self.zone, self.disc, self.material
         k = len(states)
         radius = np.zeros(k)
@@ -1327,6 +1348,7 @@ def _trace(model: AdhesiveModel, path, pre: dict, label: str = "",
             if progress is not None:
                 progress(f"level {n} of {len(path) - 1} ({branch}): w = {target:.6g} m, force "
                          f"{state.force:.6g} N, retraced (the approach's state)")
+            _release_behind(records, state)
             continue
         try:
             state, jumps, iterations, halvings = _advance(state, target, pre, n, landing)
@@ -1349,7 +1371,29 @@ def _trace(model: AdhesiveModel, path, pre: dict, label: str = "",
             progress(f"level {n} of {len(path) - 1} ({branch}): w = {target:.6g} m, force "
                      f"{state.force:.6g} N, {iterations} Newton iterations, {halvings} cuts, "
                      f"{len(jumps)} jumps, {state.wall_time:.3g} s")
+        _release_behind(records, state)
     return records
+
+
+def _evaluate(states) -> None:
+    """The outputs (`AdhesiveState.fields`) of those `states` that lack them,
+    each state on its own mesh."""
+    todo = [s for s in states if s.fields is None]
+    for model in {id(s.model): s.model for s in todo}.values():
+        mine = [s for s in todo if s.model is model]
+        ev = model.evaluate(mine)
+        for j, s in enumerate(mine):
+            s.fields = {name: values[j] for name, values in ev.items()}
+
+
+def _release_behind(records: list, state: AdhesiveState) -> None:
+    """Evaluate the recorded states on meshes other than `state`'s, and drop
+    those meshes' factors (`AdhesiveModel.release`)."""
+    behind = [r.state for r in records
+              if r.state.model is not state.model and r.state.model.cond.lu is not None]
+    _evaluate(behind)
+    for s in behind:
+        s.model.release()
 
 
 def _retrace(ups: list, mirror: int, target: float):
@@ -1532,11 +1576,8 @@ def solve_asperity_adhesive(geometry: Profile, material, adhesion: LennardJones,
     _refine_pull_off(records, pre, adhesion.d / 64.0)
     states = [r.state for r in records]
     models = list({id(s.model): s.model for s in states}.values())
-    ev = {}
-    for m in models:  # each state on its own mesh
-        mine = [k for k, s in enumerate(states) if s.model is m]
-        for name, values in m.evaluate([states[k] for k in mine]).items():
-            ev.setdefault(name, np.zeros(len(states)))[mine] = values
+    _evaluate(states)
+    ev = {name: np.array([s.fields[name] for s in states]) for name in states[0].fields}
     axi = geometry.axisymmetric
     a = ev["contact_radius"]
     w = np.array([s.w for s in states])
