@@ -15,7 +15,11 @@ script measures it (CPU time of this process, `time.process_time`):
    and at standard: CPU time, the pull-off force against JKR's
    3/2 pi R W_c, the jump-off interference against JKR's, and the draft
    pull-off against standard's, and against the Maugis-Dugdale pull-off at
-   lambda = 1.16 mu (`--compare` recomputes these comparisons alone).
+   lambda = 1.16 mu (`--compare` recomputes these comparisons alone), and
+   the peak resident memory of the process after each run (``peak_rss_mb``,
+   `resource.getrusage`: the run's own peak when it is the first, or only,
+   run of its process, as with ``--only-large --radii R --accuracies A``; an
+   upper bound otherwise).
 
 Writes benchmarks/results/adhesion-cost.json and prints a table.  Nothing
 is asserted: speed is measured here, not in the tests.
@@ -35,6 +39,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import resource
 import subprocess
 import sys
 import tempfile
@@ -121,12 +126,14 @@ def large_rows(radii=LARGE_RADII, accuracies=("draft", "standard"), done=None) -
                     done(rows)
                 continue
             cpu = time.process_time() - t0
+            peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0  # kB on Linux
             pull = float(ds["pull_off_force"][0])
             rows.append(dict(tip_radius_um=radius * 1e6, d_nm=0.3, accuracy=accuracy, cpu_time_s=cpu,
                              tabor_parameter=float(ds["tabor_parameter"][0]), pull_off_force_N=pull,
                              pull_off_over_jkr=pull / float(ds["pull_off_force_jkr"][0]),
                              jumps=int(ds["jump"].sum()), steps=int(ds["valid"].sum()),
                              step_cuts=int(np.nansum(ds["step_cuts"].values)),
+                             peak_rss_mb=peak,
                              jump_off_interference_over_jkr=float(
                                  ds["jump_off_interference"][0] / jkr_jump_off(
                                      float(ds["tabor_parameter"][0]), 0.3e-9))))
