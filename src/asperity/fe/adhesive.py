@@ -119,8 +119,9 @@ re-solved, until its window holds.  Each state keeps its mesh
 outputs use it.  Only the current mesh keeps the sparse factors of its
 body; the states recorded on a mesh the path has left are evaluated and
 that mesh's factors dropped (`AdhesiveModel.release`), so the memory of a
-path does not grow with its meshes at the rate of their factors.  What the adhesive jobs cost is measured by
-`make time-adhesion` (README, "Adhesion").
+path does not grow with its meshes at the rate of their factors.  What
+the adhesive jobs cost is measured by `make time-adhesion` (README,
+"Adhesion").
 """
 
 from __future__ import annotations
