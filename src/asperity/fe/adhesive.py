@@ -103,11 +103,22 @@ in contact).
 
 Meshes that follow the contact: a band of more than ``follow_above``
 ring elements (a large Tabor parameter) is not refined as a whole.  Only
-a window of it is (`AdhesiveModel.window_for`): the contact edge and the
+a window of it is (`AdhesiveModel.window_for`): the cohesive zone, from
+the edge of the surface held in the well of q (separation below
+(1 + TIP_SEPARATION) d, past the peak of q) or the contact edge to the
 surface within FINE_SEPARATION d of the flat, plus a margin of
 FOLLOW_MARGIN times the radius that reaches on either side (the contact
 inside and the surface outside are graded away from it as above); the
-candidate zone is still the whole band.  Each state the path reaches is
+candidate zone is still the whole band.  At a large Tabor parameter the
+surface held in the well is a wide annulus around the contact (the
+tension of JKR's contact: at R = 150 um, d = 0.3 nm, the contact edge
+lies 0.6 um inside the cohesive zone), where the fields are smooth; the
+contact edge there (where the penalty takes over from the adhesion, the
+edge of the contact area) gets a band of its own, of elements
+EDGE_COARSENING times longer.  Refining the whole annulus at h_ring, as
+before, made the active set twice as large and a Newton iteration eight
+times dearer, for forces within 1e-4 and contact radii within 1e-3 of
+the two bands (`make time-adhesion`, README "Adhesion").  Each state the path reaches is
 checked: if its edge or ring has come within a quarter of the margin of
 the window's ends, the surface displacement is interpolated onto a mesh
 with a new window and the equilibrium at the same flat position is
@@ -167,14 +178,19 @@ LINE_SEARCH = EnergySearch(halvings=50, projected=True, roundoff=ENERGY_ROUNDOFF
 #: branch is followed through its fold instead (`_through_fold`)
 MAX_HALVINGS = 60
 #: a mesh following the contact (`AdhesiveModel.window_for`): the fine band
-#: spans the contact edge and the surface within FINE_SEPARATION d of the
-#: flat, with a margin of FOLLOW_MARGIN times the radius it reaches (at
-#: least FOLLOW_MIN_FACETS ring elements) on each side; a state whose edge
-#: or ring comes within a quarter of the margin of the band's ends is moved
-#: to a new mesh, at most MAX_REMESH times in a row
+#: spans the cohesive zone, from the edge of the surface held within
+#: TIP_SEPARATION d of the well of q (or the contact edge) to the surface
+#: within FINE_SEPARATION d of the flat, with a margin of FOLLOW_MARGIN
+#: times the radius it reaches (at least FOLLOW_MIN_FACETS ring elements) on
+#: each side; a contact edge farther inside has a band of its own, of
+#: elements EDGE_COARSENING times longer; a state whose edge or ring comes
+#: within a quarter of the margin of its band's ends is moved to a new mesh,
+#: at most MAX_REMESH times in a row
 FINE_SEPARATION = 4.0
 FOLLOW_MARGIN = 0.15
 FOLLOW_MIN_FACETS = 40
+TIP_SEPARATION = 0.2
+EDGE_COARSENING = 2.0
 MAX_REMESH = 8
 #: the fold path (`_FoldPath`): the first arc between FOLD_ARC d (root mean
 #: square surface displacement); a corrector may move at most FOLD_MOVE d
@@ -261,15 +277,16 @@ def maugis_pull_off(lam: float) -> float:
 
 
 # --- mesh ----------------------------------------------------------------------------
-def band_mesh(geometry: Profile, window: tuple[float, float], h_ring: float, grading: float,
-              spec: MeshSpec, max_rounds: int = 80) -> AsperityMesh:
-    """The ring mesh refined until h <= h_ring + grading * distance to the band.
+def band_mesh(geometry: Profile, windows, grading: float, spec: MeshSpec,
+              max_rounds: int = 80) -> AsperityMesh:
+    """The ring mesh refined until h <= h_w + grading * distance to band w, for
+    some band w.
 
-    The band is the top surface r_lo <= r <= r_hi, ``window = (r_lo,
-    r_hi)`` (r_lo = 0: from the apex).  Red-green-blue refinement of the
-    elements too large for their distance, repeated.
+    Each band is the top surface r_lo <= r <= r_hi with its element size,
+    ``windows = ((r_lo, r_hi, h_w), ...)`` (r_lo = 0: from the apex).
+    Red-green-blue refinement of the elements too large for their
+    distance, repeated.
     """
-    r_lo, r_hi = window
     mesh = AsperityMesh.initial(geometry, spec)
     for _ in range(max_rounds):
         m = mesh.vertices
@@ -277,11 +294,13 @@ def band_mesh(geometry: Profile, window: tuple[float, float], h_ring: float, gra
         edges = np.stack([np.hypot(*(p[:, i] - p[:, (i + 1) % 3])) for i in range(3)])
         size = edges.max(axis=0)
         c = p.mean(axis=1)
-        depth = geometry.body_surface(c[0]) - c[1]
-        off = np.maximum(np.maximum(c[0] - r_hi, r_lo - c[0]), 0.0)
-        dist = np.hypot(off, np.maximum(depth, 0.0))
-        dist = np.maximum(dist - 0.5 * size, 0.0)
-        marked = np.nonzero(size > h_ring + grading * dist)[0]
+        depth = np.maximum(geometry.body_surface(c[0]) - c[1], 0.0)
+        bound = np.full(size.shape, np.inf)
+        for r_lo, r_hi, h in windows:
+            off = np.maximum(np.maximum(c[0] - r_hi, r_lo - c[0]), 0.0)
+            dist = np.maximum(np.hypot(off, depth) - 0.5 * size, 0.0)
+            bound = np.minimum(bound, h + grading * dist)
+        marked = np.nonzero(size > bound)[0]
         if marked.size == 0:
             return mesh
         mesh = mesh.refined(marked)
@@ -612,7 +631,7 @@ class AdhesiveModel:
 
     def __init__(self, geometry: Profile, material, adhesion: LennardJones, scales: _Scales,
                  preset: dict, penalty_factor: float = PENALTY_FACTOR,
-                 window: tuple[float, float] | None = None):
+                 window: tuple | None = None):
         if not getattr(material, "is_linear", False):
             raise NotImplementedError("adhesion is implemented for elastic materials only")
         t0 = time.perf_counter()
@@ -620,7 +639,8 @@ class AdhesiveModel:
         self.scales, self.preset, self.penalty_factor = scales, preset, penalty_factor
         self.follows = scales.r_band > preset["follow_above"] * scales.h_ring
         if window is None:
-            window = (0.0, FOLLOW_MIN_FACETS * scales.h_ring if self.follows else scales.r_band)
+            h = scales.h_ring
+            window = ((0.0, FOLLOW_MIN_FACETS * h if self.follows else scales.r_band, h),)
         self.window = window
         if geometry.axisymmetric:
             L = preset["domain_factor"] * geometry.length_scale
@@ -628,7 +648,7 @@ class AdhesiveModel:
             L = PLANE_STRAIN_DOMAIN * geometry.length_scale
         spec = MeshSpec(L, min(4.0 * scales.h_ring, 0.1 * scales.r_band), preset["growth"],
                         preset["n_theta"])
-        self.mesh = band_mesh(geometry, self.window, scales.h_ring, preset["grading"], spec)
+        self.mesh = band_mesh(geometry, self.window, preset["grading"], spec)
         self.disc = Discretization(self.mesh)
         top = self.disc.top
         outer = top.coords[0, 2::2]
@@ -773,15 +793,24 @@ class AdhesiveModel:
         verdict = "continuous" if secant <= 0.5 * d + abs(new.w - old.w) else "steep"
         return verdict, its, secant
 
-    def window_for(self, state: AdhesiveState) -> tuple[float, float] | None:
-        """The fine band `state` needs if this mesh's will not do, else None.
+    def window_for(self, state: AdhesiveState) -> tuple | None:
+        """The fine bands `state` needs if this mesh's will not do, else None.
 
-        The ring is the surface from the contact edge (the apex if not
-        touching) to the outermost node within FINE_SEPARATION d of the flat
-        (the cohesive zone: q there is 4 % of its peak).  The band must
-        reach a quarter of the margin beyond it on either side (or the apex,
-        or r_band); a new band extends a full margin beyond it, from the
-        apex if that leaves less than a margin inside.
+        The ring is the cohesive zone: the surface from the edge of the
+        adhered region (the outermost node closer than (1 +
+        TIP_SEPARATION) d to the flat, past the peak of q; the contact
+        edge if beyond it; the apex if neither) to the outermost node
+        within FINE_SEPARATION d of the flat (q there is 4 % of its peak).
+        Its band must reach a quarter of the margin beyond it on either
+        side (or the apex, or r_band); a new band extends a full margin
+        beyond it, from the apex if that leaves less than a margin inside,
+        at the ring's element size h_ring.  At a large Tabor parameter the
+        surface inside the ring is held in the well of q (d < s < 1.2 d)
+        over a wide annulus around the contact (the tension of JKR's
+        contact), where the fields are smooth: only the contact edge
+        (where the penalty takes over from the adhesion) needs a band of
+        its own there, with the same margins and elements EDGE_COARSENING
+        times longer.  Returns the bands ((r_lo, r_hi, h), ...).
         """
         if not self.follows:
             return None
@@ -792,13 +821,28 @@ class AdhesiveModel:
         edge = contact_edge(r, -pen, touching) if touching.any() else 0.0
         near = pen > -(FINE_SEPARATION - 1.0) * d
         outer = max(float(r[near].max()) if near.any() else 0.0, edge)
-        margin = max(FOLLOW_MARGIN * outer, FOLLOW_MIN_FACETS * self.scales.h_ring)
-        lo, hi = self.window
+        held = pen > -TIP_SEPARATION * d
+        tip = max(float(r[held].max()) if held.any() else 0.0, edge)
+        h = self.scales.h_ring
+        margin = max(FOLLOW_MARGIN * outer, FOLLOW_MIN_FACETS * h)
         r_band = self.scales.r_band
-        if lo <= max(edge - 0.25 * margin, 0.0) and hi >= min(outer + 0.25 * margin, r_band):
+
+        def covers(lo, hi, size):  # a band of elements no longer than size spans lo..hi
+            return any(a <= max(lo, 0.0) and b >= min(hi, r_band) and h_w <= size
+                       for a, b, h_w in self.window)
+
+        apart = 0.0 < edge < tip - 2.0 * margin  # the contact edge needs a band of its own
+        inner = tip if apart or edge == 0.0 else edge
+        if covers(inner - 0.25 * margin, outer + 0.25 * margin, h) and (
+                not apart or covers(edge - 0.25 * margin, edge + 0.25 * margin,
+                                    EDGE_COARSENING * h)):
             return None
-        lo = edge - margin if edge > 2.0 * margin else 0.0
-        return lo, min(outer + margin, r_band)
+        lo = inner - margin if inner > 2.0 * margin else 0.0
+        bands = [(lo, min(outer + margin, r_band), h)]
+        if apart:
+            lo = edge - margin if edge > 2.0 * margin else 0.0
+            bands.append((lo, edge + margin, EDGE_COARSENING * h))
+        return tuple(bands)
 
     def remeshed(self, window: tuple[float, float]) -> "AdhesiveModel":
         """The model on a mesh with the fine band `window`."""
