@@ -19,7 +19,13 @@ script measures it (CPU time of this process, `time.process_time`):
    the peak resident memory of the process after each run (``peak_rss_mb``,
    `resource.getrusage`: the run's own peak when it is the first, or only,
    run of its process, as with ``--only-large --radii R --accuracies A``; an
-   upper bound otherwise).
+   upper bound otherwise);
+5. ``--bands``: R = 150 um at draft on meshes whose fine band reaches from the
+   contact edge to the cohesive zone (preset key ``edge_band`` off, the mesh of
+   the code before) and on meshes with the contact edge in a band of its own
+   (the default): CPU time, the median size of the Newton tangent's active set,
+   and how far the second run's force and contact radius (on the first run's
+   levels, away from its jumps), pull-off and jumps are from the first's.
 
 Writes benchmarks/results/adhesion-cost.json and prints a table.  Nothing
 is asserted: speed is measured here, not in the tests.
@@ -33,6 +39,7 @@ is asserted: speed is measured here, not in the tests.
                                                     # one radius and preset: the other
                                                     # rows kept (such runs may go side
                                                     # by side)
+    python benchmarks/adhesion_cost.py --bands      # part 5 alone, the rest kept
 """
 
 from __future__ import annotations
@@ -55,7 +62,9 @@ from benchmarks.workflow_copy import SNAKEMAKE, copy_workflow  # noqa: E402
 
 from asperity.population import samples  # noqa: E402
 from asperity.fe import ConvergenceError  # noqa: E402
-from asperity.fe.adhesive import jkr_jump_off, maugis_pull_off, smooth_aluminum_curves  # noqa: E402
+from asperity.fe import LennardJones, LinearElastic, Paraboloid, adhesive  # noqa: E402
+from asperity.fe.adhesive import (jkr_jump_off, maugis_pull_off, interpolate_adhesive,  # noqa: E402
+                                  smooth_aluminum_curves)
 
 SCENE = "smooth_aluminum_adhesion"
 RESULTS = Path(__file__).with_name("results")
@@ -144,6 +153,51 @@ def large_rows(radii=LARGE_RADII, accuracies=("draft", "standard"), done=None) -
     return rows
 
 
+def bands_row(radius: float = 150e-6) -> dict:
+    """Part 5: one band from the contact edge against the contact edge's own band."""
+    runs = {}
+    for name, edge_band in (("one_band", False), ("edge_band", True)):
+        sizes = []
+        tangent = adhesive.AdhesiveNewton.tangent
+
+        def recorded(newton, *args, **kwargs):
+            T = tangent(newton, *args, **kwargs)
+            sizes.append(T.nodes.size)
+            return T
+
+        adhesive.AdhesiveNewton.tangent = recorded
+        try:
+            ds, cpu = timed(lambda: adhesive.solve_asperity_adhesive(
+                Paraboloid(radius), LinearElastic(adhesive.ALUMINUM_E, adhesive.ALUMINUM_NU),
+                LennardJones(1.0, 0.3e-9), w_max=10e-9,
+                accuracy=dict(base="draft", edge_band=edge_band)))
+        finally:
+            adhesive.AdhesiveNewton.tangent = tangent
+        runs[name] = (ds, dict(cpu_time_s=cpu, active_nodes_median=float(np.median(sizes)),
+                               meshes=int(ds.attrs["meshes"]),
+                               pull_off_force_N=float(ds.attrs["pull_off_force"])))
+        print(f"R = {radius * 1e6:.4g} um draft, {name}: {cpu:.1f} s", flush=True)
+    (ref, a), (new, b) = runs["one_band"], runs["edge_band"]
+    d = 0.3e-9
+    diff = {}
+    for var in ("force", "contact_radius"):
+        worst = 0.0
+        for which in ("approach", "retract"):
+            w = ref.interference.values[ref.requested.values & (ref.branch.values == which)]
+            w = w[(np.abs(w - ref.attrs["jump_in_interference"]) > 0.1 * d)
+                  & (np.abs(w - ref.attrs["jump_off_interference"]) > 0.1 * d)]
+            x = interpolate_adhesive(ref, w, which)[var]
+            y = interpolate_adhesive(new, w, which)[var]
+            ok = np.isfinite(x) & np.isfinite(y)
+            worst = max(worst, float(np.max(np.abs(y[ok] - x[ok])) / np.max(np.abs(x[ok]))))
+        diff[f"{var}_largest_difference_over_largest"] = worst
+    diff["pull_off_relative_difference"] = b["pull_off_force_N"] / a["pull_off_force_N"] - 1.0
+    for attr in ("jump_in_interference", "jump_off_interference"):
+        diff[f"{attr}_difference_over_d"] = float(new.attrs[attr] - ref.attrs[attr]) / d
+    return dict(tip_radius_um=radius * 1e6, d_nm=0.3, accuracy="draft", one_band=a,
+                edge_band=b, **diff)
+
+
 def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--no-curves", action="store_true", help="leave out smooth_aluminum_curves")
@@ -157,8 +211,21 @@ def main(argv: list[str] | None = None) -> int:
                     help="part 4's presets")
     ap.add_argument("--compare", action="store_true",
                     help="only recompute part 4's comparisons of the stored rows (no FE run)")
+    ap.add_argument("--bands", action="store_true",
+                    help="run part 5 alone (R = 150 um, one band against the edge's own); "
+                         "the other parts are kept from --out")
     ap.add_argument("--out", type=Path, default=RESULTS / "adhesion-cost.json")
     args = ap.parse_args(argv)
+    if args.bands:
+        commit, dirty = _commit()
+        row = dict(bands_row(), commit=commit, uncommitted_changes=dirty,
+                   date=time.strftime("%Y-%m-%dT%H:%M:%S%z"))
+        record = json.loads(args.out.read_text())
+        record["bands"] = row
+        args.out.write_text(json.dumps(record, indent=1) + "\n")
+        print(json.dumps(row, indent=1))
+        print(f"written: {args.out}")
+        return 0
     if args.compare:
         record = json.loads(args.out.read_text())
         record["large_radii"] = compared(record.get("large_radii", []))

@@ -810,7 +810,9 @@ class AdhesiveModel:
         contact), where the fields are smooth: only the contact edge
         (where the penalty takes over from the adhesion) needs a band of
         its own there, with the same margins and elements EDGE_COARSENING
-        times longer.  Returns the bands ((r_lo, r_hi, h), ...).
+        times longer (preset key ``edge_band``; without it the band reaches
+        from the contact edge, or the apex, to the ring).  Returns the bands
+        ((r_lo, r_hi, h), ...).
         """
         if not self.follows:
             return None
@@ -831,8 +833,11 @@ class AdhesiveModel:
             return any(a <= max(lo, 0.0) and b >= min(hi, r_band) and h_w <= size
                        for a, b, h_w in self.window)
 
-        apart = 0.0 < edge < tip - 2.0 * margin  # the contact edge needs a band of its own
-        inner = tip if apart or edge == 0.0 else edge
+        if self.preset["edge_band"]:
+            apart = 0.0 < edge < tip - 2.0 * margin  # the contact edge needs a band of its own
+            inner = tip if apart or edge == 0.0 else edge
+        else:  # one band from the contact edge (or the apex)
+            apart, inner = False, edge
         if covers(inner - 0.25 * margin, outer + 0.25 * margin, h) and (
                 not apart or covers(edge - 0.25 * margin, edge + 0.25 * margin,
                                     EDGE_COARSENING * h)):

@@ -76,8 +76,11 @@ plastic_size
 
 Adhesive presets (`ADHESIVE_ACCURACY`, `adhesive.solve_asperity_adhesive`)
 add to the elastic preset of the same name: the mesh of the adhesive band
-(process_zone_elements, ring_elements, grading, max_band_facets, and
-follow_above: a band of more ring elements follows the contact), the
+(process_zone_elements, ring_elements, grading, max_band_facets,
+follow_above: a band of more ring elements follows the contact, and
+edge_band: a contact edge far inside the cohesive zone gets a band of its
+own; False gives the one band from the contact edge of the code before,
+for `benchmarks/adhesion_cost.py --bands`), the
 surface rule (gauss_points, subdivisions), the path (steps_per_d,
 far_steps) and its step control (jump_tolerance, energy_tolerance,
 min_step); the adhesive module docstring says what each does.  Sliding
@@ -157,15 +160,15 @@ ADHESIVE_ACCURACY: dict[str, dict] = {
     "draft": dict(base="draft", process_zone_elements=1.5, ring_elements=4.0, grading=0.5,
                   gauss_points=5, subdivisions=2, steps_per_d=3.0, far_steps=8,
                   jump_tolerance=0.25, energy_tolerance=0.03, min_step=2e-3,
-                  max_band_facets=1500, follow_above=600),
+                  max_band_facets=1500, follow_above=600, edge_band=True),
     "standard": dict(base="standard", process_zone_elements=3.0, ring_elements=8.0, grading=0.3,
                      gauss_points=5, subdivisions=2, steps_per_d=6.0, far_steps=16,
                      jump_tolerance=0.25, energy_tolerance=0.02, min_step=1e-3,
-                     max_band_facets=3000, follow_above=1200),
+                     max_band_facets=3000, follow_above=1200, edge_band=True),
     "fine": dict(base="fine", process_zone_elements=6.0, ring_elements=16.0, grading=0.2,
                  gauss_points=5, subdivisions=4, steps_per_d=10.0, far_steps=24,
                  jump_tolerance=0.25, energy_tolerance=0.01, min_step=5e-4,
-                 max_band_facets=6000, follow_above=2400),
+                 max_band_facets=6000, follow_above=2400, edge_band=True),
 }
 
 #: accuracy presets of the sliding model: mesh sizes relative to the
