@@ -277,9 +277,12 @@ def main(argv: list[str] | None = None) -> int:
     else:
         large = compared(large_rows(radii, tuple(args.accuracies)))
     commit, dirty = _commit()
+    bands = json.loads(args.out.read_text()).get("bands") if args.out.exists() else None
     record = dict(date=time.strftime("%Y-%m-%dT%H:%M:%S%z"), commit=commit, uncommitted_changes=dirty,
                   scene=SCENE, scene_jobs=rows, scene_cpu_time_s=totals, radius_100um=wider,
                   smooth_aluminum_curves=curves, large_radii=large)
+    if bands is not None:  # part 5 runs on its own (--bands)
+        record["bands"] = bands
     args.out.parent.mkdir(parents=True, exist_ok=True)
     args.out.write_text(json.dumps(record, indent=1) + "\n")
     print(f"scene FE CPU: draft {totals['draft']:.0f} s, standard {totals['standard']:.0f} s")
