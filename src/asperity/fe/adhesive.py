@@ -116,9 +116,11 @@ lies 0.6 um inside the cohesive zone), where the fields are smooth; the
 contact edge there (where the penalty takes over from the adhesion, the
 edge of the contact area) gets a band of its own, of elements
 EDGE_COARSENING times longer.  Refining the whole annulus at h_ring, as
-before, made the active set twice as large and a Newton iteration eight
-times dearer, for forces within 1e-4 and contact radii within 1e-3 of
-the two bands (`make time-adhesion`, README "Adhesion").  Each state the path reaches is
+before (preset key ``edge_band`` False), made the active set of the
+Newton tangent half as large again (a median 1057 nodes against 717 at
+R = 150 um, draft) and the run 2.7 times as long, for forces within 1e-4
+and contact radii within 6e-4 of the largest of the two bands'
+(`benchmarks/adhesion_cost.py --bands`, README "Adhesion").  Each state the path reaches is
 checked: if its edge or ring has come within a quarter of the margin of
 the window's ends, the surface displacement is interpolated onto a mesh
 with a new window and the equilibrium at the same flat position is
