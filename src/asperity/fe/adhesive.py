@@ -111,16 +111,15 @@ FOLLOW_MARGIN times the radius that reaches on either side (the contact
 inside and the surface outside are graded away from it as above); the
 candidate zone is still the whole band.  At a large Tabor parameter the
 surface held in the well is a wide annulus around the contact (the
-tension of JKR's contact: at R = 150 um, d = 0.3 nm, the contact edge
-lies 0.6 um inside the cohesive zone), where the fields are smooth; the
-contact edge there (where the penalty takes over from the adhesion, the
-edge of the contact area) gets a band of its own, of elements
-EDGE_COARSENING times longer.  Refining the whole annulus at h_ring, as
-before (preset key ``edge_band`` False), made the active set of the
-Newton tangent half as large again (a median 1057 nodes against 717 at
-R = 150 um, draft) and the run 2.7 times as long, for forces within 1e-4
-and contact radii within 6e-4 of the largest of the two bands'
-(`benchmarks/adhesion_cost.py --bands`, README "Adhesion").  Each state the path reaches is
+tension of JKR's contact), where the fields are smooth; the contact edge
+inside it (where the penalty takes over from the adhesion, the edge of
+the contact area) gets a band of its own, of elements EDGE_COARSENING
+times longer.  Refining the whole annulus at h_ring, as before (preset
+key ``edge_band`` False), made the active set of the Newton tangent half
+as large again (a median 1057 nodes against 717 at R = 150 um, draft)
+and the run 2.7 times as long, for forces within 1e-4 and contact radii
+within 6e-4 of the largest of the two bands' (`benchmarks/adhesion_cost.py
+--bands`, README "Adhesion").  Each state the path reaches is
 checked: if its edge or ring has come within a quarter of the margin of
 the window's ends, the surface displacement is interpolated onto a mesh
 with a new window and the equilibrium at the same flat position is
@@ -851,8 +850,8 @@ class AdhesiveModel:
             bands.append((lo, edge + margin, EDGE_COARSENING * h))
         return tuple(bands)
 
-    def remeshed(self, window: tuple[float, float]) -> "AdhesiveModel":
-        """The model on a mesh with the fine band `window`."""
+    def remeshed(self, window: tuple) -> "AdhesiveModel":
+        """The model on a mesh with the fine bands `window` ((r_lo, r_hi, h), ...)."""
         return AdhesiveModel(self.geometry, self.material, self.adhesion, self.scales,
                              self.preset, self.penalty_factor, window)
 
