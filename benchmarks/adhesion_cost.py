@@ -63,8 +63,7 @@ from benchmarks.workflow_copy import SNAKEMAKE, copy_workflow  # noqa: E402
 from asperity.population import samples  # noqa: E402
 from asperity.fe import ConvergenceError  # noqa: E402
 from asperity.fe import LennardJones, LinearElastic, Paraboloid, adhesive  # noqa: E402
-from asperity.fe.adhesive import (jkr_jump_off, maugis_pull_off, interpolate_adhesive,  # noqa: E402
-                                  smooth_aluminum_curves)
+from asperity.fe.adhesive import jkr_jump_off, maugis_pull_off, smooth_aluminum_curves  # noqa: E402
 
 SCENE = "smooth_aluminum_adhesion"
 RESULTS = Path(__file__).with_name("results")
@@ -182,12 +181,7 @@ def bands_row(radius: float = 150e-6) -> dict:
     diff = {}
     for var in ("force", "contact_radius"):
         worst = 0.0
-        for which in ("approach", "retract"):
-            w = ref.interference.values[ref.requested.values & (ref.branch.values == which)]
-            w = w[(np.abs(w - ref.attrs["jump_in_interference"]) > 0.1 * d)
-                  & (np.abs(w - ref.attrs["jump_off_interference"]) > 0.1 * d)]
-            x = interpolate_adhesive(ref, w, which)[var]
-            y = interpolate_adhesive(new, w, which)[var]
+        for x, y in adhesive.on_levels(ref, new, var, 0.1 * d):
             ok = np.isfinite(x) & np.isfinite(y)
             worst = max(worst, float(np.max(np.abs(y[ok] - x[ok])) / np.max(np.abs(x[ok]))))
         diff[f"{var}_largest_difference_over_largest"] = worst

@@ -14,7 +14,7 @@ import numpy as np
 import pytest
 
 from asperity.fe import LennardJones, LinearElastic, Paraboloid, adhesive, solve_asperity_adhesive
-from asperity.fe.adhesive import ALUMINUM_E, ALUMINUM_NU, interpolate_adhesive
+from asperity.fe.adhesive import ALUMINUM_E, ALUMINUM_NU, on_levels
 
 D = 0.3e-9
 LAW = LennardJones(1.0, D)
@@ -89,20 +89,9 @@ def test_contact_edge_band_agrees_with_the_whole_band(pair, two_bands):
     for (lo, hi, h), (lo_e, hi_e, h_e) in split:  # the edge's band inside the ring's
         assert h_e == adhesive.EDGE_COARSENING * h and hi_e < lo
     _agree(fixed, ds)
-    for af, a2 in _on_levels(fixed, ds, "contact_radius"):
+    for af, a2 in on_levels(fixed, ds, "contact_radius", 0.1 * D):
         ok = np.isfinite(af) & (af > 0)
         np.testing.assert_allclose(a2[ok], af[ok], rtol=0, atol=2.5e-3 * af[ok].max())
-
-
-def _on_levels(fixed, other, name):
-    """`name` of both runs on each branch at the fixed run's requested levels, away
-    from its jumps: a (fixed, other) pair of arrays per branch."""
-    for which in ("approach", "retract"):
-        w = fixed.interference.values[fixed.requested.values & (fixed.branch.values == which)]
-        w = w[(np.abs(w - fixed.attrs["jump_in_interference"]) > 0.1 * D)
-              & (np.abs(w - fixed.attrs["jump_off_interference"]) > 0.1 * D)]
-        yield (interpolate_adhesive(fixed, w, which)[name],
-               interpolate_adhesive(other, w, which)[name])
 
 
 def _agree(fixed, moving):
@@ -114,7 +103,7 @@ def _agree(fixed, moving):
         assert abs(moving.attrs[attr] - fixed.attrs[attr]) <= 0.01 * D, attr
     assert moving.attrs["jumps"] == fixed.attrs["jumps"]
     # both branches on the fixed run's requested levels, away from the jumps
-    for Ff, Fm in _on_levels(fixed, moving, "force"):
+    for Ff, Fm in on_levels(fixed, moving, "force", 0.1 * D):
         ok = np.isfinite(Ff)
         np.testing.assert_allclose(Fm[ok], Ff[ok], rtol=0,
                                    atol=1e-3 * fixed.attrs["pull_off_force"])

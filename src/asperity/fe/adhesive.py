@@ -1686,6 +1686,20 @@ def solve_asperity_adhesive(geometry: Profile, material, adhesion: LennardJones,
 
 
 # --- interpolation for the pipeline --------------------------------------------------
+def on_levels(reference: xr.Dataset, other: xr.Dataset, name: str, clearance: float):
+    """Two adhesive samples' `name` on the reference's requested levels, branch by
+    branch, away from its jumps (farther than `clearance` [m] from its jump-in and
+    jump-off): a (reference, other) pair of arrays per branch (`interpolate_adhesive`).
+    Compares two discretizations of one asperity (tests, `benchmarks/adhesion_cost.py`)."""
+    for which in ("approach", "retract"):
+        keep = reference.requested.values & (reference.branch.values == which)
+        w = reference.interference.values[keep]
+        w = w[(np.abs(w - reference.attrs["jump_in_interference"]) > clearance)
+              & (np.abs(w - reference.attrs["jump_off_interference"]) > clearance)]
+        yield (interpolate_adhesive(reference, w, which)[name],
+               interpolate_adhesive(other, w, which)[name])
+
+
 def interpolate_adhesive(ds: xr.Dataset, grid, branch: str = "approach",
                          names=("force", "contact_area", "contact_radius")) -> dict:
     """An adhesive sample's curves on an interference grid, for one branch.
