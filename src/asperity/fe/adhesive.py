@@ -117,7 +117,7 @@ the contact area) gets a band of its own, of elements EDGE_COARSENING
 times longer.  Refining the whole annulus at h_ring, as before (preset
 key ``edge_band`` False), made the active set of the Newton tangent half
 as large again (a median 1057 nodes against 717 at R = 150 um, draft)
-and the run 2.7 times as long, for forces within 1e-4 and contact radii
+and the run 2.5 times as long, for forces within 1e-4 and contact radii
 within 6e-4 of the largest of the two bands' (`benchmarks/adhesion_cost.py
 --bands`, README "Adhesion").  Each state the path reaches is
 checked: if its edge or ring has come within a quarter of the margin of
