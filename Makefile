@@ -23,13 +23,18 @@ $(STAMP): pyproject.toml constraints.txt
 reproduce: $(STAMP)
 	$(BIN)/snakemake --cores $(CORES)
 
+# One pytest-xdist worker per core; a test file stays on one worker, so its
+# module fixtures (the workflow runs) are computed once; files are handed out
+# longest first (the order of tests/conftest.py, not xdist's by test count).
+PYTEST := $(BIN)/python -m pytest -q -n $(CORES) --dist loadfile --no-loadscope-reorder
+
 # The whole test suite (what CI runs).
 test: $(STAMP)
-	$(BIN)/python -m pytest -q
+	$(PYTEST)
 
 # Everything but the tests marked slow.
 test-fast: $(STAMP)
-	$(BIN)/python -m pytest -q -m "not slow"
+	$(PYTEST) -m "not slow"
 
 # Speed measurements; writes benchmarks/out/results.json and prints a table.
 bench: $(STAMP)
