@@ -25,7 +25,11 @@ script measures it (CPU time of this process, `time.process_time`):
    the code before) and on meshes with the contact edge in a band of its own
    (the default): CPU time, the median size of the Newton tangent's active set,
    and how far the second run's force and contact radius (on the first run's
-   levels, away from its jumps), pull-off and jumps are from the first's.
+   levels, away from its jumps), pull-off and jumps are from the first's;
+6. ``--margins``: the same comparison between the following band's margins of
+   the code before (0.15 times the radius the cohesive zone reaches, at least
+   40 ring elements: preset keys ``follow_margin``, ``follow_margin_elements``)
+   and the preset's (20 ring elements).
 
 Writes benchmarks/results/adhesion-cost.json and prints a table.  Nothing
 is asserted: speed is measured here, not in the tests.
@@ -40,6 +44,7 @@ is asserted: speed is measured here, not in the tests.
                                                     # rows kept (such runs may go side
                                                     # by side)
     python benchmarks/adhesion_cost.py --bands      # part 5 alone, the rest kept
+    python benchmarks/adhesion_cost.py --margins    # part 6 alone, the rest kept
 """
 
 from __future__ import annotations
@@ -152,10 +157,14 @@ def large_rows(radii=LARGE_RADII, accuracies=("draft", "standard"), done=None) -
     return rows
 
 
-def bands_row(radius: float = 150e-6) -> dict:
-    """Part 5: one band from the contact edge against the contact edge's own band."""
-    runs = {}
-    for name, edge_band in (("one_band", False), ("edge_band", True)):
+def meshes_row(runs: dict, radius: float = 150e-6) -> dict:
+    """Parts 5 and 6: the same path at draft on two meshes, ``runs`` = {name: preset
+    overrides} (the reference first): CPU time, meshes, the median size of the
+    Newton tangent's active set, and how far the second run's force and contact
+    radius (on the first run's levels, away from its jumps), pull-off and jumps
+    are from the first's."""
+    out = {}
+    for name, overrides in runs.items():
         sizes = []
         tangent = adhesive.AdhesiveNewton.tangent
 
@@ -169,14 +178,15 @@ def bands_row(radius: float = 150e-6) -> dict:
             ds, cpu = timed(lambda: adhesive.solve_asperity_adhesive(
                 Paraboloid(radius), LinearElastic(adhesive.ALUMINUM_E, adhesive.ALUMINUM_NU),
                 LennardJones(1.0, 0.3e-9), w_max=10e-9,
-                accuracy=dict(base="draft", edge_band=edge_band)))
+                accuracy=dict(base="draft", **overrides)))
         finally:
             adhesive.AdhesiveNewton.tangent = tangent
-        runs[name] = (ds, dict(cpu_time_s=cpu, active_nodes_median=float(np.median(sizes)),
-                               meshes=int(ds.attrs["meshes"]),
-                               pull_off_force_N=float(ds.attrs["pull_off_force"])))
+        out[name] = (ds, dict(overrides, cpu_time_s=cpu,
+                              active_nodes_median=float(np.median(sizes)),
+                              meshes=int(ds.attrs["meshes"]),
+                              pull_off_force_N=float(ds.attrs["pull_off_force"])))
         print(f"R = {radius * 1e6:.4g} um draft, {name}: {cpu:.1f} s", flush=True)
-    (ref, a), (new, b) = runs["one_band"], runs["edge_band"]
+    (ref, a), (new, b) = out.values()
     d = 0.3e-9
     diff = {}
     for var in ("force", "contact_radius"):
@@ -188,8 +198,15 @@ def bands_row(radius: float = 150e-6) -> dict:
     diff["pull_off_relative_difference"] = b["pull_off_force_N"] / a["pull_off_force_N"] - 1.0
     for attr in ("jump_in_interference", "jump_off_interference"):
         diff[f"{attr}_difference_over_d"] = float(new.attrs[attr] - ref.attrs[attr]) / d
-    return dict(tip_radius_um=radius * 1e6, d_nm=0.3, accuracy="draft", one_band=a,
-                edge_band=b, **diff)
+    return dict(tip_radius_um=radius * 1e6, d_nm=0.3, accuracy="draft",
+                **{name: row for name, (_, row) in out.items()}, **diff)
+
+
+#: part 5: one band from the contact edge (the code before) against the edge's own band
+BANDS = {"one_band": dict(edge_band=False), "edge_band": dict(edge_band=True)}
+#: part 6: the following band's margins of the code before against the preset's
+MARGINS = {"wide_margins": dict(follow_margin=0.15, follow_margin_elements=40.0),
+           "preset_margins": {}}
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -208,14 +225,18 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--bands", action="store_true",
                     help="run part 5 alone (R = 150 um, one band against the edge's own); "
                          "the other parts are kept from --out")
+    ap.add_argument("--margins", action="store_true",
+                    help="run part 6 alone (R = 150 um, the margins of the code before "
+                         "against the preset's); the other parts are kept from --out")
     ap.add_argument("--out", type=Path, default=RESULTS / "adhesion-cost.json")
     args = ap.parse_args(argv)
-    if args.bands:
+    if args.bands or args.margins:
         commit, dirty = _commit()
-        row = dict(bands_row(), commit=commit, uncommitted_changes=dirty,
+        key, runs = ("bands", BANDS) if args.bands else ("margins", MARGINS)
+        row = dict(meshes_row(runs), commit=commit, uncommitted_changes=dirty,
                    date=time.strftime("%Y-%m-%dT%H:%M:%S%z"))
         record = json.loads(args.out.read_text())
-        record["bands"] = row
+        record[key] = row
         args.out.write_text(json.dumps(record, indent=1) + "\n")
         print(json.dumps(row, indent=1))
         print(f"written: {args.out}")
@@ -271,12 +292,13 @@ def main(argv: list[str] | None = None) -> int:
     else:
         large = compared(large_rows(radii, tuple(args.accuracies)))
     commit, dirty = _commit()
-    bands = json.loads(args.out.read_text()).get("bands") if args.out.exists() else None
+    old = json.loads(args.out.read_text()) if args.out.exists() else {}
     record = dict(date=time.strftime("%Y-%m-%dT%H:%M:%S%z"), commit=commit, uncommitted_changes=dirty,
                   scene=SCENE, scene_jobs=rows, scene_cpu_time_s=totals, radius_100um=wider,
                   smooth_aluminum_curves=curves, large_radii=large)
-    if bands is not None:  # part 5 runs on its own (--bands)
-        record["bands"] = bands
+    for key in ("bands", "margins"):  # parts 5 and 6 run on their own (--bands, --margins)
+        if key in old:
+            record[key] = old[key]
     args.out.parent.mkdir(parents=True, exist_ok=True)
     args.out.write_text(json.dumps(record, indent=1) + "\n")
     print(f"scene FE CPU: draft {totals['draft']:.0f} s, standard {totals['standard']:.0f} s")

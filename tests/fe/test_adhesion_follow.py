@@ -45,9 +45,9 @@ def pair():
 @pytest.fixture(scope="module")
 def two_bands():
     """The R = 15.4 um asperity on following meshes with margins narrow enough (6 ring
-    elements, 3 % of the radius) for its contact edge to lie more than two margins
-    inside the cohesive zone, as at R >= 150 um with the default margins: the bands of
-    each new mesh are recorded."""
+    elements) for its contact edge to lie more than two margins inside the cohesive
+    zone, as at R >= 150 um with the preset's margins: the bands of each new mesh are
+    recorded."""
     bands = []
     window_for = adhesive.AdhesiveModel.window_for
 
@@ -58,11 +58,9 @@ def two_bands():
         return out
 
     with pytest.MonkeyPatch.context() as mp:
-        mp.setattr(adhesive, "FOLLOW_MIN_FACETS", 6)
-        mp.setattr(adhesive, "FOLLOW_MARGIN", 0.03)
         mp.setattr(adhesive.AdhesiveModel, "window_for", recorded)
         ds = solve_asperity_adhesive(Paraboloid(15.4e-6), MAT, LAW, w_max=W_MAX,
-                                     accuracy=FOLLOWING)
+                                     accuracy=dict(FOLLOWING, follow_margin_elements=6.0))
     return ds, bands
 
 

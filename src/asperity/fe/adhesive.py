@@ -107,9 +107,15 @@ a window of it is (`AdhesiveModel.window_for`): the cohesive zone, from
 the edge of the surface held in the well of q (separation below
 (1 + TIP_SEPARATION) d, past the peak of q) or the contact edge to the
 surface within FINE_SEPARATION d of the flat, plus a margin of
-FOLLOW_MARGIN times the radius that reaches on either side (the contact
-inside and the surface outside are graded away from it as above); the
-candidate zone is still the whole band.  At a large Tabor parameter the
+``follow_margin_elements`` ring elements on either side (preset; or
+``follow_margin`` times the radius that reaches, if that is larger: the
+contact inside and the surface outside are graded away from it as above);
+the candidate zone is still the whole band.  The margin trades the size
+of the Newton tangent's active set, whose dense factorization is most of
+the cost, against how often the mesh moves: 20 elements in every preset,
+where the code before took 0.15 times the radius (at least 40 elements),
+a band 2-4 times wider at R = 150-300 um (MARGINS_NOTE).  At a large
+Tabor parameter the
 surface held in the well is a wide annulus around the contact (the
 tension of JKR's contact), where the fields are smooth; the contact edge
 inside it (where the penalty takes over from the adhesion, the edge of
@@ -181,15 +187,13 @@ MAX_HALVINGS = 60
 #: a mesh following the contact (`AdhesiveModel.window_for`): the fine band
 #: spans the cohesive zone, from the edge of the surface held within
 #: TIP_SEPARATION d of the well of q (or the contact edge) to the surface
-#: within FINE_SEPARATION d of the flat, with a margin of FOLLOW_MARGIN
-#: times the radius it reaches (at least FOLLOW_MIN_FACETS ring elements) on
-#: each side; a contact edge farther inside has a band of its own, of
+#: within FINE_SEPARATION d of the flat, with the preset's margin on each
+#: side (``follow_margin``, ``follow_margin_elements``); a contact edge
+#: farther inside has a band of its own, of
 #: elements EDGE_COARSENING times longer; a state whose edge or ring comes
 #: within a quarter of the margin of its band's ends is moved to a new mesh,
 #: at most MAX_REMESH times in a row
 FINE_SEPARATION = 4.0
-FOLLOW_MARGIN = 0.15
-FOLLOW_MIN_FACETS = 40
 TIP_SEPARATION = 0.2
 EDGE_COARSENING = 2.0
 MAX_REMESH = 8
@@ -625,8 +629,9 @@ class AdhesiveModel:
     The fine band is ``window`` (r_lo, r_hi); the candidate zone is always
     0 <= r <= r_band.  A model `follows` the contact if the band has more
     than ``follow_above`` ring elements: its fine band is then a window
-    around the contact edge, by default FOLLOW_MIN_FACETS ring elements at
-    the apex, moved along the path (`window_for`, `remeshed`; module
+    around the contact edge, by default the preset's
+    ``follow_margin_elements`` ring elements at the apex, moved along the
+    path (`window_for`, `remeshed`; module
     docstring, "Mesh"); else it is the whole band (0, r_band).
     """
 
@@ -641,7 +646,8 @@ class AdhesiveModel:
         self.follows = scales.r_band > preset["follow_above"] * scales.h_ring
         if window is None:
             h = scales.h_ring
-            window = ((0.0, FOLLOW_MIN_FACETS * h if self.follows else scales.r_band, h),)
+            window = ((0.0, preset["follow_margin_elements"] * h if self.follows
+                       else scales.r_band, h),)
         self.window = window
         if geometry.axisymmetric:
             L = preset["domain_factor"] * geometry.length_scale
@@ -827,7 +833,8 @@ class AdhesiveModel:
         held = pen > -TIP_SEPARATION * d
         tip = max(float(r[held].max()) if held.any() else 0.0, edge)
         h = self.scales.h_ring
-        margin = max(FOLLOW_MARGIN * outer, FOLLOW_MIN_FACETS * h)
+        margin = max(self.preset["follow_margin"] * outer,
+                     self.preset["follow_margin_elements"] * h)
         r_band = self.scales.r_band
 
         def covers(lo, hi, size):  # a band of elements no longer than size spans lo..hi

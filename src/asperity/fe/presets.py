@@ -80,7 +80,12 @@ add to the elastic preset of the same name: the mesh of the adhesive band
 follow_above: a band of more ring elements follows the contact, and
 edge_band: a contact edge far inside the cohesive zone gets a band of its
 own; False gives the one band from the contact edge of the code before,
-for `benchmarks/adhesion_cost.py --bands`), the
+for `benchmarks/adhesion_cost.py --bands`; follow_margin and
+follow_margin_elements: a following band reaches the larger of
+follow_margin x the radius its zone reaches and follow_margin_elements
+ring elements beyond the zone on either side: 20 elements in every
+preset, the 0.15 x radius and 40 elements of the code before for
+`benchmarks/adhesion_cost.py --margins`), the
 surface rule (gauss_points, subdivisions), the path (steps_per_d,
 far_steps) and its step control (jump_tolerance, energy_tolerance,
 min_step); the adhesive module docstring says what each does.  Sliding
@@ -160,15 +165,18 @@ ADHESIVE_ACCURACY: dict[str, dict] = {
     "draft": dict(base="draft", process_zone_elements=1.5, ring_elements=4.0, grading=0.5,
                   gauss_points=5, subdivisions=2, steps_per_d=3.0, far_steps=8,
                   jump_tolerance=0.25, energy_tolerance=0.03, min_step=2e-3,
-                  max_band_facets=1500, follow_above=600, edge_band=True),
+                  max_band_facets=1500, follow_above=600, edge_band=True,
+                  follow_margin=0.0, follow_margin_elements=20.0),
     "standard": dict(base="standard", process_zone_elements=3.0, ring_elements=8.0, grading=0.3,
                      gauss_points=5, subdivisions=2, steps_per_d=6.0, far_steps=16,
                      jump_tolerance=0.25, energy_tolerance=0.02, min_step=1e-3,
-                     max_band_facets=3000, follow_above=1200, edge_band=True),
+                     max_band_facets=3000, follow_above=1200, edge_band=True,
+                     follow_margin=0.0, follow_margin_elements=20.0),
     "fine": dict(base="fine", process_zone_elements=6.0, ring_elements=16.0, grading=0.2,
                  gauss_points=5, subdivisions=4, steps_per_d=10.0, far_steps=24,
                  jump_tolerance=0.25, energy_tolerance=0.01, min_step=5e-4,
-                 max_band_facets=6000, follow_above=2400, edge_band=True),
+                 max_band_facets=6000, follow_above=2400, edge_band=True,
+                 follow_margin=0.0, follow_margin_elements=20.0),
 }
 
 #: accuracy presets of the sliding model: mesh sizes relative to the
