@@ -114,16 +114,19 @@ the candidate zone is still the whole band.  The margin trades the size
 of the Newton tangent's active set, whose dense factorization is most of
 the cost, against how often the mesh moves: 20 elements in every preset,
 where the code before took 0.15 times the radius (at least 40 elements),
-a band 2-4 times wider at R = 150-300 um (MARGINS_NOTE).  At a large
-Tabor parameter the
-surface held in the well is a wide annulus around the contact (the
+a band 2-4 times wider at R = 150-300 um: at R = 150 um draft the active
+set shrank from a median 717 nodes to 381 and the run from 66 s to 25 s,
+with 21 meshes instead of 13, for forces within 8.2e-5 and contact radii
+within 5.9e-4 of the largest (`benchmarks/adhesion_cost.py --margins`,
+README "Adhesion").  At a large Tabor parameter the surface held in the
+well is a wide annulus around the contact (the
 tension of JKR's contact), where the fields are smooth; the contact edge
 inside it (where the penalty takes over from the adhesion, the edge of
 the contact area) gets a band of its own, of elements EDGE_COARSENING
 times longer.  Refining the whole annulus at h_ring, as before (preset
-key ``edge_band`` False), made the active set of the Newton tangent half
-as large again (a median 1057 nodes against 717 at R = 150 um, draft)
-and the run 2.5 times as long, for forces within 1e-4 and contact radii
+key ``edge_band`` False), makes the active set of the Newton tangent 2.7
+times as large (a median 1045 nodes against 381 at R = 150 um, draft)
+and the run 5 times as long, for forces within 3e-5 and contact radii
 within 6e-4 of the largest of the two bands' (`benchmarks/adhesion_cost.py
 --bands`, README "Adhesion").  Each state the path reaches is
 checked: if its edge or ring has come within a quarter of the margin of
