@@ -118,8 +118,9 @@ a band 2-4 times wider at R = 150-300 um: at R = 150 um draft the active
 set shrank from a median 717 nodes to 381 and the run from 66 s to 25 s,
 with 21 meshes instead of 13, for forces within 8.2e-5 and contact radii
 within 5.9e-4 of the largest (`benchmarks/adhesion_cost.py --margins`,
-README "Adhesion").  At a large Tabor parameter the surface held in the
-well is a wide annulus around the contact (the
+README "Adhesion"); the pull-off moves by up to 1e-4 of itself
+(`tests/fe/test_adhesion_follow.py`).  At a large Tabor parameter the
+surface held in the well is a wide annulus around the contact (the
 tension of JKR's contact), where the fields are smooth; the contact edge
 inside it (where the penalty takes over from the adhesion, the edge of
 the contact area) gets a band of its own, of elements EDGE_COARSENING
@@ -192,8 +193,8 @@ MAX_HALVINGS = 60
 #: TIP_SEPARATION d of the well of q (or the contact edge) to the surface
 #: within FINE_SEPARATION d of the flat, with the preset's margin on each
 #: side (``follow_margin``, ``follow_margin_elements``); a contact edge
-#: farther inside has a band of its own, of
-#: elements EDGE_COARSENING times longer; a state whose edge or ring comes
+#: farther inside has a band of its own, of elements EDGE_COARSENING times
+#: longer; a state whose edge or ring comes
 #: within a quarter of the margin of its band's ends is moved to a new mesh,
 #: at most MAX_REMESH times in a row
 FINE_SEPARATION = 4.0
@@ -629,13 +630,13 @@ class _Level(Problem):
 class AdhesiveModel:
     """Mesh graded to the adhesive band, condensed stiffness, both surface rules.
 
-    The fine band is ``window`` (r_lo, r_hi); the candidate zone is always
-    0 <= r <= r_band.  A model `follows` the contact if the band has more
+    The fine bands are ``window`` ((r_lo, r_hi, h), ...); the candidate zone
+    is always 0 <= r <= r_band.  A model `follows` the contact if the band has more
     than ``follow_above`` ring elements: its fine band is then a window
     around the contact edge, by default the preset's
     ``follow_margin_elements`` ring elements at the apex, moved along the
-    path (`window_for`, `remeshed`; module
-    docstring, "Mesh"); else it is the whole band (0, r_band).
+    path (`window_for`, `remeshed`; module docstring, "Mesh"); else it is
+    the whole band (0, r_band).
     """
 
     def __init__(self, geometry: Profile, material, adhesion: LennardJones, scales: _Scales,
