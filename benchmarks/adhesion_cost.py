@@ -3,15 +3,14 @@
 The README's adhesion section quotes what the adhesive solver costs; this
 script measures it (CPU time of this process, `time.process_time`):
 
-1. the five FE jobs of scene `smooth_aluminum_adhesion`, at `draft` (the
-   scene's preset) and at `standard`.  Their specs come from the scene's
-   plan, built by Snakemake in a fresh copy of the workflow;
-2. the scene's flattest asperity (R = 60 um) moved to R = 100 um, the cost
-   behind the scene's curvature range (README: departures);
-3. `asperity.fe.adhesive.smooth_aluminum_curves` (Fig. 7.6: R = 15.4, 30,
+1. the eight FE jobs of scene `smooth_aluminum_adhesion` (R = 300 to
+   13.6 um at d = 0.3 nm), at `draft` (the scene's preset) and at
+   `standard`.  Their specs come from the scene's plan, built by Snakemake
+   in a fresh copy of the workflow;
+2. `asperity.fe.adhesive.smooth_aluminum_curves` (Fig. 7.6: R = 15.4, 30,
    60 um at d = 0.3 nm), at draft, one radius at a time;
-4. the flat end of report 7.3's range, R = 150 and 300 um at d = 0.3 nm
-   (Tabor parameter 10 and 13: meshes that follow the contact), at draft
+3. the flat end of report 7.3's range, R = 150 and 300 um at d = 0.3 nm
+   (Tabor parameter 10 and 13), pressed to 10 nm, at draft
    and at standard: CPU time, the pull-off force against JKR's
    3/2 pi R W_c, the jump-off interference against JKR's, and the draft
    pull-off against standard's, and against the Maugis-Dugdale pull-off at
@@ -20,31 +19,36 @@ script measures it (CPU time of this process, `time.process_time`):
    `resource.getrusage`: the run's own peak when it is the first, or only,
    run of its process, as with ``--only-large --radii R --accuracies A``; an
    upper bound otherwise);
-5. ``--bands``: R = 150 um at draft on meshes whose fine band reaches from the
+4. ``--bands``: R = 150 um at draft on meshes whose fine band reaches from the
    contact edge to the cohesive zone (preset key ``edge_band`` off, the mesh of
    the code before) and on meshes with the contact edge in a band of its own
    (the default): CPU time, the median size of the Newton tangent's active set,
    and how far the second run's force and contact radius (on the first run's
    levels, away from its jumps), pull-off and jumps are from the first's;
-6. ``--margins``: the same comparison between the following band's margins of
+5. ``--margins``: the same comparison between the following band's margins of
    the code before (0.15 times the radius the cohesive zone reaches, at least
    40 ring elements: preset keys ``follow_margin``, ``follow_margin_elements``)
-   and the preset's (20 ring elements).
+   and the preset's (20 ring elements);
+6. ``--follow``: the same comparison at R = 15.4 um between the whole band
+   refined once (preset key ``follow_above`` raised out of reach) and the
+   preset (a band of more than ``follow_above`` ring elements follows the
+   contact), pressed to 79 nm as in the scene.
 
 Writes benchmarks/results/adhesion-cost.json and prints a table.  Nothing
 is asserted: speed is measured here, not in the tests.
 
     python benchmarks/adhesion_cost.py             # everything
-    python benchmarks/adhesion_cost.py --no-curves # without part 3
-    python benchmarks/adhesion_cost.py --no-large   # parts 1-3, part 4 kept
-    python benchmarks/adhesion_cost.py --only-large # part 4 alone, the other
+    python benchmarks/adhesion_cost.py --no-curves # without part 2
+    python benchmarks/adhesion_cost.py --no-large   # parts 1-2, part 3 kept
+    python benchmarks/adhesion_cost.py --only-large # part 3 alone, the other
                                                     # parts kept from the JSON
     python benchmarks/adhesion_cost.py --only-large --radii 300 --accuracies draft
                                                     # one radius and preset: the other
                                                     # rows kept (such runs may go side
                                                     # by side)
-    python benchmarks/adhesion_cost.py --bands      # part 5 alone, the rest kept
-    python benchmarks/adhesion_cost.py --margins    # part 6 alone, the rest kept
+    python benchmarks/adhesion_cost.py --bands      # part 4 alone, the rest kept
+    python benchmarks/adhesion_cost.py --margins    # part 5 alone, the rest kept
+    python benchmarks/adhesion_cost.py --follow     # part 6 alone, the rest kept
 """
 
 from __future__ import annotations
@@ -72,7 +76,7 @@ from asperity.fe.adhesive import jkr_jump_off, maugis_pull_off, smooth_aluminum_
 
 SCENE = "smooth_aluminum_adhesion"
 RESULTS = Path(__file__).with_name("results")
-#: part 4: report 7.3's flattest asperities [m]
+#: part 3: report 7.3's flattest asperities [m]
 LARGE_RADII = (150e-6, 300e-6)
 
 
@@ -123,7 +127,7 @@ def compared(rows: list[dict]) -> list[dict]:
 
 
 def large_rows(radii=LARGE_RADII, accuracies=("draft", "standard"), done=None) -> list[dict]:
-    """Part 4: R = 150, 300 um at d = 0.3 nm, draft and standard; `done(rows)`
+    """Part 3: R = 150, 300 um at d = 0.3 nm, draft and standard; `done(rows)`
     is called after each run (the JSON keeps what finished)."""
     rows = []
     for radius in radii:
@@ -157,8 +161,8 @@ def large_rows(radii=LARGE_RADII, accuracies=("draft", "standard"), done=None) -
     return rows
 
 
-def meshes_row(runs: dict, radius: float = 150e-6) -> dict:
-    """Parts 5 and 6: the same path at draft on two meshes, ``runs`` = {name: preset
+def meshes_row(runs: dict, radius: float = 150e-6, w_max: float = 10e-9) -> dict:
+    """Parts 4 to 6: the same path at draft on two meshes, ``runs`` = {name: preset
     overrides} (the reference first): CPU time, meshes, the median size of the
     Newton tangent's active set, and how far the second run's force and contact
     radius (on the first run's levels, away from its jumps), pull-off and jumps
@@ -177,7 +181,7 @@ def meshes_row(runs: dict, radius: float = 150e-6) -> dict:
         try:
             ds, cpu = timed(lambda: adhesive.solve_asperity_adhesive(
                 Paraboloid(radius), LinearElastic(adhesive.ALUMINUM_E, adhesive.ALUMINUM_NU),
-                LennardJones(1.0, 0.3e-9), w_max=10e-9,
+                LennardJones(1.0, 0.3e-9), w_max=w_max,
                 accuracy=dict(base="draft", **overrides)))
         finally:
             adhesive.AdhesiveNewton.tangent = tangent
@@ -198,42 +202,50 @@ def meshes_row(runs: dict, radius: float = 150e-6) -> dict:
     diff["pull_off_relative_difference"] = b["pull_off_force_N"] / a["pull_off_force_N"] - 1.0
     for attr in ("jump_in_interference", "jump_off_interference"):
         diff[f"{attr}_difference_over_d"] = float(new.attrs[attr] - ref.attrs[attr]) / d
-    return dict(tip_radius_um=radius * 1e6, d_nm=0.3, accuracy="draft",
+    return dict(tip_radius_um=radius * 1e6, d_nm=0.3, w_max_nm=w_max * 1e9, accuracy="draft",
                 **{name: row for name, (_, row) in out.items()}, **diff)
 
 
-#: part 5: one band from the contact edge (the code before) against the edge's own band
+#: part 4: one band from the contact edge (the code before) against the edge's own band
 BANDS = {"one_band": dict(edge_band=False), "edge_band": dict(edge_band=True)}
-#: part 6: the following band's margins of the code before against the preset's
+#: part 5: the following band's margins of the code before against the preset's
 MARGINS = {"wide_margins": dict(follow_margin=0.15, follow_margin_elements=40.0),
            "preset_margins": {}}
+#: part 6: the whole band refined once against the preset's following mesh, at a
+#: small tip of the scene (R = 15.4 um, 443 ring elements at draft pressed to 79 nm)
+FOLLOW = {"whole_band": dict(follow_above=1e9), "following": {}}
+FOLLOW_CASE = dict(radius=15.4e-6, w_max=79e-9)
 
 
 def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--no-curves", action="store_true", help="leave out smooth_aluminum_curves")
     ap.add_argument("--only-large", action="store_true",
-                    help="run part 4 (R = 150, 300 um) alone; parts 1-3 are kept from --out")
+                    help="run part 3 (R = 150, 300 um) alone; parts 1-2 are kept from --out")
     ap.add_argument("--no-large", action="store_true",
-                    help="leave out part 4; its rows are kept from --out")
+                    help="leave out part 3; its rows are kept from --out")
     ap.add_argument("--radii", type=float, nargs="+", default=[r * 1e6 for r in LARGE_RADII],
-                    help="part 4's tip radii [um]")
+                    help="part 3's tip radii [um]")
     ap.add_argument("--accuracies", nargs="+", default=["draft", "standard"],
-                    help="part 4's presets")
+                    help="part 3's presets")
     ap.add_argument("--compare", action="store_true",
-                    help="only recompute part 4's comparisons of the stored rows (no FE run)")
+                    help="only recompute part 3's comparisons of the stored rows (no FE run)")
     ap.add_argument("--bands", action="store_true",
-                    help="run part 5 alone (R = 150 um, one band against the edge's own); "
+                    help="run part 4 alone (R = 150 um, one band against the edge's own); "
                          "the other parts are kept from --out")
     ap.add_argument("--margins", action="store_true",
-                    help="run part 6 alone (R = 150 um, the margins of the code before "
+                    help="run part 5 alone (R = 150 um, the margins of the code before "
                          "against the preset's); the other parts are kept from --out")
+    ap.add_argument("--follow", action="store_true",
+                    help="run part 6 alone (R = 15.4 um pressed to 79 nm, the whole band "
+                         "against the following mesh); the other parts are kept from --out")
     ap.add_argument("--out", type=Path, default=RESULTS / "adhesion-cost.json")
     args = ap.parse_args(argv)
-    if args.bands or args.margins:
+    if args.bands or args.margins or args.follow:
         commit, dirty = _commit()
-        key, runs = ("bands", BANDS) if args.bands else ("margins", MARGINS)
-        row = dict(meshes_row(runs), commit=commit, uncommitted_changes=dirty,
+        key, runs, case = (("bands", BANDS, {}) if args.bands else ("margins", MARGINS, {})
+                           if args.margins else ("follow", FOLLOW, FOLLOW_CASE))
+        row = dict(meshes_row(runs, **case), commit=commit, uncommitted_changes=dirty,
                    date=time.strftime("%Y-%m-%dT%H:%M:%S%z"))
         record = json.loads(args.out.read_text())
         record[key] = row
@@ -278,8 +290,6 @@ def main(argv: list[str] | None = None) -> int:
             print(f"scene job R = {rows[-1]['tip_radius_um']:.4g} um, {accuracy}: "
                   f"{rows[-1]['cpu_time_s']:.1f} s", flush=True)
     totals = {a: sum(r["cpu_time_s"] for r in rows if r["accuracy"] == a) for a in ("draft", "standard")}
-    wider = job_row(dict(specs[0], curvature=1.0 / 100e-6), "draft")
-    print(f"R = 100 um, draft: {wider['cpu_time_s']:.1f} s", flush=True)
     curves = []
     if not args.no_curves:
         for radius in (15.4e-6, 30e-6, 60e-6):
@@ -294,9 +304,9 @@ def main(argv: list[str] | None = None) -> int:
     commit, dirty = _commit()
     old = json.loads(args.out.read_text()) if args.out.exists() else {}
     record = dict(date=time.strftime("%Y-%m-%dT%H:%M:%S%z"), commit=commit, uncommitted_changes=dirty,
-                  scene=SCENE, scene_jobs=rows, scene_cpu_time_s=totals, radius_100um=wider,
+                  scene=SCENE, scene_jobs=rows, scene_cpu_time_s=totals,
                   smooth_aluminum_curves=curves, large_radii=large)
-    for key in ("bands", "margins"):  # parts 5 and 6 run on their own (--bands, --margins)
+    for key in ("bands", "margins", "follow"):  # parts 4-6 run on their own
         if key in old:
             record[key] = old[key]
     args.out.parent.mkdir(parents=True, exist_ok=True)

@@ -27,7 +27,7 @@ VERSIONS: dict[str, int] = {
     "sample:hertz": 1,
     "sample:elastic": 1,
     "sample:inelastic": 2,
-    "sample:adhesive": 5,
+    "sample:adhesive": 6,
     "asperities": 1,
     # homogenize (workflow/rules/homogenize.smk)
     "expectation": 1,
