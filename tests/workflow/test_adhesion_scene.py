@@ -21,14 +21,14 @@ pytestmark = [pytest.mark.workflow, pytest.mark.slow]
 
 SCENE, TWIN = "smooth_aluminum_adhesion", "smooth_aluminum_elastic"
 ONLY = ("--config", f"scenes=[{SCENE}]", "accuracy=draft")
-LAW = LennardJones(1.0, 0.5e-9, 16.0)  # the scene's adhesion section, in SI
+LAW = LennardJones(1.0, 0.3e-9, 16.0)  # the scene's adhesion section, in SI
 E_STAR = 65e9 / (1 - 0.33**2)
 
 
-#: the scene's three steepest curvature samples (R = 30 to 13.6 um): the flatter
+#: the scene's three steepest curvature samples (R = 18.7 to 13.6 um): the flatter
 #: asperities cost most of the scene's CPU time (Tabor parameter), and these keep
 #: every property tested here; the full scene is measured by the README's run
-CURVATURE_RANGE = [0.033, 0.073683]
+CURVATURE_RANGE = [0.053583, 0.073683]
 CURVATURES = 3
 
 
@@ -77,8 +77,14 @@ def test_interface_attracts_before_contact(run):
     """Above the highest peak (plus the largest jump-in distance) nothing touches and
     the pressure is the attraction of the asperities within reach: against the rigid
     paraboloids' Derjaguin force -2 pi R W_c(d - w) on the same grid, homogenized the same
-    way, within 3 % (measured 1.8 % to 0.1 %, falling with the separation: the elastic
-    tips bulge towards the flat); beyond the reach of the law exactly zero.  Retracting,
+    way.  The elastic tips bulge towards the flat, most just before they jump in, so the
+    FE attraction exceeds the rigid one there (each asperity's FE over rigid force out of
+    contact: measured 0.99 to 1.66).  Homogenized, the ratio of the two pressures is a
+    mean of those ratios weighted by the rigid force and the peak density, so it lies
+    between their least and largest (1.5 % allowed for the quadrature, the synthetic
+    tests' 1-1.5 % with jumps); it falls with the separation as fewer tips are near their
+    jump-in, to within 1 % at the farthest (measured 4.8 %, 1.6 %, -0.14 %, d = 0.3 nm,
+    the three steepest tips); beyond the reach of the law exactly zero.  Retracting,
     the contacts hang on: the pressure is at most the approach's, and the interface's
     pull-off pressure exceeds the largest attraction on approach."""
     interface = result(run, SCENE, "interface.nc")
@@ -105,7 +111,13 @@ def test_interface_attracts_before_contact(run):
         h[far], bounds=interface.attrs["bounds"],
         cells=(60, 40), rule="gauss", peak_density=population_density.peak_density(surface), reach=reach,
         contact="in_contact")
-    np.testing.assert_allclose(p[far], ref["nominal_pressure"].values, rtol=0.03)
+    fe = asp["force"].sel(branch="approach").isel(height=0).values
+    out = (w < 0) & (asp["in_contact"].sel(branch="approach").isel(height=0).values == 0) \
+        & (rigid != 0)
+    each = fe[out] / rigid[out]
+    ratio = p[far] / ref["nominal_pressure"].values
+    assert np.all(ratio > each.min() - 0.015) and np.all(ratio < each.max() + 0.015), (ratio, each)
+    assert np.all(np.diff(ratio) < 0) and abs(ratio[-1] - 1) < 0.01, ratio
     ret = interface["nominal_pressure"].sel(branch="retract").values
     assert np.all(ret <= p + 1e-9 * np.abs(p).max())
     assert interface.attrs["pull_off_pressure"] > 2 * interface.attrs["largest_attraction_approach"]
@@ -114,11 +126,12 @@ def test_interface_attracts_before_contact(run):
 def test_adhesion_against_the_twin_without(run):
     """Against the same spheres without adhesion (smooth_aluminum_elastic, the same
     separations from 1 to 4 sigma): adhesion lowers the pressure at every separation, by a
-    share that falls as the load grows (measured 20 % at 1 sigma, the report: adhesion
+    share that falls as the load grows (measured 31 % at 1 sigma with these three tips, 20 %
+    in the full scene, the report: adhesion
     "more pronounced on the surface level than for a single asperity").  One asperity
     pressed deep, where adhesion is out of range of most of its surface, carries what it
     carries without: at the curvature both scenes compute (R = 13.6 um) within 1.5 % at
-    the deepest interference (measured 0.65 %), the difference falling from 10 nm on
+    the deepest interference (measured 0.64 %), the difference falling from 10 nm on
     (13 % there) as JKR's correction does, as w^(-3/4)."""
     adh = result(run, SCENE, "interface.nc").sel(branch="approach")
     twin = result(run, TWIN, "interface.nc")
@@ -144,7 +157,8 @@ def test_adhesion_against_the_twin_without(run):
 def test_friction_far_above_the_twin_at_light_load(run):
     """9.1, Fig. 9.1: with adhesion mu is very high at light loads (the attraction adds to
     the load the junctions carry); without, it is almost constant.  At the lightest
-    positive load more than 10 times the twin's at its lightest (measured 27 against 0.32);
+    positive load more than 10 times the twin's at its lightest (measured 9.3 against 0.32
+    with these three tips, 30 in the full scene);
     undefined (NaN) where the net pressure is an attraction."""
     mu = result(run, SCENE, "friction.nc")
     twin = result(run, TWIN, "friction.nc")
