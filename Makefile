@@ -110,7 +110,8 @@ compare-results: $(STAMP)
 README_FIGURES := profile_quasirandom/figures/surface.png expectation_unit/figures/expectation.png \
 	greenwood_williamson/figures/interface.png map_hertz/figures/surface.png steel_hertz/figures/interface.png \
 	profiles_anisotropic/figures/surface.png hertz/figures/verification.png \
-	asperity_shape/figures/interface.png asperity_shape/figures/asperities.png
+	asperity_shape/figures/interface.png asperity_shape/figures/asperities.png \
+	smooth_aluminum_adhesion/figures/adhesion.png
 figures: reproduce
 	mkdir -p docs/figures
 	for f in $(README_FIGURES); do cp results/$$f docs/figures/$$(echo $$f | sed 's|/figures/|_|'); done
