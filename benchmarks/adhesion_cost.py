@@ -215,6 +215,8 @@ MARGINS = {"wide_margins": dict(follow_margin=0.15, follow_margin_elements=40.0)
 #: small tip of the scene (R = 15.4 um, 443 ring elements at draft pressed to 79 nm)
 FOLLOW = {"whole_band": dict(follow_above=1e9), "following": {}}
 FOLLOW_CASE = dict(radius=15.4e-6, w_max=79e-9)
+#: parts 4-6, each run alone by its option: the runs compared and the case
+MESH_PARTS = {"bands": (BANDS, {}), "margins": (MARGINS, {}), "follow": (FOLLOW, FOLLOW_CASE)}
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -241,10 +243,11 @@ def main(argv: list[str] | None = None) -> int:
                          "against the following mesh); the other parts are kept from --out")
     ap.add_argument("--out", type=Path, default=RESULTS / "adhesion-cost.json")
     args = ap.parse_args(argv)
-    if args.bands or args.margins or args.follow:
+    alone = [key for key in MESH_PARTS if getattr(args, key)]
+    if alone:
         commit, dirty = _commit()
-        key, runs, case = (("bands", BANDS, {}) if args.bands else ("margins", MARGINS, {})
-                           if args.margins else ("follow", FOLLOW, FOLLOW_CASE))
+        key = alone[0]
+        runs, case = MESH_PARTS[key]
         row = dict(meshes_row(runs, **case), commit=commit, uncommitted_changes=dirty,
                    date=time.strftime("%Y-%m-%dT%H:%M:%S%z"))
         record = json.loads(args.out.read_text())
@@ -306,7 +309,7 @@ def main(argv: list[str] | None = None) -> int:
     record = dict(date=time.strftime("%Y-%m-%dT%H:%M:%S%z"), commit=commit, uncommitted_changes=dirty,
                   scene=SCENE, scene_jobs=rows, scene_cpu_time_s=totals,
                   smooth_aluminum_curves=curves, large_radii=large)
-    for key in ("bands", "margins", "follow"):  # parts 4-6 run on their own
+    for key in MESH_PARTS:  # parts 4-6 run on their own
         if key in old:
             record[key] = old[key]
     args.out.parent.mkdir(parents=True, exist_ok=True)
