@@ -94,13 +94,17 @@ def test_contact_edge_band_agrees_with_the_whole_band(pair, two_bands):
 
 def _agree(fixed, moving):
     """A following mesh's path against the whole band's."""
-    # the pull-off to 1e-4, below draft's own distance from standard (3e-4 on the
-    # scene's pull-off ratios).  Measured at R = 15.4 um against the whole band
-    # (or the margins before 030d000, 0.15 x radius and at least 40 ring
-    # elements, which are within 1e-7 of it): 9.9e-5 with the preset's margins
-    # of 20 ring elements, 9.0e-5 with 6 (the two-band case), 8e-6 with 30; at
-    # R = 30 um 4.4e-5 with 20 and 2.6e-6 with 30.  The narrow margin is the
-    # price of R = 300 um at draft in under 60 s (with 30 elements: 82 s).
+    # the pull-off to 1e-4, below draft's own distance from standard (1.3e-4 to
+    # 1.4e-3 at three of the scene's eight tips).  Measured at R = 15.4 um against
+    # the whole band (or the margins before 030d000, 0.15 x radius and at least
+    # 40 ring elements, which are within 1e-7 of it): 9.9e-5 with the preset's
+    # margins of 20 ring elements, 9.0e-5 with 6 (the two-band case), 8e-6 with
+    # 30; at R = 30 um 4.4e-5 with 20 and 2.6e-6 with 30.  The narrow margin is
+    # the price of R = 300 um at draft in under 60 s (with 30 elements: 82 s).
+    # Where it comes from (ad hoc, 2026-11-28): the law's tail beyond the zone's
+    # outer end (FINE_SEPARATION = 4 d) on the graded elements past the margin.
+    # With the zone reaching 6 d or 8 d and margins of 20 the pull-off is 1.6e-5
+    # and 8e-6 from the whole band's, for 10 % more CPU at R = 300 um (6 d).
     assert moving.attrs["pull_off_force"] == pytest.approx(fixed.attrs["pull_off_force"], rel=1e-4)
     for attr in ("jump_in_interference", "jump_off_interference"):
         assert abs(moving.attrs[attr] - fixed.attrs[attr]) <= 0.01 * D, attr
