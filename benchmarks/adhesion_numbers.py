@@ -37,36 +37,28 @@ import numpy as np
 import xarray as xr
 
 from asperity import peaks
+from asperity.io.netcdf import read_dataset
+from asperity.population.density import height_scale, population_stat
 
 SCENE, TWIN = "smooth_aluminum_adhesion", "smooth_aluminum_elastic"
 OUT = Path(__file__).with_name("results") / "adhesion-scene.json"
 
 
-def _open(folder: Path, name: str) -> xr.Dataset:
-    with xr.open_dataset(folder / name) as ds:
-        return ds.load()
-
-
-def _sigma(surface: xr.Dataset) -> float:
-    return float(surface["sigma"].values.ravel()[0])  # dim estimator: one value
-
-
 def scene_numbers(folder: Path) -> dict:
-    asp = _open(folder, "asperities.nc")
-    interface = _open(folder, "interface.nc")
-    surface = _open(folder, "surface.nc")
-    friction = _open(folder, "friction.nc")
-    R = 1.0 / asp["curvature"].values
-    W = float(asp.attrs["work_of_adhesion"])
+    asp = read_dataset(folder / "asperities.nc")
+    interface = read_dataset(folder / "interface.nc")
+    surface = read_dataset(folder / "surface.nc")
+    friction = read_dataset(folder / "friction.nc")
     pull = asp["pull_off_force"].values
-    tips = [dict(tip_radius_um=float(r * 1e6), tabor_parameter=float(mu),
-                 pull_off_over_jkr=float(p / (1.5 * np.pi * r * W)),
-                 pull_off_over_2_pi_R_W=float(p / (2 * np.pi * r * W)),
+    # pull_off_force_dmt is 2 pi R W_c
+    tips = [dict(tip_radius_um=float(1e6 / k), tabor_parameter=float(mu),
+                 pull_off_over_jkr=float(p / jkr), pull_off_over_2_pi_R_W=float(p / dmt),
                  jump_in_interference_nm=float(wi * 1e9), jump_off_interference_nm=float(wo * 1e9))
-            for r, mu, p, wi, wo in zip(R, asp["tabor_parameter"].values, pull,
-                                        asp["jump_in_interference"].values,
-                                        asp["jump_off_interference"].values)]
-    s = _sigma(surface)
+            for k, mu, p, jkr, dmt, wi, wo in zip(
+                asp["curvature"].values, asp["tabor_parameter"].values, pull,
+                asp["pull_off_force_jkr"].values, asp["pull_off_force_dmt"].values,
+                asp["jump_in_interference"].values, asp["jump_off_interference"].values)]
+    s = height_scale(surface)
     p = friction["nominal_pressure"].values
     sep, mu = friction["separation"].values, friction["mu"].values
     lightest = int(np.nanargmax(np.where(p > 0, sep, np.nan)))
@@ -87,7 +79,7 @@ def scene_numbers(folder: Path) -> dict:
 def outside_samples(surface: xr.Dataset, curvatures: np.ndarray) -> dict:
     """Share of the peaks above 1 and 2 sigma flatter than the flattest sample and
     steeper than the steepest (the surface's given statistics, Nayak's density)."""
-    stats = {v: float(surface[v].values.ravel()[0]) for v in ("sigma", "sigma_slope", "sigma_curvature")}
+    stats = {v: population_stat(surface, v) for v in ("sigma", "sigma_slope", "sigma_curvature")}
     density = peaks.JointDensity(**stats)
     s = stats["sigma"]
     z = np.linspace(-6 * s, 8 * s, 1401)
@@ -104,10 +96,9 @@ def outside_samples(surface: xr.Dataset, curvatures: np.ndarray) -> dict:
 
 
 def twin_numbers(folder: Path) -> dict:
-    interface = _open(folder, "interface.nc")
-    surface = _open(folder, "surface.nc")
-    friction = _open(folder, "friction.nc")
-    s = _sigma(surface)
+    interface = read_dataset(folder / "interface.nc")
+    friction = read_dataset(folder / "friction.nc")
+    s = height_scale(read_dataset(folder / "surface.nc"))
     return dict(pressure_at_1_sigma_Pa=float(interface["nominal_pressure"].interp(separation=s)),
                 mu_range=[float(np.nanmin(friction["mu"])), float(np.nanmax(friction["mu"]))])
 
@@ -115,20 +106,20 @@ def twin_numbers(folder: Path) -> dict:
 def agreement(a: Path, b: Path) -> dict:
     """How far tree ``b`` is from tree ``a``: approach pressure and contact area at 1 to 2
     sigma (largest relative difference), pull-off ratios (largest relative difference)."""
-    ia, ib = _open(a, "interface.nc"), _open(b, "interface.nc")
-    s = _sigma(_open(a, "surface.nc"))
+    ia, ib = read_dataset(a / "interface.nc"), read_dataset(b / "interface.nc")
+    aa, ab = read_dataset(a / "asperities.nc"), read_dataset(b / "asperities.nc")
+    s = height_scale(read_dataset(a / "surface.nc"))
     h = np.linspace(1.0, 2.0, 11) * s
     out = {}
     for var in ("nominal_pressure", "contact_area_ratio"):
         x = ia.sel(branch="approach")[var].interp(separation=h).values
         y = ib.sel(branch="approach")[var].interp(separation=h).values
         out[f"{var}_1_to_2_sigma_largest_relative_difference"] = float(np.max(np.abs(y / x - 1)))
-    pa, pb = _open(a, "asperities.nc")["pull_off_force"], _open(b, "asperities.nc")["pull_off_force"]
+    pa, pb = aa["pull_off_force"], ab["pull_off_force"]
     out["pull_off_largest_relative_difference"] = float(np.max(np.abs(pb.values / pa.values - 1)))
     out["pull_off_relative_difference"] = dict(zip((f"{1e6 / k:.3g} um" for k in pa["curvature"].values),
                                                    (pb.values / pa.values - 1).tolist()))
-    out["fe_cpu_time_s"] = [float(_open(a, "asperities.nc").attrs["fe_cpu_time"]),
-                            float(_open(b, "asperities.nc").attrs["fe_cpu_time"])]
+    out["fe_cpu_time_s"] = [float(aa.attrs["fe_cpu_time"]), float(ab.attrs["fe_cpu_time"])]
     return out
 
 
