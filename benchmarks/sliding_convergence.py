@@ -26,6 +26,15 @@ and prints a table.  Nothing is asserted here.
     python benchmarks/sliding_convergence.py --presets draft standard
     python benchmarks/sliding_convergence.py --reuse                 # compare the runs in --out
     python benchmarks/sliding_convergence.py --presets draft --out /tmp/s --results /tmp/s.json
+
+``--study``: what moves the sliding forces.  The runs of `STUDY` (the standard
+preset with one thing changed at a time: the time controls, the penalty, each of
+the mesh sizes, and the whole mesh scaled; and `fine`), each stopped once the flat
+has slid ``--until`` (default 0.08 um, past the fall of F_N), are compared with
+the finest mesh of the study over the sliding they share, and with `standard`.
+Writes benchmarks/results/sliding-study.json::
+
+    python benchmarks/sliding_convergence.py --study --jobs 2
 """
 
 from __future__ import annotations
@@ -51,6 +60,25 @@ OUT = Path(__file__).with_name("out") / "sliding"
 STEP = re.compile(r"step (\d+): t = (\S+) s, w = (\S+) m, delta = (\S+) m, "
                   r"F_N = (\S+) N, F_T = (\S+) N(?:, A = (\S+) m\^2)?")
 REPORT_TRACTION = 64e6           # Pa, report 9.2
+
+#: ``--study``: name -> (preset, overrides of the scene's ``sliding`` section).  The
+#: mesh scale s multiplies the lengths of the standard mesh (tip_fraction 0.75,
+#: grading 0.7, coarse_fraction 0.5) with the finest region over 0.8 r (fine's).
+STUDY = {
+    "standard": ("standard", {}),
+    "time steps of fine": ("standard", {"steps": {"normal": 16, "tangential": 32},
+                                        "max_inelastic_step": 0.1}),
+    "penalty factor 10": ("standard", {"penalty_factor": 10.0}),
+    "tip 0.5 r": ("standard", {"mesh": {"tip_fraction": 0.5}}),
+    "finest region 0.8 r": ("standard", {"mesh": {"refine_fraction": 0.8}}),
+    "grading 0.5": ("standard", {"mesh": {"grading": 0.5}}),
+    "coarse 0.35": ("standard", {"mesh": {"coarse_fraction": 0.35}}),
+    "mesh scale 0.7": ("standard", {"mesh": {"tip_fraction": 0.525, "grading": 0.49,
+                                             "coarse_fraction": 0.35, "refine_fraction": 0.8}}),
+    "fine": ("fine", {}),
+    "mesh scale 0.5": ("standard", {"mesh": {"tip_fraction": 0.375, "grading": 0.35,
+                                             "coarse_fraction": 0.25, "refine_fraction": 0.8}}),
+}
 
 
 def scene() -> dict:
@@ -117,26 +145,56 @@ def _hook_diagnostics(path: Path):
     s3.SlidingModel.record = recorded
 
 
-def worker(preset: str, out: Path) -> None:
-    """Run the scene at `preset`; progress lines to out/<preset>.log, the dataset to
-    out/<preset>.nc (with its CPU time), the contact patch of every step to
-    out/<preset>.patch.jsonl."""
+class _Reached(Exception):
+    """The flat has slid as far as the run was asked to go (``--until``)."""
+
+
+def slug(name: str) -> str:
+    """A run's file name: the preset, or a `STUDY` name with its blanks as _."""
+    return name.replace(" ", "_")
+
+
+def study_section(section: dict, overrides: dict) -> dict:
+    """The scene's ``sliding`` section with `overrides` (``mesh`` and ``steps`` merged)."""
+    out = dict(section)
+    for k, v in overrides.items():
+        out[k] = {**(out.get(k) or {}), **v} if isinstance(v, dict) else v
+    return out
+
+
+def worker(name: str, out: Path, until: float | None = None) -> None:
+    """Run the scene at preset `name` (or the `STUDY` run `name`); progress lines to
+    out/<name>.log, the dataset to out/<name>.nc (with its CPU time), the contact
+    patch of every step to out/<name>.patch.jsonl.  With `until` [m] the run stops
+    after the first step that has slid that far (its log is the history)."""
     from asperity.stages.sliding import sliding_dataset
 
     sc = scene()
-    _hook_diagnostics(out / f"{preset}.patch.jsonl")
-    log = open(out / f"{preset}.log", "w")
+    preset, overrides = STUDY.get(name, (name, {}))
+    section = study_section(sc["sliding"], overrides)
+    _hook_diagnostics(out / f"{slug(name)}.patch.jsonl")
+    log = open(out / f"{slug(name)}.log", "w")
     t0, c0 = time.perf_counter(), time.process_time()
 
     def say(s):
-        log.write(f"[{time.perf_counter() - t0:9.1f} s] {s}\n")
+        m = STEP.search(s)
+        cpu = f" ({time.process_time() - c0:.1f} s CPU)" if m else ""
+        log.write(f"[{time.perf_counter() - t0:9.1f} s] {s}{cpu}\n")
         log.flush()
+        if until is not None and m and float(m.group(4)) >= until * (1 - 1e-9):
+            raise _Reached
 
-    ds = sliding_dataset(SCENE, sc["sliding"], sc["units"], preset, progress=say)
+    try:
+        ds = sliding_dataset(SCENE, section, sc["units"], preset, progress=say)
+    except RuntimeError as err:
+        if not isinstance(err.__cause__, _Reached):
+            raise
+        log.write(f"reached: {time.process_time() - c0:.1f} s CPU\n")
+        return
     ds.attrs["cpu_time"] = time.process_time() - c0
     ds.attrs["wall_time"] = time.perf_counter() - t0
     say(f"done: {ds.attrs['cpu_time']:.1f} s CPU")
-    save(ds, out / f"{preset}.nc")
+    save(ds, out / f"{slug(name)}.nc")
 
 
 def save(ds: xr.Dataset, path: Path) -> None:
@@ -151,19 +209,24 @@ def save(ds: xr.Dataset, path: Path) -> None:
     ds.to_netcdf(path)
 
 
-def run(presets, out: Path, timeout: float, jobs: int) -> None:
-    """The presets in child processes, at most `jobs` at a time, finest first (it
-    has the most time); a child past `timeout` seconds is stopped (its log stays)."""
+def run(presets, out: Path, timeout: float, jobs: int, until: float | None = None) -> None:
+    """The presets (or `STUDY` runs) in child processes, at most `jobs` at a time,
+    finest first (it has the most time); a child past `timeout` seconds is stopped
+    (its log stays)."""
     env = dict(os.environ, OPENBLAS_NUM_THREADS="1", OMP_NUM_THREADS="1",
                PYTHONPATH=str(ROOT / "src") + os.pathsep + os.environ.get("PYTHONPATH", ""))
+    finest = ["mesh scale 0.5", "fine", "mesh scale 0.7"]
     order = sorted(presets, key=lambda p: -["draft", "standard", "fine"].index(p)
-                   if p in ("draft", "standard", "fine") else 0)
+                   if p in ("draft", "standard", "fine") and until is None else
+                   finest.index(p) - len(finest) if p in finest else 0)
     running: list[tuple[str, subprocess.Popen, float]] = []
     while order or running:
         while order and len(running) < jobs:
             p = order.pop(0)
-            (out / f"{p}.nc").unlink(missing_ok=True)
+            (out / f"{slug(p)}.nc").unlink(missing_ok=True)
             cmd = ["nice", "-n", "15", sys.executable, __file__, "--worker", p, "--out", str(out)]
+            if until is not None:
+                cmd += ["--until", repr(until / 1e-6)]
             running.append((p, subprocess.Popen(cmd, env=env), time.perf_counter()))
         time.sleep(2.0)
         for item in list(running):
@@ -171,7 +234,7 @@ def run(presets, out: Path, timeout: float, jobs: int) -> None:
             if proc.poll() is not None:
                 running.remove(item)
                 if proc.returncode:
-                    print(f"{p}: exited with {proc.returncode} (see {out / (p + '.log')})")
+                    print(f"{p}: exited with {proc.returncode} (see {out / (slug(p) + '.log')})")
             elif time.perf_counter() - t0 > timeout:
                 proc.terminate()
                 proc.wait()
@@ -182,7 +245,7 @@ def run(presets, out: Path, timeout: float, jobs: int) -> None:
 # ------------------------------------------------------------------------------ compare
 def history(preset: str, out: Path) -> dict | None:
     """A run's history: from its dataset when it finished, else from its log."""
-    nc = out / f"{preset}.nc"
+    nc = out / f"{slug(preset)}.nc"
     if nc.exists():
         with xr.open_dataset(nc) as ds:
             ds = ds.load()
@@ -198,7 +261,7 @@ def history(preset: str, out: Path) -> dict | None:
                  largest_deformation=str(a["largest_deformation"]),
                  largest_inelastic_strain=float(ds["max_inelastic_strain"].values[-1]))
         return h
-    log = out / f"{preset}.log"
+    log = out / f"{slug(preset)}.log"
     if not log.exists():
         return None
     text = log.read_text()
@@ -206,13 +269,18 @@ def history(preset: str, out: Path) -> dict | None:
             for m in map(STEP.search, text.splitlines()) if m]
     dofs = re.search(r"mesh: \d+ tetrahedra, (\d+) dofs", text)
     wall = re.findall(r"^\[\s*([0-9.]+)\s*s\]", text, flags=re.M)
+    cpu = re.findall(r"\(([0-9.]+) s CPU\)$|^reached: ([0-9.]+) s CPU", text, flags=re.M)
     if not rows:
         return None
     r = np.array([(0.0, 0.0, 0.0, 0.0, 0.0, 0.0)] + rows)
     h = dict(time=r[:, 0], normal_force=r[:, 3], tangential_force=r[:, 4],
              phase=np.where(r[:, 2] > 0, "sliding", "normal"), completed=False,
              dofs=int(dofs.group(1)) if dofs else None, steps=len(rows),
-             wall_time_reached=float(wall[-1]) if wall else None)
+             wall_time_reached=float(wall[-1]) if wall else None,
+             cuts=len(re.findall(r": cut to dt", text)),
+             stopped=not re.search(r"^reached:", text, flags=re.M))
+    if cpu:  # the last step's, or where the run stopped (--until)
+        h["cpu_time"] = float(cpu[-1][0] or cpu[-1][1])
     if np.all(np.isfinite(r[:, 5])):
         h["contact_area"] = r[:, 5]
     return h
@@ -294,7 +362,7 @@ def patch_summary(preset: str, out: Path) -> dict:
     """Over the sliding steps with contact: the patch in facets, the largest traction at a
     contact point, the largest shear and Mises stress in the patch's elements, F_T over
     the whole area of the facets that touch, where the touching points lie."""
-    path = out / f"{preset}.patch.jsonl"
+    path = out / f"{slug(preset)}.patch.jsonl"
     if not path.exists():
         return {}
     rows = [json.loads(line) for line in path.read_text().splitlines() if line.strip()]
@@ -332,6 +400,58 @@ def shear_flow_stress(sc: dict) -> dict:
     return out
 
 
+def study(out: Path, until: float, path: Path) -> dict:
+    """`STUDY`: each run's cost and forces along the sliding, and its largest
+    differences from the finest mesh and from `standard` (`compare`)."""
+    sc = scene()
+    mo = sc["sliding"]["motion"]
+    (s0, s1), slide = mo["slide_time"], mo["slide"] * 1e-6
+    runs = {name: history(name, out) for name in STUDY}
+    done = {k: v for k, v in runs.items() if v is not None}
+    ref = next((k for k in ("mesh scale 0.5", "mesh scale 0.7", "fine") if k in done), None)
+    at = [x for x in (0.02e-6, 0.04e-6, 0.06e-6) if x < until] + [until]
+    res = dict(scene=SCENE, slid=until, finest=ref, slid_at=at, runs={})
+    for name, h in runs.items():
+        if h is None:
+            res["runs"][name] = dict(missing=True)
+            continue
+        t = [s0 + (s1 - s0) * d / slide for d in at]
+        info = dict(preset=STUDY[name][0], overrides=STUDY[name][1], dofs=h.get("dofs"),
+                    steps=h["steps"], cuts=h.get("cuts"), cpu_time=h.get("cpu_time"),
+                    wall_time=h.get("wall_time_reached"), stopped=h.get("stopped", False),
+                    slid=float(np.interp(
+                        h["time"][-1], [s0, s1], [0.0, slide])),
+                    normal_force=[float(np.interp(x, h["time"], h["normal_force"]))
+                                  if x <= h["time"][-1] * (1 + 1e-9) else None for x in t],
+                    tangential_force=[float(np.interp(x, h["time"], h["tangential_force"]))
+                                      if x <= h["time"][-1] * (1 + 1e-9) else None for x in t])
+        for other, key in ((ref, "against_finest"), ("standard", "against_standard")):
+            if other in done and other != name:
+                c = compare(h, done[other])
+                info[key] = {k: c[k]["largest_relative_difference"] for k in
+                             ("normal_force_sliding", "tangential_force_sliding") if k in c}
+        res["runs"][name] = info
+    path.parent.mkdir(parents=True, exist_ok=True)
+    path.write_text(json.dumps(res, indent=1, default=float) + "\n")
+    print(f"slid {until / 1e-6:.3f} um; F_N, F_T in mN at slides of "
+          + ", ".join(f"{x / 1e-6:.2f}" for x in at) + f" um; differences from {ref!r}")
+    for name, i in res["runs"].items():
+        if i.get("missing"):
+            print(f"{name:22s} missing")
+            continue
+        f = lambda v: " ".join("   -  " if x is None else f"{1e3 * x:6.3f}" for x in v)  # noqa: E731
+        d = i.get("against_finest", {})
+        cost = (f"{i['cpu_time']:6.0f} s CPU" if i["cpu_time"] is not None
+                else f"{i['wall_time'] or float('nan'):6.0f} s wall") + (
+                    ", stopped" if i["stopped"] else "")
+        print(f"{name:20s} {i['dofs'] or 0:6d} dofs {i['steps']:4d} steps {i['cuts'] or 0:3d} cuts "
+              f"{cost} to {i['slid'] / 1e-6:.3f} um | F_N {f(i['normal_force'])} | "
+              f"F_T {f(i['tangential_force'])} | "
+              + " ".join(f"{100 * v:5.1f} %" for v in d.values()))
+    print(f"wrote {path}")
+    return res
+
+
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--presets", nargs="+", default=["draft", "standard", "fine"])
@@ -340,14 +460,30 @@ def main(argv=None) -> int:
     ap.add_argument("--jobs", type=int, default=1)
     ap.add_argument("--reuse", action="store_true", help="compare the runs already in --out")
     ap.add_argument("--results", type=Path, default=RESULTS / "sliding-convergence.json")
+    ap.add_argument("--study", action="store_true",
+                    help="the runs of STUDY to --until (writes sliding-study.json)")
+    ap.add_argument("--until", type=float, help="stop each run once slid this far, um "
+                    "(--study: 0.08)")
     ap.add_argument("--worker", help=argparse.SUPPRESS)
     a = ap.parse_args(argv)
+    if a.study and a.until is None:
+        a.until = 0.08
+    until = None if a.until is None else a.until * 1e-6
+    if a.study and a.out == OUT:
+        a.out = OUT.with_name("sliding-study")
     a.out.mkdir(parents=True, exist_ok=True)
     if a.worker:
-        worker(a.worker, a.out)
+        worker(a.worker, a.out, until)
+        return 0
+    if a.study:
+        if not a.reuse:
+            run(list(STUDY), a.out, a.timeout, a.jobs, until)
+        results = (a.results if a.results != RESULTS / "sliding-convergence.json"
+                   else RESULTS / "sliding-study.json")
+        study(a.out, until, results)
         return 0
     if not a.reuse:
-        run(a.presets, a.out, a.timeout, a.jobs)
+        run(a.presets, a.out, a.timeout, a.jobs, until)
     sc = scene()
     runs = {p: history(p, a.out) for p in a.presets}
     res = dict(scene=SCENE, report="9.2, Figs. 9.4, 9.5",
