@@ -32,9 +32,11 @@ preset with one thing changed at a time: the time controls, the penalty, each of
 the mesh sizes, and the whole mesh scaled; and `fine`), each stopped once the flat
 has slid ``--until`` (default 0.08 um, past the fall of F_N), are compared with
 the finest mesh of the study over the sliding they share, and with `standard`.
-Writes benchmarks/results/sliding-study.json::
+Runs that stall (Newton failing again and again, the step cut to microseconds) are
+stopped after ``--timeout`` seconds and compared over what they reached.  Writes
+benchmarks/results/sliding-study.json::
 
-    python benchmarks/sliding_convergence.py --study --jobs 2
+    python benchmarks/sliding_convergence.py --study --jobs 2 --timeout 1800
 """
 
 from __future__ import annotations
@@ -437,7 +439,7 @@ def study(out: Path, until: float, path: Path) -> dict:
           + ", ".join(f"{x / 1e-6:.2f}" for x in at) + f" um; differences from {ref!r}")
     for name, i in res["runs"].items():
         if i.get("missing"):
-            print(f"{name:22s} missing")
+            print(f"{name:20s} missing")
             continue
         f = lambda v: " ".join("   -  " if x is None else f"{1e3 * x:6.3f}" for x in v)  # noqa: E731
         d = i.get("against_finest", {})
