@@ -217,10 +217,8 @@ def run(presets, out: Path, timeout: float, jobs: int, until: float | None = Non
     (its log stays)."""
     env = dict(os.environ, OPENBLAS_NUM_THREADS="1", OMP_NUM_THREADS="1",
                PYTHONPATH=str(ROOT / "src") + os.pathsep + os.environ.get("PYTHONPATH", ""))
-    finest = ["mesh scale 0.5", "fine", "mesh scale 0.7"]
-    order = sorted(presets, key=lambda p: -["draft", "standard", "fine"].index(p)
-                   if p in ("draft", "standard", "fine") and until is None else
-                   finest.index(p) - len(finest) if p in finest else 0)
+    rank = ["mesh scale 0.5", "fine", "mesh scale 0.7", "standard", "draft"]  # costliest first
+    order = sorted(presets, key=lambda p: rank.index(p) if p in rank else len(rank))
     running: list[tuple[str, subprocess.Popen, float]] = []
     while order or running:
         while order and len(running) < jobs:
