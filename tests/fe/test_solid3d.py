@@ -7,6 +7,7 @@ import math
 
 import numpy as np
 import pytest
+import scipy.sparse.linalg as spl
 
 from asperity.fe import LinearElastic
 from asperity.fe.bodner_partom import BodnerPartom
@@ -312,6 +313,62 @@ def test_full_jacobian_matches_finite_differences(flat_model):
         assert np.abs(fd - an).max() <= 1e-6 * np.abs(an).max()
 
 
+def _det_sign(A) -> float:
+    """The sign of det A from SuperLU's factors (Pr A Pc = L U, L unit lower)."""
+    lu = spl.splu(A.tocsc())
+
+    def odd(p):                  # a permutation's parity: n minus its cycles
+        seen, cycles = np.zeros(p.size, bool), 0
+        for i in range(p.size):
+            if not seen[i]:
+                cycles += 1
+                while not seen[i]:
+                    seen[i], i = True, p[i]
+        return (p.size - cycles) % 2
+
+    return float(np.prod(np.sign(lu.U.diagonal()))) * (-1) ** (odd(lu.perm_r) + odd(lu.perm_c))
+
+
+def test_critical_factor_is_where_the_sliding_tangent_turns_singular():
+    """The SAE 1020 hill of report 9.2 pressed 0.125 um in 1800 s on the draft mesh:
+    with every touching point sliding along +x, the junction's tangent with a friction
+    coefficient mu has the sign of det of the frictionless tangent for mu below
+    mu_c = s_c * 20 (`critical_factor`, from the reduced eigenproblem) and the other
+    sign just past it (checked on the sparse LU of the whole tangent, another route).
+    mu_c lies below the report's 20 (the viscoplastic bulk under the junction)."""
+    mu = 20.0
+    law = FrictionLaw(ShearResistance.coulomb(mu), 1e-8)
+    w_top = 0.125e-6
+    r = float(HILL.intersection_radius(np.array([w_top]))[0])
+    m = HalfModel(HILL, build_mesh(HILL, MeshSpec.for_hill(HILL, r, resolve("sliding", "draft"))),
+                  2.5 * r)
+    sm = SlidingModel(m, BodnerPartom.sae_1020(), law, tolerance=1e-9, max_iterations=40)
+    st = sm.material.initial_state(m.shape, components=6)
+    iface = sm.initial_interface()
+    u = np.zeros(m.ndofs)
+    _, out = sm.evaluate(u, 0.0, 0.0, st, iface, 0.0)
+    w0 = 0.0
+    for w in np.linspace(0.0, w_top, 9)[1:]:
+        u = sm.predict(u, out, w - w0, 0.0)
+        u, out, _ = sm.solve_step(u, w, 0.0, st, iface, 225.0)
+        iface, st, w0 = sm.commit(out, iface), out["state"], w
+    s = sm.critical_factor(u, w_top, 0.0, out, 1.0)
+    assert 0.05 < s < 1.0, s * mu
+    c = out["contact"]
+    anchors = c["position"].copy()
+    anchors[0] += 1e6 * law.slip_regularization           # developed slip along +x
+    signs = []
+    for f in (0.0, 0.5, 0.99, 1.01):
+        lw = FrictionLaw(ShearResistance.coulomb(f * s * mu) if f else ShearResistance(),
+                         law.slip_regularization)
+        signs.append(_det_sign(sm.jacobian(dict(out, contact=sm.contact(
+            u, w_top, 0.0, anchors, friction=lw)))))
+    assert signs[1] == signs[2] == signs[0] and signs[3] == -signs[0], signs
+    # no friction, no critical factor
+    free = SlidingModel(m, BodnerPartom.sae_1020(), FrictionLaw(ShearResistance(), 1e-8))
+    assert free.critical_factor(u, w_top, 0.0, out, 1.0) == math.inf
+
+
 # --------------------------------------------------------------------- the asperity
 def test_failure_names_the_step():
     """A step that cannot converge raises ConvergenceError naming the step and time."""
@@ -323,15 +380,20 @@ def test_failure_names_the_step():
 
 
 @pytest.mark.slow
-def test_viscoplastic_asperity_press_and_slide():
+def test_viscoplastic_asperity_press_and_slide(caplog):
     """SAE 1020 hill (report 8.2.1, 9.2) pressed 0.05 um and slid 0.1 um at the
     draft preset with mu = 20: completes, finite, the asperity
     yields, the flat drags it (F_T > 0 while sliding, F_T ~ 0 while pressing), and
-    the answer to 9.2's question is recorded."""
+    the answer to 9.2's question is recorded.  mu = 20 lies past the critical
+    coefficient of the junction (`critical_factor` < 1): recorded and warned."""
     mot = FlatMotion.press_and_slide(0.05e-6, 0.1e-6, (0.0, 720.0), (720.0, 940.0))
     law = FrictionLaw(ShearResistance.coulomb(20.0), 1e-8)
-    ds = solve_sliding(HILL, BodnerPartom.sae_1020(), mot, law, accuracy="draft")
+    with caplog.at_level("WARNING", logger="asperity.fe.solid3d"):
+        ds = solve_sliding(HILL, BodnerPartom.sae_1020(), mot, law, accuracy="draft")
     assert ds.attrs["completed"] == 1
+    s = ds.attrs["critical_shear_factor"]
+    assert 0.05 < s < 1.0
+    assert f"friction coefficient {20 * s:.3g}, below the friction coefficient 20" in caplog.text
     for name in ("normal_force", "tangential_force", "max_inelastic_strain"):
         assert np.all(np.isfinite(ds[name].values))
     press = ds["phase"].values == "normal"

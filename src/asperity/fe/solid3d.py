@@ -107,6 +107,8 @@ from .outputs import INELASTIC_THRESHOLD, dataset, describe
 from .presets import resolve
 from .sliding import FrictionLaw, ShearResistance, contact_tangent, drag_anchor
 
+log = logging.getLogger(__name__)
+
 #: the 6 edges of a tetrahedron (local vertex pairs)
 _TET_EDGES = np.array([[0, 1], [0, 2], [0, 3], [1, 2], [1, 3], [2, 3]])
 #: quadrature order in the volume (4 points per tetrahedron)
@@ -124,6 +126,11 @@ TANGENT_ELASTIC_TOL = 1e-10
 #: Newton iterations (a sliding junction often takes more than 5 per step: a
 #: lower threshold never lets the step grow back after a cut)
 PACE = Pace(fast=12, growth=1.5)
+#: `SlidingModel.critical_factor`: the developed slip |b| / eps_b at which the
+#: junction's tangent is taken (its stiffness across the slip, h / |b|, is then
+#: 1e-6 of the stick stiffness), and the largest factor sought
+DEVELOPED_SLIP = 1e6
+CRITICAL_FACTOR_BOUND = 1e3
 #: "at the junction": the largest inelastic strain lies less than this
 #: fraction of the equivalent contact radius sqrt(A / pi) below the flat
 JUNCTION_DEPTH_FRACTION = 0.25
@@ -670,21 +677,23 @@ class SlidingModel:
         self.trace = None
 
     # --- contact --------------------------------------------------------------------------
-    def contact(self, u, w, delta, anchors, tangent=True):
+    def contact(self, u, w, delta, anchors, tangent=True, friction: FrictionLaw | None = None):
         """Contact tractions at the contact points: the penalty pressure t_N and
-        the tangential traction with h(t_N) at this pressure (3.24-3.27)."""
+        the tangential traction with h(t_N) at this pressure (3.24-3.27);
+        ``friction`` replaces the model's law."""
         m = self.m
+        friction = self.friction if friction is None else friction
         U = m.contact_displacement(u)
         a = m.cz0 + U[2] + w
         tn, dtn = self.law.traction(a)
         pos = np.stack((m.cX[0] + U[0] - delta, m.cX[1] + U[1]))
         b = pos - anchors
-        if self.friction.frictionless:
+        if friction.frictionless:
             txy = np.zeros_like(b)
             dt_db = np.zeros((2, 2) + a.shape)
             dt_dtn = np.zeros_like(b)
         else:
-            txy, dt_db, dt_dtn = self.friction.traction(b, tn)
+            txy, dt_db, dt_dtn = friction.traction(b, tn)
         tv = np.stack((txy[0], txy[1], -tn))                   # traction on the body
         fc = np.einsum("ci,cfq,ifq,fq->if", m.csel, tv, m.cval, m.cw)   # (30, nf)
         out = dict(a=a, tn=tn, txy=txy, b=b, position=pos, fc=fc)
@@ -742,6 +751,52 @@ class SlidingModel:
         u0 = u.copy()
         u0[m.free] += du
         return u0
+
+    def critical_factor(self, u, w, delta, out, direction: float = 1.0) -> float:
+        """How far the shear resistance may be scaled before a sliding junction's
+        tangent turns singular: the smallest s > 0 with K0 + s K1 singular.
+
+        K0 is the tangent of the state `out` (its material tangent, the normal
+        penalty of its touching points) without friction; K1 what the friction
+        law adds when every touching point slides along the flat's motion
+        (``direction`` +1 or -1 along x) with a developed slip, |b| = 1e6 eps_b.
+        Both come from `jacobian`, and h of (3.21) enters (3.26, 3.27) linearly,
+        so s h is exactly K0 + s K1: with a friction coefficient mu (c1 = mu),
+        mu_c = s mu is the critical coefficient of the discrete problem (Hassani,
+        Hild, Ionescu and Sakki, Comput. Methods Appl. Mech. Engrg. 192 (2003)
+        4517-4531).  Past it the sliding problem has more than one solution
+        nearby, and Newton directions from an all-slipping iterate are
+        unbounded.
+
+        K1 acts on the dofs S of the touching facets only, so the pencil reduces
+        to the dense n_S x n_S matrix K1_SS (K0^-1)_SS: K0 + s K1 is singular
+        where s = -1 / lambda for one of its real eigenvalues lambda.  Returns
+        inf where there is no friction, no contact or no such s below
+        `CRITICAL_FACTOR_BOUND`.
+        """
+        c = out["contact"]
+        if self.friction.frictionless or not np.any(c["tn"] > 0):
+            return math.inf
+        eps = self.friction.slip_regularization
+        anchors = c["position"].copy()
+        anchors[0] += math.copysign(DEVELOPED_SLIP * eps, direction)   # b = -direction e_x |b|
+        J = [self.jacobian(dict(out, contact=self.contact(u, w, delta, anchors, friction=law)))
+             for law in (FrictionLaw(ShearResistance(), eps), self.friction)]
+        K0 = J[0].tocsc()
+        K1 = (J[1] - J[0]).tocsr()
+        K1.eliminate_zeros()
+        rows, cols = K1.nonzero()
+        S = np.union1d(rows, cols)
+        if S.size == 0:
+            return math.inf
+        E = np.zeros((K0.shape[0], S.size))
+        E[S, np.arange(S.size)] = 1.0
+        G = spl.splu(K0).solve(E)[S]
+        lam = np.linalg.eigvals(K1[S][:, S].toarray() @ G)
+        real = lam[(lam.imag == 0.0) & (lam.real < 0.0)].real
+        s = -1.0 / real
+        s = s[s <= CRITICAL_FACTOR_BOUND]
+        return float(s.min()) if s.size else math.inf
 
     def solve_step(self, u0, w, delta, state, iface, dt):
         """Newton from u0 for the step ending at (w, delta); returns (u, out, its)."""
@@ -945,6 +1000,7 @@ def solve_sliding(geometry, material, motion: FlatMotion, friction: FrictionLaw,
             snap[k] = (t, _snapshot(model, u, state), {})
     dt = caps[motion.segment(t)] / 2.0
     n = 0
+    critical = []       # critical_factor at each start of sliding
     while t < motion.end * (1 - 1e-12) and n < max_steps:
         n += 1
         step_start = time.perf_counter()
@@ -995,6 +1051,10 @@ def solve_sliding(geometry, material, motion: FlatMotion, friction: FrictionLaw,
             f"F_N = {rec['normal_force']:.4g} N, F_T = {rec['tangential_force']:.4g} N, "
             f"A = {rec['contact_area']:.4g} m^2, "
             f"{iterations} Newton iterations, {cuts.count} cuts")
+        if phase != "sliding" and motion.phase(t) == "sliding" and t < motion.end * (1 - 1e-12):
+            seg = motion.segment(t)
+            critical.append(sm.critical_factor(u, w, delta, out, d_knots[seg + 1] - d_knots[seg]))
+            say(_critical_message(t, critical[-1], friction))
         dt = strain_limited(PACE.factor(iterations, cuts.count) * h, h, step_inel, max_inel)
 
     total = time.perf_counter() - t_start
@@ -1011,6 +1071,7 @@ def solve_sliding(geometry, material, motion: FlatMotion, friction: FrictionLaw,
         tip_element_size=float(spec.tip_size), contact_facets=int(model.cfacets.size),
         contact_candidate_radius=float(model.contact_radius),
         penalty_factor=float(penalty_factor),
+        critical_shear_factor=min(critical, default=math.inf),
         motion_times=np.asarray(motion.times, float), motion_normal=w_knots,
         motion_tangential=d_knots,
         steps=len(rows) - 1, total_step_cuts=int(sum(r["step_cuts"] for r in rows)),
@@ -1018,6 +1079,26 @@ def solve_sliding(geometry, material, motion: FlatMotion, friction: FrictionLaw,
         factorizations=int(sm.linear.factorizations), krylov_solves=int(sm.linear.krylov_solves),
         completed=int(t >= motion.end * (1 - 1e-12)),
         mesh_wall_time=t_mesh, total_wall_time=total))
+
+
+def _critical_message(t: float, factor: float, friction: FrictionLaw) -> str:
+    """The progress line on `SlidingModel.critical_factor` at a start of sliding; a
+    log warning where the shear resistance lies past it."""
+    r = friction.resistance
+    coulomb = r.c0 == 0.0 and r.c2 == 0.0
+    if not math.isfinite(factor):
+        return (f"start of sliding at t = {t:.6g} s: the sliding junction's tangent stays "
+                f"regular up to {CRITICAL_FACTOR_BOUND:g} times the shear resistance")
+    crit = f"friction coefficient {factor * r.c1:.3g}" if coulomb else \
+        f"{factor:.3g} times the shear resistance"
+    text = (f"start of sliding at t = {t:.6g} s: the sliding junction's tangent turns "
+            f"singular at a {crit}")
+    if factor < 1.0:
+        law = f"friction coefficient {r.c1:g}" if coulomb else "shear resistance"
+        log.warning("%s, below the %s of the scene: past it the quasi-static sliding problem of "
+                    "this mesh has more than one solution near this state (Hassani et al. 2003); "
+                    "expect step cuts and forces that depend on the mesh", text, law)
+    return text
 
 
 def _largest_deformation(model: HalfModel, u, w, state, a_ref: float) -> dict:
