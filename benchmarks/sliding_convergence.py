@@ -164,15 +164,19 @@ def study_section(section: dict, overrides: dict) -> dict:
     return out
 
 
-def worker(name: str, out: Path, until: float | None = None) -> None:
+def worker(name: str, out: Path, until: float | None = None,
+           coefficient: float | None = None) -> None:
     """Run the scene at preset `name` (or the `STUDY` run `name`); progress lines to
     out/<name>.log, the dataset to out/<name>.nc (with its CPU time), the contact
     patch of every step to out/<name>.patch.jsonl.  With `until` [m] the run stops
-    after the first step that has slid that far (its log is the history)."""
+    after the first step that has slid that far (its log is the history); with
+    `coefficient` the junction's friction coefficient c1 is that instead of 20."""
     from asperity.stages.sliding import sliding_dataset
 
     sc = scene()
     preset, overrides = STUDY.get(name, (name, {}))
+    if coefficient is not None:
+        overrides = dict(overrides, shear_resistance=dict(c0=0.0, c1=coefficient, c2=0.0))
     section = study_section(sc["sliding"], overrides)
     _hook_diagnostics(out / f"{slug(name)}.patch.jsonl")
     log = open(out / f"{slug(name)}.log", "w")
@@ -211,7 +215,8 @@ def save(ds: xr.Dataset, path: Path) -> None:
     ds.to_netcdf(path)
 
 
-def run(presets, out: Path, timeout: float, jobs: int, until: float | None = None) -> None:
+def run(presets, out: Path, timeout: float, jobs: int, until: float | None = None,
+        coefficient: float | None = None) -> None:
     """The presets (or `STUDY` runs) in child processes, at most `jobs` at a time,
     finest first (it has the most time); a child past `timeout` seconds is stopped
     (its log stays)."""
@@ -227,6 +232,8 @@ def run(presets, out: Path, timeout: float, jobs: int, until: float | None = Non
             cmd = ["nice", "-n", "15", sys.executable, __file__, "--worker", p, "--out", str(out)]
             if until is not None:
                 cmd += ["--until", repr(until / 1e-6)]
+            if coefficient is not None:
+                cmd += ["--coefficient", repr(coefficient)]
             running.append((p, subprocess.Popen(cmd, env=env), time.perf_counter()))
         time.sleep(2.0)
         for item in list(running):
@@ -243,8 +250,24 @@ def run(presets, out: Path, timeout: float, jobs: int, until: float | None = Non
 
 
 # ------------------------------------------------------------------------------ compare
+def critical_coefficient(text: str) -> float | None:
+    """The critical friction coefficient of the sliding junction a log reports at
+    the start of sliding (`SlidingModel.critical_factor`; inf: none), else None."""
+    m = re.search(r"turns singular at a friction coefficient (\S+)$|(stays regular)", text,
+                  flags=re.M)
+    return None if m is None else float(m.group(1)) if m.group(1) else math.inf
+
+
 def history(preset: str, out: Path) -> dict | None:
     """A run's history: from its dataset when it finished, else from its log."""
+    h = _history(preset, out)
+    log = out / f"{slug(preset)}.log"
+    if h is not None and log.exists():
+        h["critical_friction_coefficient"] = critical_coefficient(log.read_text())
+    return h
+
+
+def _history(preset: str, out: Path) -> dict | None:
     nc = out / f"{slug(preset)}.nc"
     if nc.exists():
         with xr.open_dataset(nc) as ds:
@@ -419,6 +442,7 @@ def study(out: Path, until: float, path: Path) -> dict:
         info = dict(preset=STUDY[name][0], overrides=STUDY[name][1], dofs=h.get("dofs"),
                     steps=h["steps"], cuts=h.get("cuts"), cpu_time=h.get("cpu_time"),
                     wall_time=h.get("wall_time_reached"), stopped=h.get("stopped", False),
+                    critical_friction_coefficient=h.get("critical_friction_coefficient"),
                     slid=float(np.interp(
                         h["time"][-1], [s0, s1], [0.0, slide])),
                     normal_force=[float(np.interp(x, h["time"], h["normal_force"]))
@@ -445,7 +469,8 @@ def study(out: Path, until: float, path: Path) -> dict:
                 else f"{i['wall_time'] or float('nan'):6.0f} s wall") + (
                     ", stopped" if i["stopped"] else "")
         print(f"{name:20s} {i['dofs'] or 0:6d} dofs {i['steps']:4d} steps {i['cuts'] or 0:3d} cuts "
-              f"{cost} to {i['slid'] / 1e-6:.3f} um | F_N {f(i['normal_force'])} | "
+              f"{cost} to {i['slid'] / 1e-6:.3f} um | mu_c "
+              f"{i['critical_friction_coefficient'] or float('nan'):6.3g} | F_N {f(i['normal_force'])} | "
               f"F_T {f(i['tangential_force'])} | "
               + " ".join(f"{100 * v:5.1f} %" for v in d.values()))
     print(f"wrote {path}")
@@ -459,31 +484,36 @@ def main(argv=None) -> int:
     ap.add_argument("--timeout", type=float, default=3 * 3600.0, help="seconds per preset")
     ap.add_argument("--jobs", type=int, default=1)
     ap.add_argument("--reuse", action="store_true", help="compare the runs already in --out")
-    ap.add_argument("--results", type=Path, default=RESULTS / "sliding-convergence.json")
+    ap.add_argument("--results", type=Path, help="default: results/sliding-convergence.json "
+                    "(--study: sliding-study.json; --coefficient mu: -mu<mu> before .json)")
     ap.add_argument("--study", action="store_true",
                     help="the runs of STUDY to --until (writes sliding-study.json)")
     ap.add_argument("--until", type=float, help="stop each run once slid this far, um "
                     "(--study: 0.08)")
+    ap.add_argument("--coefficient", type=float, help="the junction's friction coefficient "
+                    "instead of the report's 20 (runs in --out <out>-mu<mu>)")
     ap.add_argument("--worker", help=argparse.SUPPRESS)
     a = ap.parse_args(argv)
     if a.study and a.until is None:
         a.until = 0.08
     until = None if a.until is None else a.until * 1e-6
-    if a.study and a.out == OUT:
-        a.out = OUT.with_name("sliding-study")
+    tag = "" if a.coefficient is None else f"-mu{a.coefficient:g}"
+    if a.out == OUT:
+        a.out = OUT.with_name(("sliding-study" if a.study else "sliding") + tag)
+    if a.results is None:
+        a.results = RESULTS / (("sliding-study" if a.study else "sliding-convergence") + tag
+                               + ".json")
     a.out.mkdir(parents=True, exist_ok=True)
     if a.worker:
-        worker(a.worker, a.out, until)
+        worker(a.worker, a.out, until, a.coefficient)
         return 0
     if a.study:
         if not a.reuse:
-            run(list(STUDY), a.out, a.timeout, a.jobs, until)
-        results = (a.results if a.results != RESULTS / "sliding-convergence.json"
-                   else RESULTS / "sliding-study.json")
-        study(a.out, until, results)
+            run(list(STUDY), a.out, a.timeout, a.jobs, until, a.coefficient)
+        study(a.out, until, a.results)
         return 0
     if not a.reuse:
-        run(a.presets, a.out, a.timeout, a.jobs, until)
+        run(a.presets, a.out, a.timeout, a.jobs, until, a.coefficient)
     sc = scene()
     runs = {p: history(p, a.out) for p in a.presets}
     res = dict(scene=SCENE, report="9.2, Figs. 9.4, 9.5",
@@ -507,7 +537,8 @@ def main(argv=None) -> int:
     path.write_text(json.dumps(res, indent=1, default=float) + "\n")
 
     print(f"{'preset':9s} {'dofs':>6s} {'steps':>5s} {'cuts':>4s} {'CPU s':>7s} {'reached s':>9s} "
-          f"{'F_N press mN':>12s} {'F_T slide mN':>12s} {'tau MPa':>8s} {'F_T=0 steps':>11s}")
+          f"{'F_N press mN':>12s} {'F_T slide mN':>12s} {'tau MPa':>8s} {'F_T=0 steps':>11s} "
+          f"{'mu_c':>6s}")
     for p, i in res["presets"].items():
         if i.get("missing"):
             print(f"{p:9s} missing")
@@ -517,7 +548,8 @@ def main(argv=None) -> int:
               f"{1e3 * i.get('normal_force_end_of_pressing', float('nan')):12.3f} "
               f"{1e3 * i.get('mean_tangential_force_sliding', float('nan')):12.3f} "
               f"{1e-6 * i.get('mean_tangential_traction_sliding', float('nan')):8.0f} "
-              f"{i.get('steps_without_tangential_force', 0):11d}")
+              f"{i.get('steps_without_tangential_force', 0):11d} "
+              f"{i.get('critical_friction_coefficient') or float('nan'):6.3g}")
     for pair, cmp_ in res["comparisons"].items():
         for k, v in cmp_.items():
             if v.get("zero_by_symmetry"):
