@@ -37,6 +37,14 @@ stopped after ``--timeout`` seconds and compared over what they reached.  Writes
 benchmarks/results/sliding-study.json::
 
     python benchmarks/sliding_convergence.py --study --jobs 2 --timeout 1800
+
+Each run's log carries the critical friction coefficient of the junction where sliding
+starts (`SlidingModel.critical_factor`), and the tables report it.  ``--coefficient mu``
+or ``--shear-strength k`` [MPa] replace the report's mu = 20 (3.21: c1 = mu, or c0 = k),
+with their own --out and results (``-mu<mu>``, ``-k<k>`` added to the names)::
+
+    python benchmarks/sliding_convergence.py --coefficient 1 --jobs 2
+    python benchmarks/sliding_convergence.py --study --coefficient 1 --until 1.0
 """
 
 from __future__ import annotations
@@ -165,18 +173,18 @@ def study_section(section: dict, overrides: dict) -> dict:
 
 
 def worker(name: str, out: Path, until: float | None = None,
-           coefficient: float | None = None) -> None:
+           law: dict | None = None) -> None:
     """Run the scene at preset `name` (or the `STUDY` run `name`); progress lines to
     out/<name>.log, the dataset to out/<name>.nc (with its CPU time), the contact
     patch of every step to out/<name>.patch.jsonl.  With `until` [m] the run stops
-    after the first step that has slid that far (its log is the history); with
-    `coefficient` the junction's friction coefficient c1 is that instead of 20."""
+    after the first step that has slid that far (its log is the history); `law`
+    replaces the junction's shear resistance (`shear_law`)."""
     from asperity.stages.sliding import sliding_dataset
 
     sc = scene()
     preset, overrides = STUDY.get(name, (name, {}))
-    if coefficient is not None:
-        overrides = dict(overrides, shear_resistance=dict(c0=0.0, c1=coefficient, c2=0.0))
+    if law is not None:
+        overrides = dict(overrides, shear_resistance=law)
     section = study_section(sc["sliding"], overrides)
     _hook_diagnostics(out / f"{slug(name)}.patch.jsonl")
     log = open(out / f"{slug(name)}.log", "w")
@@ -216,7 +224,7 @@ def save(ds: xr.Dataset, path: Path) -> None:
 
 
 def run(presets, out: Path, timeout: float, jobs: int, until: float | None = None,
-        coefficient: float | None = None) -> None:
+        law: list[str] | None = None) -> None:
     """The presets (or `STUDY` runs) in child processes, at most `jobs` at a time,
     finest first (it has the most time); a child past `timeout` seconds is stopped
     (its log stays)."""
@@ -232,8 +240,7 @@ def run(presets, out: Path, timeout: float, jobs: int, until: float | None = Non
             cmd = ["nice", "-n", "15", sys.executable, __file__, "--worker", p, "--out", str(out)]
             if until is not None:
                 cmd += ["--until", repr(until / 1e-6)]
-            if coefficient is not None:
-                cmd += ["--coefficient", repr(coefficient)]
+            cmd += law or []
             running.append((p, subprocess.Popen(cmd, env=env), time.perf_counter()))
         time.sleep(2.0)
         for item in list(running):
@@ -477,6 +484,19 @@ def study(out: Path, until: float, path: Path) -> dict:
     return res
 
 
+def shear_law(coefficient: float | None, strength: float | None):
+    """The scene's ``shear_resistance`` replaced by a friction coefficient or a constant
+    shear strength [MPa] (report 3.21: c1 = mu, or c0 = k): (law or None, the worker's
+    flags, the tag of the output names)."""
+    if coefficient is not None:
+        return (dict(c0=0.0, c1=coefficient, c2=0.0), ["--coefficient", repr(coefficient)],
+                f"-mu{coefficient:g}")
+    if strength is not None:
+        return (dict(c0=strength, c1=0.0, c2=0.0), ["--shear-strength", repr(strength)],
+                f"-k{strength:g}")
+    return None, [], ""
+
+
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--presets", nargs="+", default=["draft", "standard", "fine"])
@@ -490,14 +510,17 @@ def main(argv=None) -> int:
                     help="the runs of STUDY to --until (writes sliding-study.json)")
     ap.add_argument("--until", type=float, help="stop each run once slid this far, um "
                     "(--study: 0.08)")
-    ap.add_argument("--coefficient", type=float, help="the junction's friction coefficient "
-                    "instead of the report's 20 (runs in --out <out>-mu<mu>)")
+    other = ap.add_mutually_exclusive_group()
+    other.add_argument("--coefficient", type=float, help="the junction's friction coefficient "
+                       "instead of the report's 20 (runs in <out>-mu<mu>)")
+    other.add_argument("--shear-strength", type=float, help="a junction of constant shear "
+                       "strength c0 [MPa] instead of mu = 20 (runs in <out>-k<c0>)")
     ap.add_argument("--worker", help=argparse.SUPPRESS)
     a = ap.parse_args(argv)
     if a.study and a.until is None:
         a.until = 0.08
     until = None if a.until is None else a.until * 1e-6
-    tag = "" if a.coefficient is None else f"-mu{a.coefficient:g}"
+    law, flags, tag = shear_law(a.coefficient, a.shear_strength)
     if a.out == OUT:
         a.out = OUT.with_name(("sliding-study" if a.study else "sliding") + tag)
     if a.results is None:
@@ -505,15 +528,15 @@ def main(argv=None) -> int:
                                + ".json")
     a.out.mkdir(parents=True, exist_ok=True)
     if a.worker:
-        worker(a.worker, a.out, until, a.coefficient)
+        worker(a.worker, a.out, until, law)
         return 0
     if a.study:
         if not a.reuse:
-            run(list(STUDY), a.out, a.timeout, a.jobs, until, a.coefficient)
+            run(list(STUDY), a.out, a.timeout, a.jobs, until, flags)
         study(a.out, until, a.results)
         return 0
     if not a.reuse:
-        run(a.presets, a.out, a.timeout, a.jobs, until, a.coefficient)
+        run(a.presets, a.out, a.timeout, a.jobs, until, flags)
     sc = scene()
     runs = {p: history(p, a.out) for p in a.presets}
     res = dict(scene=SCENE, report="9.2, Figs. 9.4, 9.5",

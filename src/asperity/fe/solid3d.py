@@ -762,11 +762,11 @@ class SlidingModel:
         (``direction`` +1 or -1 along x) with a developed slip, |b| = 1e6 eps_b.
         Both come from `jacobian`, and h of (3.21) enters (3.26, 3.27) linearly,
         so s h is exactly K0 + s K1: with a friction coefficient mu (c1 = mu),
-        mu_c = s mu is the critical coefficient of the discrete problem (Hassani,
-        Hild, Ionescu and Sakki, Comput. Methods Appl. Mech. Engrg. 192 (2003)
-        4517-4531).  Past it the sliding problem has more than one solution
-        nearby, and Newton directions from an all-slipping iterate are
-        unbounded.
+        mu_c = s mu is a critical coefficient of the discrete problem, where its
+        solution stops being unique (Hassani, Hild, Ionescu and Sakki, Comput.
+        Methods Appl. Mech. Engrg. 192 (2003) 4517-4531).  At it a Newton
+        direction from an all-slipping iterate is unbounded, and near it
+        arbitrarily large.
 
         K1 acts on the dofs S of the touching facets only, so the pencil reduces
         to the dense n_S x n_S matrix K1_SS (K0^-1)_SS: K0 + s K1 is singular
@@ -1089,15 +1089,15 @@ def _critical_message(t: float, factor: float, friction: FrictionLaw) -> str:
     if not math.isfinite(factor):
         return (f"start of sliding at t = {t:.6g} s: the sliding junction's tangent stays "
                 f"regular up to {CRITICAL_FACTOR_BOUND:g} times the shear resistance")
-    crit = f"friction coefficient {factor * r.c1:.3g}" if coulomb else \
+    crit = f"a friction coefficient {factor * r.c1:.3g}" if coulomb else \
         f"{factor:.3g} times the shear resistance"
     text = (f"start of sliding at t = {t:.6g} s: the sliding junction's tangent turns "
-            f"singular at a {crit}")
+            f"singular at {crit}")
     if factor < 1.0:
         law = f"friction coefficient {r.c1:g}" if coulomb else "shear resistance"
-        log.warning("%s, below the %s of the scene: past it the quasi-static sliding problem of "
-                    "this mesh has more than one solution near this state (Hassani et al. 2003); "
-                    "expect step cuts and forces that depend on the mesh", text, law)
+        log.warning("%s, below the %s of the scene: the sliding problem of this mesh is not "
+                    "unique near this state (Hassani et al. 2003); expect step cuts, stalls "
+                    "and forces that depend on the mesh", text, law)
     return text
 
 
