@@ -257,12 +257,19 @@ def run(presets, out: Path, timeout: float, jobs: int, until: float | None = Non
 
 
 # ------------------------------------------------------------------------------ compare
-def critical_coefficient(text: str) -> float | None:
-    """The critical friction coefficient of the sliding junction a log reports at
-    the start of sliding (`SlidingModel.critical_factor`; inf: none), else None."""
-    m = re.search(r"turns singular at a friction coefficient (\S+)$|(stays regular)", text,
-                  flags=re.M)
-    return None if m is None else float(m.group(1)) if m.group(1) else math.inf
+def critical_coefficients(text: str) -> dict:
+    """The critical friction coefficients of the sliding junction a log reports
+    (`SlidingModel.critical_factor`; inf: none; None: not reported): where sliding
+    starts, and the smallest and the median over the sliding steps."""
+    start = re.search(r"turns singular at a friction coefficient (\S+)$|(stays regular)", text,
+                      flags=re.M)
+    steps = [math.inf if m.group(2) else float(m.group(1)) for m in re.finditer(
+        r"cuts, critical: (?:a friction coefficient (\S+)|(none))", text)]
+    return dict(critical_friction_coefficient=None if start is None else
+                float(start.group(1)) if start.group(1) else math.inf,
+                smallest_critical_friction_coefficient_sliding=min(steps) if steps else None,
+                median_critical_friction_coefficient_sliding=(
+                    float(np.median(steps)) if steps else None))
 
 
 def history(preset: str, out: Path) -> dict | None:
@@ -270,7 +277,7 @@ def history(preset: str, out: Path) -> dict | None:
     h = _history(preset, out)
     log = out / f"{slug(preset)}.log"
     if h is not None and log.exists():
-        h["critical_friction_coefficient"] = critical_coefficient(log.read_text())
+        h.update(critical_coefficients(log.read_text()))
     return h
 
 
@@ -449,7 +456,7 @@ def study(out: Path, until: float, path: Path) -> dict:
         info = dict(preset=STUDY[name][0], overrides=STUDY[name][1], dofs=h.get("dofs"),
                     steps=h["steps"], cuts=h.get("cuts"), cpu_time=h.get("cpu_time"),
                     wall_time=h.get("wall_time_reached"), stopped=h.get("stopped", False),
-                    critical_friction_coefficient=h.get("critical_friction_coefficient"),
+                    **{k: h.get(k) for k in critical_coefficients("")},
                     slid=float(np.interp(
                         h["time"][-1], [s0, s1], [0.0, slide])),
                     normal_force=[float(np.interp(x, h["time"], h["normal_force"]))
@@ -477,7 +484,9 @@ def study(out: Path, until: float, path: Path) -> dict:
                     ", stopped" if i["stopped"] else "")
         print(f"{name:20s} {i['dofs'] or 0:6d} dofs {i['steps']:4d} steps {i['cuts'] or 0:3d} cuts "
               f"{cost} to {i['slid'] / 1e-6:.3f} um | mu_c "
-              f"{i['critical_friction_coefficient'] or float('nan'):6.3g} | F_N {f(i['normal_force'])} | "
+              f"{i['critical_friction_coefficient'] or float('nan'):6.3g} (sliding: smallest "
+              f"{i['smallest_critical_friction_coefficient_sliding'] or float('nan'):6.3g}) | "
+              f"F_N {f(i['normal_force'])} | "
               f"F_T {f(i['tangential_force'])} | "
               + " ".join(f"{100 * v:5.1f} %" for v in d.values()))
     print(f"wrote {path}")
@@ -561,7 +570,7 @@ def main(argv=None) -> int:
 
     print(f"{'preset':9s} {'dofs':>6s} {'steps':>5s} {'cuts':>4s} {'CPU s':>7s} {'reached s':>9s} "
           f"{'F_N press mN':>12s} {'F_T slide mN':>12s} {'tau MPa':>8s} {'F_T=0 steps':>11s} "
-          f"{'mu_c':>6s}")
+          f"{'mu_c':>6s} {'sliding: smallest, median':>25s}")
     for p, i in res["presets"].items():
         if i.get("missing"):
             print(f"{p:9s} missing")
@@ -572,7 +581,9 @@ def main(argv=None) -> int:
               f"{1e3 * i.get('mean_tangential_force_sliding', float('nan')):12.3f} "
               f"{1e-6 * i.get('mean_tangential_traction_sliding', float('nan')):8.0f} "
               f"{i.get('steps_without_tangential_force', 0):11d} "
-              f"{i.get('critical_friction_coefficient') or float('nan'):6.3g}")
+              f"{i.get('critical_friction_coefficient') or float('nan'):6.3g} "
+              f"{i.get('smallest_critical_friction_coefficient_sliding') or float('nan'):12.3g} "
+              f"{i.get('median_critical_friction_coefficient_sliding') or float('nan'):12.3g}")
     for pair, cmp_ in res["comparisons"].items():
         for k, v in cmp_.items():
             if v.get("zero_by_symmetry"):

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import math
 
+import matplotlib.pyplot as plt
 import numpy as np
 import pytest
 import scipy.sparse.linalg as spl
@@ -391,9 +392,6 @@ def test_viscoplastic_asperity_press_and_slide(caplog):
     with caplog.at_level("WARNING", logger="asperity.fe.solid3d"):
         ds = solve_sliding(HILL, BodnerPartom.sae_1020(), mot, law, accuracy="draft")
     assert ds.attrs["completed"] == 1
-    s = ds.attrs["critical_shear_factor"]
-    assert 0.05 < s < 1.0
-    assert f"friction coefficient {20 * s:.3g}, below the friction coefficient 20" in caplog.text
     for name in ("normal_force", "tangential_force", "max_inelastic_strain"):
         assert np.all(np.isfinite(ds[name].values))
     press = ds["phase"].values == "normal"
@@ -403,5 +401,15 @@ def test_viscoplastic_asperity_press_and_slide(caplog):
     assert np.abs(ds["tangential_force"].values[press]).max() < 1e-3 * fn_end
     assert ds["tangential_force"].values[slide].max() > 0.1 * fn_end
     assert ds.attrs["largest_deformation"] in ("at the junction", "below the junction")
+    s = ds.attrs["critical_shear_factor"]
+    s_step = ds["critical_shear_factor"].values
+    assert 0.01 < s < 1.0
+    assert np.all(np.isnan(s_step[~slide])) and not np.any(np.isnan(s_step[slide]))
+    assert s <= s_step[slide].min()                # the attribute adds the start of sliding
+    assert caplog.text.count("the sliding problem of this mesh is not unique") == 1
+    from asperity.plots.sliding import sliding_figure          # and the figure says so
+    fig = sliding_figure(ds)
+    assert f"singular at\n{s:.2g} times the shear resistance" in fig.axes[0].get_title()
+    plt.close(fig)
     for v in list(ds.data_vars) + list(ds.coords):
         assert "units" in ds[v].attrs and "long_name" in ds[v].attrs

@@ -67,6 +67,11 @@ VARIABLES: dict[str, tuple[str, str]] = {
     "max_pressure": ("Pa", "largest contact pressure at the contact quadrature points"),
     "slip_fraction": ("1", "share of the touching area (quadrature points) whose slip |b| "
                            "reached eps_b"),
+    "critical_shear_factor": ("1", "factor of the shear resistance at which the junction's "
+                                   "tangent turns singular, every touching point sliding "
+                                   "(critical friction coefficient / mu; below 1 the sliding "
+                                   "problem is not unique; inf: none below 1000; NaN: not "
+                                   "sliding)"),
     "dofs": ("1", "degrees of freedom (unknown displacement components)"),
     "newton_iterations": ("1", "Newton iterations of the step, including those of cut or "
                                "rejected tries (adhesive: and of the states added before it)"),

@@ -847,8 +847,8 @@ class SlidingModel:
 #: the variables of `solve_sliding` (units and long names: `outputs.VARIABLES`)
 OUTPUTS = ("time", "normal_displacement", "tangential_displacement", "normal_force",
            "tangential_force", "contact_area", "mean_pressure",
-           "mean_tangential_traction", "max_pressure", "slip_fraction", "max_inelastic_strain",
-           "max_von_mises", "phase", "newton_iterations", "step_cuts", "time_step", "wall_time")
+           "mean_tangential_traction", "max_pressure", "slip_fraction", "critical_shear_factor",
+           "max_inelastic_strain", "max_von_mises", "phase", "newton_iterations", "step_cuts", "time_step", "wall_time")
 
 
 class _Step(Problem):
@@ -998,14 +998,15 @@ def solve_sliding(geometry, material, motion: FlatMotion, friction: FrictionLaw,
     rows = []
     _, out0 = sm.evaluate(u, w, delta, state, iface, 0.0, tangent=True)
     out_last = out0
-    rows.append(dict(sm.record(u, w, delta, out0), time=t, phase=motion.phase(t),
+    rows.append(dict(sm.record(u, w, delta, out0), critical_shear_factor=math.nan,
+                     time=t, phase=motion.phase(t),
                      newton_iterations=0, step_cuts=0, time_step=0.0, wall_time=0.0))
     for k, ts in snap_times.items():
         if ts <= t:
             snap[k] = (t, _snapshot(model, u, state), {})
     dt = caps[motion.segment(t)] / 2.0
     n = 0
-    critical = []       # critical_factor at each start of sliding
+    critical, warned = [], False       # critical_factor at the starts of sliding and after
     while t < motion.end * (1 - 1e-12) and n < max_steps:
         n += 1
         step_start = time.perf_counter()
@@ -1029,6 +1030,10 @@ def solve_sliding(geometry, material, motion: FlatMotion, friction: FrictionLaw,
                 reason = str(exc)
             if reason is None:
                 rec = sm.record(u_new, w_new, d_new, out)
+                rec["critical_shear_factor"] = math.nan
+                if phase == "sliding":
+                    rec["critical_shear_factor"] = sm.critical_factor(
+                        u_new, w_new, d_new, out, _direction(motion, d_knots, t))
                 if rec["overflow"]:
                     raise ContactZoneError(
                         f"step {n} (t = {t_new:.6g} s): the contact reached the edge of the "
@@ -1052,14 +1057,27 @@ def solve_sliding(geometry, material, motion: FlatMotion, friction: FrictionLaw,
                 a_ref = math.sqrt(a_max / math.pi) if a_max > 0 else model.contact_radius / 2.5
                 snap[k] = (t, _snapshot(model, u, state),
                            _largest_deformation(model, u, w, state, a_ref))
+        s_c = rec["critical_shear_factor"]
         say(f"step {n}: t = {t:.6g} s, w = {w:.4g} m, delta = {delta:.4g} m, "
             f"F_N = {rec['normal_force']:.4g} N, F_T = {rec['tangential_force']:.4g} N, "
             f"A = {rec['contact_area']:.4g} m^2, "
-            f"{iterations} Newton iterations, {cuts.count} cuts")
+            f"{iterations} Newton iterations, {cuts.count} cuts"
+            + ("" if math.isnan(s_c) else f", critical: {_critical_text(s_c, friction)}"))
         if phase != "sliding" and motion.phase(t) == "sliding" and t < motion.end * (1 - 1e-12):
-            seg = motion.segment(t)
-            critical.append(sm.critical_factor(u, w, delta, out, d_knots[seg + 1] - d_knots[seg]))
-            say(_critical_message(t, critical[-1], friction))
+            s_c = sm.critical_factor(u, w, delta, out, _direction(motion, d_knots, t))
+            say(f"start of sliding at t = {t:.6g} s: the sliding junction's tangent "
+                + (f"turns singular at {_critical_text(s_c, friction)}" if math.isfinite(s_c)
+                   else f"stays regular up to {CRITICAL_FACTOR_BOUND:g} times the shear "
+                   "resistance"))
+        if not math.isnan(s_c):
+            critical.append(s_c)
+            if s_c < 1.0 and not warned:
+                warned = True
+                log.warning("t = %.6g s: the sliding junction's tangent turns singular at %s, "
+                            "below the shear resistance of the scene: the sliding problem of "
+                            "this mesh is not unique near this state (Hassani et al. 2003); "
+                            "expect step cuts, stalls and forces that depend on the mesh",
+                            t, _critical_text(s_c, friction))
         dt = strain_limited(PACE.factor(iterations, cuts.count) * h, h, step_inel, max_inel)
 
     total = time.perf_counter() - t_start
@@ -1086,24 +1104,21 @@ def solve_sliding(geometry, material, motion: FlatMotion, friction: FrictionLaw,
         mesh_wall_time=t_mesh, total_wall_time=total))
 
 
-def _critical_message(t: float, factor: float, friction: FrictionLaw) -> str:
-    """The progress line on `SlidingModel.critical_factor` at a start of sliding; a
-    log warning where the shear resistance lies past it."""
+def _direction(motion: FlatMotion, d_knots, t: float) -> float:
+    """The flat's direction along x in the segment of the motion from t."""
+    seg = motion.segment(t)
+    return float(d_knots[seg + 1] - d_knots[seg])
+
+
+def _critical_text(factor: float, friction: FrictionLaw) -> str:
+    """`SlidingModel.critical_factor` in words: a friction coefficient for a Coulomb
+    law, else a factor of the shear resistance ("none" where it is inf)."""
     r = friction.resistance
-    coulomb = r.c0 == 0.0 and r.c2 == 0.0
     if not math.isfinite(factor):
-        return (f"start of sliding at t = {t:.6g} s: the sliding junction's tangent stays "
-                f"regular up to {CRITICAL_FACTOR_BOUND:g} times the shear resistance")
-    crit = f"a friction coefficient {factor * r.c1:.3g}" if coulomb else \
-        f"{factor:.3g} times the shear resistance"
-    text = (f"start of sliding at t = {t:.6g} s: the sliding junction's tangent turns "
-            f"singular at {crit}")
-    if factor < 1.0:
-        law = f"friction coefficient {r.c1:g}" if coulomb else "shear resistance"
-        log.warning("%s, below the %s of the scene: the sliding problem of this mesh is not "
-                    "unique near this state (Hassani et al. 2003); expect step cuts, stalls "
-                    "and forces that depend on the mesh", text, law)
-    return text
+        return f"none below {CRITICAL_FACTOR_BOUND:g} times the shear resistance"
+    if r.c0 == 0.0 and r.c2 == 0.0:
+        return f"a friction coefficient {factor * r.c1:.3g}"
+    return f"{factor:.3g} times the shear resistance"
 
 
 def _largest_deformation(model: HalfModel, u, w, state, a_ref: float) -> dict:

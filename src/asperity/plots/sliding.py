@@ -46,13 +46,19 @@ def sliding_figure(ds: xr.Dataset, length_unit: str = "um") -> plt.Figure:
     times = np.asarray(ds.attrs.get("motion_times", []), float)
     for tk in times[1:-1]:
         ax_f.axvline(tk, color="0.6", ls=":", lw=0.8)
-    ax_f.set(xlabel="time [s]", ylabel="force [mN]",
-             title="Fig. 9.4: forces on the asperity (whole body)")
+    ax_f.set(xlabel="time [s]", ylabel="force [mN]")
     ax_f.legend(loc="best")
+    notes = []
     tau = ds.attrs.get("mean_tangential_traction_sliding")
     if tau is not None and np.isfinite(tau):
-        ax_f.text(0.02, 0.97, f"mean tangential traction while sliding: {tau / 1e6:.0f} MPa\n"
-                  "(report: about 64 MPa)", transform=ax_f.transAxes, va="top", fontsize=8)
+        notes.append(f"mean tangential traction while sliding: {tau / 1e6:.0f} MPa "
+                     "(report: about 64 MPa)")
+    s_c = ds.attrs.get("critical_shear_factor")
+    if s_c is not None and s_c < 1.0:
+        notes.append(f"not unique while sliding: the junction's tangent turns singular at\n"
+                     f"{s_c:.2g} times the shear resistance (the critical friction coefficient)")
+    ax_f.set_title("\n".join(["Fig. 9.4: forces on the asperity (whole body)"] + notes),
+                   fontsize=9)
     w_end = float(ds["normal_displacement"].values[-1])
     snaps = [str(s) for s in ds["snapshot"].values] if "snapshot" in ds.dims else []
     if "end of pressing" in snaps:
