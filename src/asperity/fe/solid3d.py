@@ -64,8 +64,8 @@ had no shear resistance in its first step, and the sliding forces depended
 on the step size; issue #14.)  When the junction starts to slide the
 coupled problem is stiff and Newton may need the step cut a few times.
 Past the junction's critical friction coefficient
-(`SlidingModel.critical_factor`, computed and reported at every start of
-sliding) the problem of a slipping junction is not unique and Newton may
+(`SlidingModel.critical_factor`, computed and reported where sliding starts
+and after every sliding step) the problem of a slipping junction is not unique and Newton may
 stall: report 9.2's mu = 20 is past it on the fine meshes of its hill
 (mu_c 3-4 at `fine`).
 
