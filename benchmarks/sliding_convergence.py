@@ -39,7 +39,8 @@ benchmarks/results/sliding-study.json::
     python benchmarks/sliding_convergence.py --study --jobs 2 --timeout 1800
 
 Each run's log carries the critical friction coefficient of the junction where sliding
-starts (`SlidingModel.critical_factor`), and the tables report it.  ``--coefficient mu``
+starts and after every sliding step (`SlidingModel.critical_factor`); the tables report
+it at the start, and the smallest (and median) while sliding.  ``--coefficient mu``
 or ``--shear-strength k`` [MPa] replace the report's mu = 20 (3.21: c1 = mu, or c0 = k),
 with their own --out and results (``-mu<mu>``, ``-k<k>`` added to the names)::
 
@@ -224,10 +225,10 @@ def save(ds: xr.Dataset, path: Path) -> None:
 
 
 def run(presets, out: Path, timeout: float, jobs: int, until: float | None = None,
-        law: list[str] | None = None) -> None:
+        flags: list[str] | None = None) -> None:
     """The presets (or `STUDY` runs) in child processes, at most `jobs` at a time,
-    finest first (it has the most time); a child past `timeout` seconds is stopped
-    (its log stays)."""
+    finest first (it has the most time), with the law's `flags` (`shear_law`); a child
+    past `timeout` seconds is stopped (its log stays)."""
     env = dict(os.environ, OPENBLAS_NUM_THREADS="1", OMP_NUM_THREADS="1",
                PYTHONPATH=str(ROOT / "src") + os.pathsep + os.environ.get("PYTHONPATH", ""))
     rank = ["mesh scale 0.5", "fine", "mesh scale 0.7", "standard", "draft"]  # costliest first
@@ -240,7 +241,7 @@ def run(presets, out: Path, timeout: float, jobs: int, until: float | None = Non
             cmd = ["nice", "-n", "15", sys.executable, __file__, "--worker", p, "--out", str(out)]
             if until is not None:
                 cmd += ["--until", repr(until / 1e-6)]
-            cmd += law or []
+            cmd += flags or []
             running.append((p, subprocess.Popen(cmd, env=env), time.perf_counter()))
         time.sleep(2.0)
         for item in list(running):
@@ -514,7 +515,7 @@ def main(argv=None) -> int:
     ap.add_argument("--jobs", type=int, default=1)
     ap.add_argument("--reuse", action="store_true", help="compare the runs already in --out")
     ap.add_argument("--results", type=Path, help="default: results/sliding-convergence.json "
-                    "(--study: sliding-study.json; --coefficient mu: -mu<mu> before .json)")
+                    "(--study: sliding-study.json; -mu<mu> or -k<k> before .json)")
     ap.add_argument("--study", action="store_true",
                     help="the runs of STUDY to --until (writes sliding-study.json)")
     ap.add_argument("--until", type=float, help="stop each run once slid this far, um "
