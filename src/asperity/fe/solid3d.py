@@ -66,8 +66,8 @@ coupled problem is stiff and Newton may need the step cut a few times.
 Past the junction's critical friction coefficient
 (`SlidingModel.critical_factor`, computed and reported where sliding starts
 and after every sliding step) the problem of a slipping junction is not
-unique and Newton may stall: report 9.2's mu = 20 is past it on every mesh
-of its hill once the junction slides (mu_c 2-6).
+unique and Newton may stall: report 9.2's mu = 20 is past it at `standard`
+and `fine` once the junction slides (mu_c 2-6).
 
 Predictor: each step starts from the Euler predictor of the converged
 state (the tangent and d R / d(w, delta) of the last step: the contact
