@@ -17,7 +17,8 @@ from asperity.fe.presets import resolve
 from asperity.fe.geometry import CosineHill, Paraboloid
 from asperity.fe.material import equivalent_strain, von_mises
 from asperity.fe.sliding import FrictionLaw, ShearResistance
-from asperity.fe.solid3d import (FlatMotion, HalfModel, MeshSpec, SlidingModel, build_mesh,
+from asperity.fe.solid3d import (DEVELOPED_SLIP, FlatMotion, HalfModel, MeshSpec, SlidingModel,
+                                 build_mesh,
                                  solve_prescribed, solve_sliding)
 from asperity.references.hertz import hertz_response
 
@@ -357,7 +358,7 @@ def test_critical_factor_is_where_the_sliding_tangent_turns_singular():
     assert 0.05 < s < 1.0, s * mu
     c = out["contact"]
     anchors = c["position"].copy()
-    anchors[0] += 1e6 * law.slip_regularization           # developed slip along +x
+    anchors[0] += DEVELOPED_SLIP * law.slip_regularization     # developed slip along +x
     signs = []
     for f in (0.0, 0.5, 0.99, 1.01):
         lw = FrictionLaw(ShearResistance.coulomb(f * s * mu) if f else ShearResistance(),

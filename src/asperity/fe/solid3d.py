@@ -848,7 +848,8 @@ class SlidingModel:
 OUTPUTS = ("time", "normal_displacement", "tangential_displacement", "normal_force",
            "tangential_force", "contact_area", "mean_pressure",
            "mean_tangential_traction", "max_pressure", "slip_fraction", "critical_shear_factor",
-           "max_inelastic_strain", "max_von_mises", "phase", "newton_iterations", "step_cuts", "time_step", "wall_time")
+           "max_inelastic_strain", "max_von_mises", "phase", "newton_iterations", "step_cuts",
+           "time_step", "wall_time")
 
 
 class _Step(Problem):
