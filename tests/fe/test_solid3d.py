@@ -18,8 +18,7 @@ from asperity.fe.geometry import CosineHill, Paraboloid
 from asperity.fe.material import equivalent_strain, von_mises
 from asperity.fe.sliding import FrictionLaw, ShearResistance
 from asperity.fe.solid3d import (DEVELOPED_SLIP, FlatMotion, HalfModel, MeshSpec, SlidingModel,
-                                 build_mesh,
-                                 solve_prescribed, solve_sliding)
+                                 build_mesh, solve_prescribed, solve_sliding)
 from asperity.references.hertz import hertz_response
 
 MPA = 1e6
