@@ -488,8 +488,7 @@ class _Step(Problem):
 
     def __init__(self, model: InelasticModel, w, state, dt, reference: float):
         self.model, self.w, self.state, self.dt = model, w, state, dt
-        self.reference = reference
-        self.top = 0.0  # the largest contact force norm of the iterations
+        self.force_scale = nonlinear.ContactScale(reference)
 
     def evaluate(self, u):
         R, out = self.model.evaluate(u, self.w, self.state, self.dt)
@@ -499,9 +498,7 @@ class _Step(Problem):
         check_local_update(out["state"], iteration)
 
     def scale(self, u, out):
-        fc = float(np.linalg.norm(self.model.zone.nodal(out["traction"])))
-        self.top = max(self.top, fc)
-        return max(fc, min(self.top, 2.0 * self.reference))
+        return self.force_scale(float(np.linalg.norm(self.model.zone.nodal(out["traction"]))))
 
     def floor(self, u, out):
         """Round-off of the internal forces (sum of |terms|)."""

@@ -163,6 +163,25 @@ class Problem:
         return trial
 
 
+class ContactScale:
+    """The force scale of a step's convergence test (`Problem.scale`).
+
+    The contact force norm of the current iterate or, if larger, the
+    largest of the step's iterates so far, but not more than twice
+    ``reference``, that of the last accepted step.  An overshooting
+    iterate (points pushed deep into the stiff penalty) would otherwise
+    loosen the test for the rest of the step.
+    """
+
+    def __init__(self, reference: float):
+        self.reference = float(reference)
+        self.top = 0.0
+
+    def __call__(self, force: float) -> float:
+        self.top = max(self.top, force)
+        return max(force, min(self.top, 2.0 * self.reference))
+
+
 def check_local_update(state, iteration: int) -> None:
     """`StepFailed` if the constitutive update of a material state did not
     converge at some point (its ``converged`` flags, if it has them)."""

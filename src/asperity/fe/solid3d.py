@@ -803,10 +803,16 @@ class SlidingModel:
         s = s[s <= CRITICAL_FACTOR_BOUND]
         return float(s.min()) if s.size else math.inf
 
-    def solve_step(self, u0, w, delta, state, iface, dt):
-        """Newton from u0 for the step ending at (w, delta); returns (u, out, its)."""
-        return nonlinear.newton(_Step(self, w, delta, state, iface, dt), u0, self.tolerance,
-                                self.max_iterations, ResidualSearch(self.line_search))
+    def solve_step(self, u0, w, delta, state, iface, dt, reference: float = 0.0):
+        """Newton from u0 for the step ending at (w, delta); returns (u, out, its).
+
+        Converged when ||R|| <= tolerance x the norm of the nodal contact
+        forces (`nonlinear.ContactScale`, ``reference`` that of the last
+        accepted step) or at the round-off level of the internal forces.
+        """
+        return nonlinear.newton(_Step(self, w, delta, state, iface, dt, reference), u0,
+                                self.tolerance, self.max_iterations,
+                                ResidualSearch(self.line_search))
 
     def initial_interface(self, delta=0.0) -> "Interface":
         m = self.m
@@ -855,10 +861,10 @@ OUTPUTS = ("time", "normal_displacement", "tangential_displacement", "normal_for
 class _Step(Problem):
     """Equilibrium at the end of a step (`SlidingModel.solve_step`)."""
 
-    def __init__(self, sm: SlidingModel, w, delta, state, iface, dt):
+    def __init__(self, sm: SlidingModel, w, delta, state, iface, dt, reference: float):
         self.sm, self.w, self.delta = sm, w, delta
         self.state, self.iface, self.dt = state, iface, dt
-        self.top = 0.0  # the largest contact force norm of the iterations
+        self.force_scale = nonlinear.ContactScale(reference)
 
     def evaluate(self, u):
         R, out = self.sm.evaluate(u, self.w, self.delta, self.state, self.iface, self.dt)
@@ -868,9 +874,7 @@ class _Step(Problem):
         check_local_update(out["state"], iteration)
 
     def scale(self, u, out):
-        fc = out["contact"]["fc"]
-        self.top = max(self.top, float(np.sqrt(np.sum(fc**2))))
-        return self.top
+        return self.force_scale(float(np.linalg.norm(out["contact"]["fc"])))
 
     def floor(self, u, out):
         m = self.sm.m
@@ -999,6 +1003,7 @@ def solve_sliding(geometry, material, motion: FlatMotion, friction: FrictionLaw,
     rows = []
     _, out0 = sm.evaluate(u, w, delta, state, iface, 0.0, tangent=True)
     out_last = out0
+    f_ref = 0.0  # contact force norm of the last accepted step
     rows.append(dict(sm.record(u, w, delta, out0), critical_shear_factor=math.nan,
                      time=t, phase=motion.phase(t),
                      newton_iterations=0, step_cuts=0, time_step=0.0, wall_time=0.0))
@@ -1020,7 +1025,7 @@ def solve_sliding(geometry, material, motion: FlatMotion, friction: FrictionLaw,
             reason = None
             u0 = sm.predict(u, out_last, w_new - w, d_new - delta)
             try:
-                u_new, out, its = sm.solve_step(u0, w_new, d_new, state, iface, h)
+                u_new, out, its = sm.solve_step(u0, w_new, d_new, state, iface, h, f_ref)
                 iterations += its
                 step_inel = float(np.max(equivalent_strain(
                     out["state"].inelastic_strain - state.inelastic_strain)))
@@ -1047,6 +1052,7 @@ def solve_sliding(geometry, material, motion: FlatMotion, friction: FrictionLaw,
             dt = 0.5 * h
             say(f"step {n}: cut to dt = {dt:.4g} s ({reason})")
         iface = sm.commit(out, iface)
+        f_ref = float(np.linalg.norm(out["contact"]["fc"]))
         u, t, w, delta, state = u_new, t_new, w_new, d_new, out["state"]
         # the converged state with the dragged anchors, for the next predictor
         _, out_last = sm.evaluate(u, w, delta, state, iface, h)
