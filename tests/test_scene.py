@@ -65,3 +65,29 @@ def test_the_sliding_and_uniaxial_materials_are_the_bodies_their_sections_descri
     assert point == BodnerPartom.b1900_hf_871C(Z0=2000.0 * 1e6, isotropic_hardening=False,
                                                recovery=True, directional_hardening=False,
                                                damage=False)
+
+
+def test_the_sliding_junction_is_the_report_hill_sheared_at_the_steel_shear_strength():
+    """`asperity_sliding_junction` is `asperity_sliding` with tau_s = c0 = k (3.21) and
+    nothing else changed (the benchmark's ``--shear-strength 280`` runs exactly it), and
+    its k is the steel's shear flow stress q / sqrt 3 at the saturated hardness Z1 at
+    an inelastic rate between 1e-4 and 1e-2 1/s (Bodner-Partom, report 3.2.2:
+    p_dot = 2 / sqrt 3 D0 exp[-1/2 (Z / q)^2n] in uniaxial flow)."""
+    import yaml
+    from pathlib import Path
+
+    scenes = Path(__file__).resolve().parents[1] / "config" / "scenes"
+    report = yaml.safe_load((scenes / "asperity_sliding.yaml").read_text())["sliding"]
+    junction = yaml.safe_load((scenes / "asperity_sliding_junction.yaml").read_text())["sliding"]
+    law = junction.pop("shear_resistance")
+    report.pop("shear_resistance")
+    assert junction == report
+    assert law["c1"] == 0.0 and law["c2"] == 0.0
+    m = junction["material"]
+
+    def k(rate):  # MPa
+        q = m["Z1"] / (2.0 * math.log(2.0 / math.sqrt(3.0) * m["D0"] / rate)) ** (1 / (2 * m["n"]))
+        return q / math.sqrt(3.0)
+
+    assert k(1e-4) < law["c0"] < k(1e-2)
+    assert k(1e-4) == pytest.approx(274.0, abs=1.0) and k(1e-2) == pytest.approx(292.0, abs=1.0)
