@@ -271,13 +271,14 @@ def run(presets, out: Path, timeout: float, jobs: int, until: float | None = Non
 def critical_coefficients(text: str) -> dict:
     """The critical friction coefficients of the sliding junction a log reports
     (`SlidingModel.critical_factor`; inf: none; None: not reported): where sliding
-    starts, and the smallest and the median over the sliding steps."""
-    start = re.search(r"turns singular at a friction coefficient (\S+)$|(stays regular)", text,
-                      flags=re.M)
-    steps = [math.inf if m.group(2) else float(m.group(1)) for m in re.finditer(
-        r"cuts, critical: (?:a friction coefficient (\S+)|(none))", text)]
+    starts, and the smallest and the median over the sliding steps.  For a law that
+    is not Coulomb's, the factor of its shear resistance instead, as the log words it."""
+    value = r"(?:a friction coefficient (\S+)|(\S+) times the shear resistance)"
+    start = re.search(rf"turns singular at {value}$|(stays regular)", text, flags=re.M)
+    steps = [math.inf if m.group(3) else float(m.group(1) or m.group(2)) for m in re.finditer(
+        rf"cuts, critical: (?:{value}|(none))", text)]
     return dict(critical_friction_coefficient=None if start is None else
-                float(start.group(1)) if start.group(1) else math.inf,
+                math.inf if start.group(3) else float(start.group(1) or start.group(2)),
                 smallest_critical_friction_coefficient_sliding=min(steps) if steps else None,
                 median_critical_friction_coefficient_sliding=(
                     float(np.median(steps)) if steps else None))
@@ -506,13 +507,15 @@ def study(out: Path, until: float, path: Path) -> dict:
 
 def shear_law(coefficient: float | None, strength: float | None):
     """The scene's ``shear_resistance`` replaced by a friction coefficient or a constant
-    shear strength [MPa] (report 3.21: c1 = mu, or c0 = k): (law or None, the worker's
-    flags, the tag of the output names)."""
+    shear strength [MPa] (report 3.21: c1 = mu, or c0 = k ramped in over the pressures
+    0-2k, as in `asperity_sliding_junction`): (law or None, the worker's flags, the tag
+    of the output names)."""
     if coefficient is not None:
         return (dict(c0=0.0, c1=coefficient, c2=0.0), ["--coefficient", repr(coefficient)],
                 f"-mu{coefficient:g}")
     if strength is not None:
-        return (dict(c0=strength, c1=0.0, c2=0.0), ["--shear-strength", repr(strength)],
+        return (dict(c0=strength, c1=0.0, c2=0.0, onset_pressure=2.0 * strength),
+                ["--shear-strength", repr(strength)],
                 f"-k{strength:g}")
     return None, [], ""
 

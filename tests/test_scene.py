@@ -69,7 +69,8 @@ def test_the_sliding_and_uniaxial_materials_are_the_bodies_their_sections_descri
 
 def test_the_sliding_junction_is_the_report_hill_sheared_at_the_steel_shear_strength():
     """`asperity_sliding_junction` is `asperity_sliding` with tau_s = c0 = k (3.21) and
-    nothing else changed (the benchmark's ``--shear-strength 280`` runs exactly it), and
+    nothing else changed (the benchmark's ``--shear-strength 280`` runs exactly it), its
+    onset ramp no steeper than a friction coefficient of 1, and
     its k is the steel's shear flow stress q / sqrt 3 at the saturated hardness Z1 at
     an inelastic rate between 1e-4 and 1e-2 1/s (Bodner-Partom, report 3.2.2:
     p_dot = 2 / sqrt 3 D0 exp[-1/2 (Z / q)^2n] in uniaxial flow)."""
@@ -83,6 +84,9 @@ def test_the_sliding_junction_is_the_report_hill_sheared_at_the_steel_shear_stre
     report.pop("shear_resistance")
     assert junction == report
     assert law["c1"] == 0.0 and law["c2"] == 0.0
+    # the onset ramp phi(p / p_o) of 3.25 starts at the slope 2 c0 / p_o: a friction
+    # coefficient of 1, as the benchmark's --shear-strength k (onset 2 k)
+    assert 2.0 * law["c0"] / law["onset_pressure"] == pytest.approx(1.0)
     m = junction["material"]
 
     def k(rate):  # MPa
