@@ -28,8 +28,9 @@ and prints a table.  Nothing is asserted here.
     python benchmarks/sliding_convergence.py --presets draft --out /tmp/s --results /tmp/s.json
 
 ``--study``: what moves the sliding forces.  The runs of `STUDY` (the standard
-preset with one thing changed at a time: the time controls, the penalty, each of
-the mesh sizes, and the whole mesh scaled; and `fine`), each stopped once the flat
+preset of before the presets changed, `STUDY_STANDARD`, with one thing changed at a
+time: the time controls, the penalty, each of the mesh sizes, and the whole mesh
+scaled; and `fine` of before), each stopped once the flat
 has slid ``--until`` (default 0.08 um, past the fall of F_N), are compared with
 the finest mesh of the study over the sliding they share, and with `standard`.
 Runs that stall (Newton failing again and again, the step cut to microseconds) are
@@ -41,7 +42,8 @@ benchmarks/results/sliding-study.json::
 Each run's log carries the critical friction coefficient of the junction where sliding
 starts and after every sliding step (`SlidingModel.critical_factor`); the tables report
 it at the start, and the smallest (and median) while sliding.  ``--coefficient mu``
-or ``--shear-strength k`` [MPa] replace the report's mu = 20 (3.21: c1 = mu, or c0 = k),
+or ``--shear-strength k`` [MPa] replace the report's mu = 20 (3.21: c1 = mu, or c0 = k
+ramped in over 0-2k; k = 280 is the scene `asperity_sliding_junction`),
 with their own --out and results (``-mu<mu>``, ``-k<k>`` added to the names)::
 
     python benchmarks/sliding_convergence.py --coefficient 1 --jobs 2

@@ -806,8 +806,8 @@ class SlidingModel:
     def solve_step(self, u0, w, delta, state, iface, dt, reference: float = 0.0):
         """Newton from u0 for the step ending at (w, delta); returns (u, out, its).
 
-        Converged when ||R|| <= tolerance x the norm of the nodal contact
-        forces (`nonlinear.ContactScale`, ``reference`` that of the last
+        Converged when ||R|| <= tolerance x the norm of the contact facets'
+        nodal forces (`nonlinear.ContactScale`, ``reference`` that of the last
         accepted step) or at the round-off level of the internal forces.
         """
         return nonlinear.newton(_Step(self, w, delta, state, iface, dt, reference), u0,
