@@ -191,7 +191,7 @@ SLIDING_ACCURACY: dict[str, dict] = {
                   normal_steps=6, tangential_steps=12, tolerance=1e-6, max_iterations=40,
                   max_cuts=10, max_inelastic_step=0.3),
     # standard has the mesh and steps fine had before, fine the study's mesh scale 0.5
-    # (README, "The sliding presets"): the coarser meshes were 20-27 % from them.  fine
+    # (README, "The sliding presets"): the coarser meshes were 12-28 % from them.  fine
     # refines the mesh only; its time steps are standard's
     "standard": dict(tip_fraction=0.5, refine_fraction=0.8, grading=0.5, coarse_fraction=0.35,
                      normal_steps=16, tangential_steps=32, tolerance=1e-7, max_iterations=40,
