@@ -117,27 +117,28 @@ def scene() -> dict:
 
 
 # ---------------------------------------------------------------------------- one preset
-def patch_diagnostics(tn, tx, cw, x, stress, dv, before=None) -> dict:
+def patch_diagnostics(tn, tx, vw, x, facets, fw, stress, dv, before=None) -> dict:
     """The contact patch of one step against the stresses under it.
 
-    tn, tx (nf, nq): pressure and x traction at the contact points; cw (nf, nq) their
-    weights; x (nf, nq) their undeformed x; stress (6, nf, nqv) at the volume points of
-    the elements of the contact facets, dv (nf, nqv) their volume weights; before
-    (nf, nq): which points touched in the step before.  Areas are of the whole model
-    (twice the half).  The bulk shear stress under the patch is sigma_xz in the
-    elements of the touching facets: its largest value and its volume mean.
+    tn, tx (nV,): pressure and x traction at the contact vertices; vw (nV,) their
+    weights; x (nV,) their x; facets (3, nf) the vertices of each contact facet, fw
+    (nf,) the facets' areas; stress (6, nf, nqv) at the volume points of the elements
+    of the contact facets, dv (nf, nqv) their volume weights; before (nV,): which
+    vertices touched in the step before.  Areas are of the whole model (twice the
+    half).  The touching facets have a touching vertex; the bulk shear stress under
+    the patch is sigma_xz in their elements: its largest value and its volume mean.
     """
     on = tn > 0
     changes = {} if before is None else dict(entered=int(np.sum(on & ~before)),
                                              left=int(np.sum(before & ~on)))
     if not on.any():
         return dict(points=0, facets=0, **changes)
-    fac = on.any(axis=1)
+    fac = on[facets].any(axis=0)
     sx, sy, sz, sxy, sxz, syz = stress[:, fac]
     q = np.sqrt(0.5 * ((sx - sy) ** 2 + (sy - sz) ** 2 + (sz - sx) ** 2)
                 + 3.0 * (sxy ** 2 + sxz ** 2 + syz ** 2))
     return dict(points=int(on.sum()), facets=int(fac.sum()), **changes,
-                area_of_touching_facets=2.0 * float(cw[fac].sum()),
+                area_of_touching_facets=2.0 * float(fw[fac].sum()),
                 largest_point_tangential_traction=float(np.abs(tx[on]).max()),
                 largest_patch_shear_stress=float(np.abs(sxz).max()),
                 mean_patch_shear_stress=float(np.sum(sxz * dv[fac]) / np.sum(dv[fac])),
@@ -156,8 +157,9 @@ def _hook_diagnostics(path: Path):
     def recorded(self, u, w, delta, out):
         rec = record(self, u, w, delta, out)
         m, c = self.m, out["contact"]
-        d = patch_diagnostics(c["tn"], c["txy"][0], m.cw, m.cX[0], out["stress"][:, m.ctind],
-                              m.weights[m.ctind], last.get("touching"))
+        d = patch_diagnostics(c["tn"], c["txy"][0], m.vw, m.vX[0], m.vfacets, m.cw.sum(axis=1),
+                              out["stress"][:, m.ctind], m.weights[m.ctind],
+                              last.get("touching"))
         last["touching"] = c["tn"] > 0
         sink.write(json.dumps(dict(d, normal_displacement=w, tangential_displacement=delta,
                                    tangential_force=rec["tangential_force"],

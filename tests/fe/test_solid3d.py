@@ -225,15 +225,16 @@ def test_coulomb_and_constant_shear_strength_when_sliding_develops(flat_model):
 
 def test_point_entering_contact_carries_shear_in_the_step_it_enters(flat_model):
     """Press from w/2 to w and slide 0.6 a in one step (mu = 0.3, the whole contact
-    slides): the points that enter the contact in this step carry the full shear
-    resistance, |t| = mu t_N (1e-9), so F_T = mu F_N (1e-3); and F_N, F_T agree with
-    the same path in four steps (1e-3; they differ by 5e-5).  With the bound at the
-    pressure of the last step the entering points (8 of 20) would carry no shear."""
+    slides): the contact vertices that enter the contact in this step carry the full
+    shear resistance, |t| = mu t_N (1e-9), so F_T = mu F_N (1e-3); and F_N, F_T agree
+    with the same path in four steps (1e-3; they differ by 5e-5).  With the bound at
+    the pressure of the last step the entering vertices (2 of the 5 touching at the
+    end) would carry no shear."""
     mu = 0.3
     law = FrictionLaw(ShearResistance.coulomb(mu), 1e-4 * A_H)
     one, (c0, c1) = _run(flat_model, law, [(0.5 * W, 0.0), (W, 0.6 * A_H)], contacts=True)
     entered = (c1["tn"] > 0) & ~(c0["tn"] > 0)
-    assert entered.sum() >= 4
+    assert entered.sum() >= 2
     t = np.hypot(*c1["txy"])[entered]
     np.testing.assert_allclose(t, mu * c1["tn"][entered], rtol=1e-9)
     assert one[-1]["tangential_force"] == pytest.approx(mu * one[-1]["normal_force"], rel=1e-3)
