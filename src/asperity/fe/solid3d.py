@@ -61,9 +61,10 @@ flattened junction satisfies its contact condition at only half of the
 points within its edge ring, the pressure jumping from zero to twice the
 mean between neighbours; with 6 and 12 points per facet the touching area
 of the same mesh fell from 1.63 to 1.16 and 1.00 um^2 and the junction's
-shear force with it (`asperity_sliding_junction`, F_T = k A).  A facet has
-three times more such conditions than it has vertices; the nodes as points
-(one condition per node) let the 6-node facet's corners lift inside the
+shear force with it (`asperity_sliding_junction`, F_T = k A): three
+conditions a facet are about six a vertex (a triangulated surface has twice
+as many facets as vertices), one and a half a node.  The nodes as points
+(one condition a node) let the 6-node facets' corners lift inside the
 contact instead, even on Hertz's problem.  One condition per vertex,
 weighted over the facets, leaves the pressure smooth (README, "Sliding of
 one asperity").
@@ -82,7 +83,7 @@ Past the junction's critical friction coefficient
 (`SlidingModel.critical_factor`, computed and reported where sliding starts
 and after every sliding step) the problem of a slipping junction is not
 unique and Newton may stall: report 9.2's mu = 20 is past it at `standard`
-and `fine` once the junction slides (mu_c 2-6).
+for much of the slide (mu_c 5-34).
 
 Predictor: each step starts from the Euler predictor of the converged
 state (the tangent and d R / d(w, delta) of the last step: the contact
@@ -766,8 +767,10 @@ class SlidingModel:
             A = contact_tangent(dtn, dt_db, dt_dtn)                # (3, 3, nV)
             # R = f_int - f_c; a grows with w like with u_z, b falls with delta
             # like it grows with u_x
-            out["Kc"] = -sum(m.V[i].T @ sp.diags(m.vw * A[i, j]) @ m.V[j]
-                             for i in range(3) for j in range(3) if np.any(A[i, j]))
+            n = m.free.size
+            out["Kc"] = -sum((m.V[i].T @ sp.diags(m.vw * A[i, j]) @ m.V[j]
+                              for i in range(3) for j in range(3) if np.any(A[i, j])),
+                             sp.csc_matrix((n, n)))
             out["dR_dw"] = -sum(V.T @ (m.vw * A[i, 2]) for i, V in enumerate(m.V))
             out["dR_ddelta"] = sum(V.T @ (m.vw * A[i, 0]) for i, V in enumerate(m.V))
         return out
@@ -792,9 +795,7 @@ class SlidingModel:
             if bad.size:
                 Ke = m.element_matrices(D, bad) - self.Ke_el[bad]
                 data += m._scatter(bad, Ke)
-        K = m.matrix(data)
-        Kc = out["contact"]["Kc"]
-        return (K + Kc).tocsc() if not np.isscalar(Kc) else K
+        return (m.matrix(data) + out["contact"]["Kc"]).tocsc()
 
     def predict(self, u, out, dw, ddelta) -> np.ndarray:
         """Euler predictor: u + du with K du = -(dR/dw dw + dR/ddelta ddelta),
