@@ -517,8 +517,9 @@ class HalfModel:
         (the body's x, y: the mapping onto the hill moves only z, so each facet is
         the plane triangle of its vertices in x, y).  With phi_i the hat function of
         vertex i on the contact facets, integrated at the facets' quadrature points:
-        ``vw`` (nV,) = int phi_i ds; ``V`` [3] (nV x free dofs): u -> the weighted
-        displacement int phi_i u_c ds / vw_i; ``vX`` (3, nV) the weighted position and
+        ``vw`` (nV,) = int phi_i ds; ``V`` (3 nV x free dofs): u -> the weighted
+        displacements int phi_i u_c ds / vw_i, c = x, y, z stacked (``VT`` its
+        transpose); ``vX`` (3, nV) the weighted position and
         ``vz0`` (nV,) the weighted gap_offset-shifted height of the body; ``vr`` the
         vertices' distance from the apex, ``vsize`` the mean size of their facets;
         ``vfacets`` (3, nf) the vertices of each facet (indices into these)."""
@@ -542,15 +543,15 @@ class HalfModel:
         self.vw = np.asarray(Pw.sum(axis=1)).ravel()
         Pw = sp.diags(1.0 / self.vw) @ Pw
         pos = self._pos                                          # dof -> free dof, or -1
-        self.V = []
-        for c in range(3):
-            i = np.nonzero(self.ccomp == c)[0]
-            val = self.cval[i]                                    # (k, nf, nq)
-            r = np.broadcast_to(np.arange(npts).reshape(nf, nq), val.shape)
-            cc = np.broadcast_to(pos[self.cdofs[i]][:, :, None], val.shape)
-            keep = cc >= 0
-            N = sp.csr_matrix((val[keep], (r[keep], cc[keep])), shape=(npts, self.free.size))
-            self.V.append((Pw @ N).tocsr())
+        # u_c at the points: row c npts + point, from the dofs of component c
+        r = (self.ccomp[:, None, None] * npts
+             + np.arange(npts).reshape(nf, nq)[None]) * np.ones_like(self.cval, dtype=int)
+        cc = np.broadcast_to(pos[self.cdofs][:, :, None], self.cval.shape)
+        keep = cc >= 0
+        N = sp.csr_matrix((self.cval[keep], (r[keep], cc[keep])),
+                          shape=(3 * npts, self.free.size))
+        self.V = (sp.block_diag((Pw, Pw, Pw)) @ N).tocsr()
+        self.VT = self.V.T.tocsr()
         self.vX = np.stack([Pw @ x.ravel() for x in self.cX])
         self.vz0 = Pw @ self.cz0.ravel()
         self.vr = np.hypot(xy[0, verts], xy[1, verts])
@@ -748,8 +749,7 @@ class SlidingModel:
         ``fc`` is the contact force on the free dofs."""
         m = self.m
         friction = self.friction if friction is None else friction
-        uf = u[m.free]
-        U = [V @ uf for V in m.V]                                # weighted u_x, u_y, u_z
+        U = (m.V @ u[m.free]).reshape(3, -1)                     # weighted u_x, u_y, u_z
         a = m.vz0 + U[2] + w
         tn, dtn = (x[:, 0] for x in self.law.traction(a[:, None]))
         pos = np.stack((m.vX[0] + U[0] - delta, m.vX[1] + U[1]))
@@ -760,19 +760,21 @@ class SlidingModel:
             dt_dtn = np.zeros_like(b)
         else:
             txy, dt_db, dt_dtn = friction.traction(b, tn)
-        tv = (txy[0], txy[1], -tn)                               # traction on the body
-        fc = sum(V.T @ (m.vw * t) for V, t in zip(m.V, tv))
+        tv = np.stack((txy[0], txy[1], -tn))                     # traction on the body
+        fc = m.VT @ (m.vw * tv).ravel()
         out = dict(a=a, tn=tn, txy=txy, b=b, position=pos, fc=fc)
         if tangent:
             A = contact_tangent(dtn, dt_db, dt_dtn)                # (3, 3, nV)
             # R = f_int - f_c; a grows with w like with u_z, b falls with delta
             # like it grows with u_x
-            n = m.free.size
-            out["Kc"] = -sum((m.V[i].T @ sp.diags(m.vw * A[i, j]) @ m.V[j]
-                              for i in range(3) for j in range(3) if np.any(A[i, j])),
-                             sp.csc_matrix((n, n)))
-            out["dR_dw"] = -sum(V.T @ (m.vw * A[i, 2]) for i, V in enumerate(m.V))
-            out["dR_ddelta"] = sum(V.T @ (m.vw * A[i, 0]) for i, V in enumerate(m.V))
+            nv = m.vw.size
+            ij = np.arange(3)[:, None, None] * nv + np.arange(nv)   # (3, 1, nV)
+            rows, cols = np.broadcast_arrays(ij, np.swapaxes(ij, 0, 1))   # (3, 3, nV)
+            Aw = sp.csr_matrix(((m.vw * A).ravel(), (rows.ravel(), cols.ravel())),
+                               shape=(3 * nv, 3 * nv))
+            out["Kc"] = -(m.VT @ Aw @ m.V)
+            out["dR_dw"] = -(m.VT @ (m.vw * A[:, 2]).ravel())
+            out["dR_ddelta"] = m.VT @ (m.vw * A[:, 0]).ravel()
         return out
 
     # --- residual and tangent ---------------------------------------------------------------
@@ -866,8 +868,8 @@ class SlidingModel:
     def solve_step(self, u0, w, delta, state, iface, dt, reference: float = 0.0):
         """Newton from u0 for the step ending at (w, delta); returns (u, out, its).
 
-        Converged when ||R|| <= tolerance x the norm of the contact facets'
-        nodal forces (`nonlinear.ContactScale`, ``reference`` that of the last
+        Converged when ||R|| <= tolerance x the norm of the contact's nodal
+        forces (`nonlinear.ContactScale`, ``reference`` that of the last
         accepted step) or at the round-off level of the internal forces.
         """
         return nonlinear.newton(_Step(self, w, delta, state, iface, dt, reference), u0,
