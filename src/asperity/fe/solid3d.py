@@ -168,7 +168,12 @@ class MeshSpec:
     tip_size: longest element edge within ``refine_radius`` of the
     refinement segment x in [refine_x0, refine_x1], y = 0, z = 0 (the top
     surface, reference coordinates); grading: growth of the longest edge
-    per unit distance beyond that.
+    per unit distance beyond that.  depth_grading: None, the finest region
+    is the ball of ``refine_radius`` about the segment; a number g_z, it is
+    the disc of ``refine_radius`` on the top surface, and the longest edge
+    grows as tip_size + sqrt((grading rho)^2 + (g_z z)^2), rho the lateral
+    distance beyond the disc and z the depth: the contact surface resolved
+    finely without filling the volume below it at the same size.
     """
 
     half_width: float
@@ -179,6 +184,7 @@ class MeshSpec:
     refine_x0: float = 0.0
     refine_x1: float = 0.0
     refine_radius: float = 0.0
+    depth_grading: float | None = None
 
     def __post_init__(self):
         for k in ("half_width", "depth", "coarse_size", "tip_size", "grading"):
@@ -189,17 +195,22 @@ class MeshSpec:
             raise ValueError("refine_x1 must be >= refine_x0")
         if not self.refine_radius >= 0:
             raise ValueError("refine_radius must be >= 0")
+        if self.depth_grading is not None and not (math.isfinite(self.depth_grading)
+                                                   and self.depth_grading > 0):
+            raise ValueError(f"mesh depth_grading must be positive, got {self.depth_grading!r}")
 
     @classmethod
     def for_hill(cls, geometry, contact_radius: float, preset: dict | None = None) -> "MeshSpec":
         """Default block of a hill: L = 1.4 x its footprint radius, D = its
         footprint radius, the finest elements within the preset's
-        ``refine_fraction`` x the contact radius estimate of the apex."""
+        ``refine_fraction`` x the contact radius estimate of the apex (a ball,
+        or a disc on the surface if the preset has a ``depth_grading``)."""
         p = resolve("sliding", "standard") if preset is None else preset
         ext = float(geometry.extent)
         return cls(half_width=1.4 * ext, depth=ext, coarse_size=p["coarse_fraction"] * ext,
                    tip_size=p["tip_fraction"] * contact_radius, grading=p["grading"],
-                   refine_radius=p["refine_fraction"] * contact_radius)
+                   refine_radius=p["refine_fraction"] * contact_radius,
+                   depth_grading=p.get("depth_grading"))
 
 
 @dataclass
@@ -220,8 +231,14 @@ def _refine(m: MeshTet, spec: MeshSpec, max_rounds: int = 80) -> MeshTet:
                     axis=0)
         c = p[:, t].mean(axis=1)
         xs = np.clip(c[0], spec.refine_x0, spec.refine_x1)
-        d = np.maximum(np.sqrt((c[0] - xs) ** 2 + c[1] ** 2 + c[2] ** 2) - spec.refine_radius, 0.0)
-        marked = np.nonzero(le > spec.tip_size + spec.grading * d)[0]
+        if spec.depth_grading is None:
+            d = np.maximum(np.sqrt((c[0] - xs) ** 2 + c[1] ** 2 + c[2] ** 2) - spec.refine_radius,
+                           0.0)
+            size = spec.tip_size + spec.grading * d
+        else:
+            rho = np.maximum(np.hypot(c[0] - xs, c[1]) - spec.refine_radius, 0.0)
+            size = spec.tip_size + np.hypot(spec.grading * rho, spec.depth_grading * c[2])
+        marked = np.nonzero(le > size)[0]
         if marked.size == 0:
             return m
         m = m.refined(marked)

@@ -13,7 +13,7 @@ from asperity.scene.units import Units, parses
 Config = Mapping[str, Any]
 
 #: mesh sizes a scene may override (relative to the contact radius estimate)
-MESH_KEYS = ("tip_fraction", "refine_fraction", "grading", "coarse_fraction")
+MESH_KEYS = ("tip_fraction", "refine_fraction", "grading", "coarse_fraction", "depth_grading")
 
 
 @dataclass(frozen=True)
