@@ -67,6 +67,28 @@ def test_the_sliding_and_uniaxial_materials_are_the_bodies_their_sections_descri
                                                damage=False)
 
 
+def test_the_sliding_section_mesh_overrides_the_preset_through_the_schema():
+    """A scene's ``sliding.mesh`` (every key of `MESH_KEYS`, depth_grading included)
+    passes the schema (filled_scene validates) and replaces the preset's value; the
+    preset's other keys are kept."""
+    from asperity.fe.presets import resolve
+    from asperity.scene.sliding import MESH_KEYS
+
+    mesh = {"tip_fraction": 0.3, "refine_fraction": 0.6, "grading": 0.4, "coarse_fraction": 0.3,
+            "depth_grading": 0.9}
+    assert set(mesh) == set(MESH_KEYS)
+    sliding = filled_scene({"units": {"length": "um", "pressure": "MPa"}, "sliding": {
+        "asperity": {"height": 2.0, "base_diameter": 10.0},
+        "material": {"model": "elastic", "youngs_modulus": 1.0, "poisson": 0.25},
+        "motion": {"approach": 0.125, "press_time": [0.0, 1.0], "slide": 1.0, "slide_time": [1.0, 2.0]},
+        "shear_resistance": {"c1": 0.5}, "slip_regularization": 0.01, "mesh": mesh}})["sliding"]
+    preset = Sliding.from_section(sliding, UNITS).preset("draft")
+    assert preset == {**resolve("sliding", "draft"), **mesh}
+    with pytest.raises(Exception, match="depth_grading"):
+        filled_scene({"units": {"length": "um", "pressure": "MPa"},
+                      "sliding": {**sliding, "mesh": {"depth_grading": -1.0}}})
+
+
 def test_the_sliding_junction_is_the_report_hill_sheared_at_the_steel_shear_strength():
     """`asperity_sliding_junction` is `asperity_sliding` with tau_s = c0 = k (3.21) and
     nothing else changed (the benchmark's ``--shear-strength 280`` runs exactly it), its
