@@ -12,7 +12,12 @@ Mesh (`MeshSpec`, `build_mesh`).  A uniform tensor grid of the box
 (`skfem.MeshTet.init_tensor`) and refined by longest-edge bisection until
 every element's longest edge is below ``tip_size + grading * d``, d the
 distance of its centroid beyond ``refine_radius`` from the apex (or from a
-segment along x through it).  The quadratic (10-node) mesh is then mapped
+segment along x through it); with ``depth_grading`` the finest region is
+the disc of ``refine_radius`` on the top surface and the edge grows by
+``depth_grading`` per unit depth below it, so the contact surface's
+vertices are fine without filling the volume under them (the `standard` and
+`fine` sliding presets: the contact area and force grow a ring of vertices
+at a time).  The quadratic (10-node) mesh is then mapped
 onto the body, vertices and edge midpoints alike (isoparametric P2
 elements, curved faces):
 
