@@ -75,11 +75,14 @@ STEP = re.compile(r"step (\d+): t = (\S+) s, w = (\S+) m, delta = (\S+) m, "
 REPORT_TRACTION = 64e6           # Pa, report 9.2
 
 #: the sliding presets the study was made on, kept as they were: `standard` then had
-#: a coarser mesh (4.3 k dofs) and `fine` the mesh `standard` has now (13 k dofs)
+#: a coarser mesh (4.3 k dofs) and `fine` the mesh `standard` had before a75dc29 (13 k
+#: dofs); both refine a ball about the apex (depth_grading None)
 STUDY_STANDARD = dict(tip_fraction=0.75, refine_fraction=0.5, grading=0.7, coarse_fraction=0.5,
+                      depth_grading=None,
                       normal_steps=8, tangential_steps=16, tolerance=1e-7, max_iterations=40,
                       max_cuts=10, max_inelastic_step=1.0)
 STUDY_FINE = dict(tip_fraction=0.5, refine_fraction=0.8, grading=0.5, coarse_fraction=0.35,
+                  depth_grading=None,
                   normal_steps=16, tangential_steps=32, tolerance=1e-8, max_iterations=40,
                   max_cuts=10, max_inelastic_step=0.1)
 #: ``--study``: name -> (preset, overrides of the scene's ``sliding`` section).  The
