@@ -794,6 +794,7 @@ class SlidingModel:
             rows, cols = np.broadcast_arrays(ij, np.swapaxes(ij, 0, 1))   # (3, 3, nV)
             Aw = sp.csr_matrix(((m.vw * A).ravel(), (rows.ravel(), cols.ravel())),
                                shape=(3 * nv, 3 * nv))
+            out["Aw"] = Aw
             out["Kc"] = -(m.VT @ Aw @ m.V)
             out["dR_dw"] = -(m.VT @ (m.vw * A[:, 2]).ravel())
             out["dR_ddelta"] = m.VT @ (m.vw * A[:, 0]).ravel()
@@ -849,19 +850,23 @@ class SlidingModel:
         penalty of its touching vertices) without friction; K1 what the friction
         law adds when every touching point slides along the flat's motion
         (``direction`` +1 or -1 along x) with a developed slip, |b| = 1e6 eps_b.
-        Both come from `jacobian`, and h of (3.21) enters (3.26, 3.27) linearly,
-        so s h is exactly K0 + s K1: with a friction coefficient mu (c1 = mu),
+        The contact tangents of both laws come from `contact`, and h of (3.21)
+        enters (3.26, 3.27) linearly, so s h is exactly K0 + s K1: with a friction coefficient mu (c1 = mu),
         mu_c = s mu is a critical coefficient of the discrete problem, where its
         solution stops being unique (Hassani, Hild, Ionescu and Sakki, Comput.
         Methods Appl. Mech. Engrg. 192 (2003) 4517-4531).  At it a Newton
         direction from an all-slipping iterate is unbounded, and near it
         arbitrarily large.
 
-        K1 acts on the dofs S of the touching facets only, so the pencil reduces
-        to the dense n_S x n_S matrix K1_SS (K0^-1)_SS: K0 + s K1 is singular
-        where s = -1 / lambda for one of its real eigenvalues lambda.  Returns
-        inf where there is no friction, no contact or no such s below
-        `CRITICAL_FACTOR_BOUND`.
+        K1 = -V^T N V, V the vertex operator (`HalfModel`) and N the weighted
+        contact tangents of the two laws' difference at the vertices (block
+        diagonal, ``Aw`` of `contact`); N has nonzero rows R (the tangential
+        components of the touching vertices) and columns C only.  So det(K0 +
+        s K1) = det K0 det(I - s N V K0^-1 V^T), and the pencil reduces to the
+        dense |R| x |R| matrix -N_RC (V K0^-1 V^T)_CR: one factorization of K0
+        and |R| solves.  K0 + s K1 is singular where s = -1 / lambda for one
+        of its real eigenvalues lambda.  Returns inf where there is no
+        friction, no contact or no such s below `CRITICAL_FACTOR_BOUND`.
         """
         c = out["contact"]
         if self.friction.frictionless or not np.any(c["tn"] > 0):
@@ -869,19 +874,18 @@ class SlidingModel:
         eps = self.friction.slip_regularization
         anchors = c["position"].copy()
         anchors[0] += math.copysign(DEVELOPED_SLIP * eps, direction)   # b = -direction e_x |b|
-        J = [self.jacobian(dict(out, contact=self.contact(u, w, delta, anchors, friction=law)))
-             for law in (FrictionLaw(ShearResistance(), eps), self.friction)]
-        K0 = J[0].tocsc()
-        K1 = (J[1] - J[0]).tocsr()
-        K1.eliminate_zeros()
-        rows, cols = K1.nonzero()
-        S = np.union1d(rows, cols)
-        if S.size == 0:
+        c0, c1 = (self.contact(u, w, delta, anchors, friction=law)
+                  for law in (FrictionLaw(ShearResistance(), eps), self.friction))
+        N = (c1["Aw"] - c0["Aw"]).tocsr()
+        N.eliminate_zeros()
+        rows, cols = N.nonzero()
+        R, C = np.unique(rows), np.unique(cols)
+        if R.size == 0:
             return math.inf
-        E = np.zeros((K0.shape[0], S.size))
-        E[S, np.arange(S.size)] = 1.0
-        G = spl.splu(K0).solve(E)[S]
-        lam = np.linalg.eigvals(K1[S][:, S].toarray() @ G)
+        K0 = self.jacobian(dict(out, contact=c0))
+        V = self.m.V
+        W = V[C] @ spl.splu(K0).solve(V[R].T.toarray())           # (V K0^-1 V^T)_CR
+        lam = np.linalg.eigvals(-(N[R][:, C].toarray() @ W))
         real = lam[(lam.imag == 0.0) & (lam.real < 0.0)].real
         s = -1.0 / real
         s = s[s <= CRITICAL_FACTOR_BOUND]
