@@ -216,7 +216,7 @@ class MeshSpec:
         return cls(half_width=1.4 * ext, depth=ext, coarse_size=p["coarse_fraction"] * ext,
                    tip_size=p["tip_fraction"] * contact_radius, grading=p["grading"],
                    refine_radius=p["refine_fraction"] * contact_radius,
-                   depth_grading=p.get("depth_grading"))
+                   depth_grading=p["depth_grading"])
 
 
 @dataclass
@@ -795,8 +795,7 @@ class SlidingModel:
             rows, cols = np.broadcast_arrays(ij, np.swapaxes(ij, 0, 1))   # (3, 3, nV)
             Aw = sp.csr_matrix(((m.vw * A).ravel(), (rows.ravel(), cols.ravel())),
                                shape=(3 * nv, 3 * nv))
-            out["Aw"] = Aw
-            out["Kc"] = -(m.VT @ Aw @ m.V)
+            out["Aw"] = Aw                                          # the tangent: -V^T Aw V
             out["dR_dw"] = -(m.VT @ (m.vw * A[:, 2]).ravel())
             out["dR_ddelta"] = m.VT @ (m.vw * A[:, 0]).ravel()
         return out
@@ -821,7 +820,7 @@ class SlidingModel:
             if bad.size:
                 Ke = m.element_matrices(D, bad) - self.Ke_el[bad]
                 data += m._scatter(bad, Ke)
-        return (m.matrix(data) + out["contact"]["Kc"]).tocsc()
+        return (m.matrix(data) - m.VT @ out["contact"]["Aw"] @ m.V).tocsc()
 
     def predict(self, u, out, dw, ddelta) -> np.ndarray:
         """Euler predictor: u + du with K du = -(dR/dw dw + dR/ddelta ddelta),
@@ -852,9 +851,10 @@ class SlidingModel:
         law adds when every touching point slides along the flat's motion
         (``direction`` +1 or -1 along x) with a developed slip, |b| = 1e6 eps_b.
         The contact tangents of both laws come from `contact`, and h of (3.21)
-        enters (3.26, 3.27) linearly, so s h is exactly K0 + s K1: with a friction coefficient mu (c1 = mu),
-        mu_c = s mu is a critical coefficient of the discrete problem, where its
-        solution stops being unique (Hassani, Hild, Ionescu and Sakki, Comput.
+        enters (3.26, 3.27) linearly, so s h is exactly K0 + s K1: with a
+        friction coefficient mu (c1 = mu), mu_c = s mu is a critical
+        coefficient of the discrete problem, where its solution stops being
+        unique (Hassani, Hild, Ionescu and Sakki, Comput.
         Methods Appl. Mech. Engrg. 192 (2003) 4517-4531).  At it a Newton
         direction from an all-slipping iterate is unbounded, and near it
         arbitrarily large.
