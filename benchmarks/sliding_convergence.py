@@ -310,7 +310,8 @@ def _history(preset: str, out: Path) -> dict | None:
               "step_cuts")}
         h["phase"] = ds["phase"].values.astype(str)
         a = ds.attrs
-        h.update(completed=bool(a["completed"]), dofs=int(a["dofs"]), steps=int(a["steps"]),
+        h.update(completed=bool(a["completed"]), stop_reason=str(a.get("stop_reason", "")),
+                 dofs=int(a["dofs"]), steps=int(a["steps"]),
                  cuts=int(a["total_step_cuts"]), newton=int(a["total_newton_iterations"]),
                  cpu_time=float(a["cpu_time"]), contact_facets=int(a["contact_facets"]),
                  tip_element_size=float(a["tip_element_size"]),

@@ -431,6 +431,37 @@ def test_failure_names_the_step():
                       accuracy=dict(base="draft", max_iterations=1, max_cuts=1, tolerance=1e-14))
 
 
+def test_a_stalled_run_stops_and_keeps_its_steps(caplog):
+    """A run whose steps stay under stall_fraction of their cap for stall_steps steps in
+    a row stops there: completed 0, stop_reason with the step, time and the steps the
+    rest would take at that pace, the steps so far identical to those of the same run
+    stopped by max_steps, and the figure says so.  Here every step counts as slow
+    (fraction 0.999): the first two are half and three quarters of the cap 100 s / 6,
+    t = 20.8333 s, 10.4167 s a step, 179.167 s left: 17.2 steps."""
+    mot = FlatMotion.press_and_slide(0.05e-6, 0.1e-6, (0.0, 100.0), (100.0, 200.0))
+    law = FrictionLaw(ShearResistance.coulomb(0.3), 1e-8)
+    with caplog.at_level("WARNING", logger="asperity.fe.solid3d"):
+        ds = solve_sliding(HILL, BodnerPartom.sae_1020(), mot, law, accuracy="draft",
+                           stall_steps=2, stall_fraction=0.999)
+    ref = solve_sliding(HILL, BodnerPartom.sae_1020(), mot, law, accuracy="draft", max_steps=2)
+    assert ds.attrs["completed"] == 0 == ref.attrs["completed"]
+    assert ds.attrs["stop_reason"].startswith(
+        "stalled at step 2 (t = 20.8333 s, delta = 0 m): the last 2 steps advanced 10.4 s "
+        "each on average, under 0.999 of the step cap 16.67 s; the remaining 179.167 s "
+        "would take about 17.2 more steps")
+    assert ref.attrs["stop_reason"] == "max_steps (2) reached at t = 20.8333 s"
+    assert "stalled at step 2" in caplog.text
+    for name in ("time", "normal_force", "tangential_force", "contact_area"):
+        np.testing.assert_array_equal(ds[name].values, ref[name].values)
+    assert ds.sizes["step"] == 3
+    from asperity.plots.sliding import sliding_figure
+    fig = sliding_figure(ds)
+    assert "stopped at t = 21 s of 200 s (stop_reason)" in fig.axes[0].get_title()
+    plt.close(fig)
+    with pytest.raises(ValueError, match="stall_steps must be >= 1"):
+        solve_sliding(HILL, BodnerPartom.sae_1020(), mot, law, accuracy="draft", stall_steps=0)
+
+
 @pytest.mark.slow
 def test_viscoplastic_asperity_press_and_slide(caplog):
     """SAE 1020 hill (report 8.2.1, 9.2) pressed 0.05 um and slid 0.1 um at the
@@ -442,7 +473,7 @@ def test_viscoplastic_asperity_press_and_slide(caplog):
     law = FrictionLaw(ShearResistance.coulomb(20.0), 1e-8)
     with caplog.at_level("WARNING", logger="asperity.fe.solid3d"):
         ds = solve_sliding(HILL, BodnerPartom.sae_1020(), mot, law, accuracy="draft")
-    assert ds.attrs["completed"] == 1
+    assert ds.attrs["completed"] == 1 and ds.attrs["stop_reason"] == ""
     for name in ("normal_force", "tangential_force", "max_inelastic_strain"):
         assert np.all(np.isfinite(ds[name].values))
     press = ds["phase"].values == "normal"

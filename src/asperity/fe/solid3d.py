@@ -163,6 +163,13 @@ CRITICAL_FACTOR_BOUND = 1e3
 #: "at the junction": the largest inelastic strain lies less than this
 #: fraction of the equivalent contact radius sqrt(A / pi) below the flat
 JUNCTION_DEPTH_FRACTION = 0.25
+#: a run has stalled when this many accepted steps in a row each advanced less
+#: than STALL_FRACTION of their segment's step cap: at that pace the rest of the
+#: motion would take thousands of steps (report 9.2's mu = 20 past the critical
+#: coefficient, README "Sliding of one asperity"); the run stops there with
+#: ``completed`` 0.  No run that went on to finish had more than 10 such steps
+#: in a row; the stalled ones 13 to 40 before they were stopped by hand.
+STALL_STEPS, STALL_FRACTION = 20, 1e-3
 
 # ----------------------------------------------------------------------------- mesh
 @dataclass(frozen=True)
@@ -1002,7 +1009,8 @@ def solve_sliding(geometry, material, motion: FlatMotion, friction: FrictionLaw,
                   accuracy="standard", mesh: MeshSpec | None = None,
                   contact_radius: float | None = None, penalty_factor: float = PENALTY_FACTOR_3D,
                   volumetric: str = "mean",
-                  max_steps: int = 100_000,
+                  max_steps: int = 100_000, stall_steps: int = STALL_STEPS,
+                  stall_fraction: float = STALL_FRACTION,
                   snapshots: dict | None = None, progress=None) -> xr.Dataset:
     """A 3-D asperity pressed and slid by the rigid flat (report 9.2).
 
@@ -1029,6 +1037,14 @@ def solve_sliding(geometry, material, motion: FlatMotion, friction: FrictionLaw,
         intersection radius at the largest approach); sizes the tip
         elements and the candidate contact zone (2.5 r + the sliding
         distance).
+    max_steps
+        stop after this many accepted steps (attribute ``completed`` 0).
+    stall_steps, stall_fraction
+        stop (``completed`` 0, with a warning) once `stall_steps` accepted steps in a row
+        each advanced less than `stall_fraction` of their segment's step cap (the
+        segment's duration over the preset's steps for it): the solver has stalled,
+        as past the junction's critical friction coefficient; the steps so far are
+        kept.
     snapshots
         {name: time}: the displacements and inelastic strain on the
         symmetry plane at these times (default: end of pressing and end).
@@ -1038,9 +1054,14 @@ def solve_sliding(geometry, material, motion: FlatMotion, friction: FrictionLaw,
     Returns an `xarray.Dataset`: per step (dim ``step``) the variables of
     `OUTPUTS`; the symmetry-plane section (dims ``plane_node``,
     ``plane_triangle``, ``corner``, ``snapshot``); attributes describing
-    the mesh, the solver and where the largest deformation sits.
+    the mesh, the solver and where the largest deformation sits;
+    ``completed`` (0 if the run stopped before the end of the motion) with
+    ``stop_reason``.
     """
     t_start = time.perf_counter()
+    if not (int(stall_steps) >= 1 and 0.0 <= stall_fraction < 1.0):
+        raise ValueError(f"stall_steps must be >= 1 and stall_fraction in [0, 1), got "
+                         f"{stall_steps} and {stall_fraction}")
     preset = resolve("sliding", accuracy)
     w_knots = np.asarray(motion.normal, float)
     d_knots = np.asarray(motion.tangential, float)
@@ -1102,11 +1123,13 @@ def solve_sliding(geometry, material, motion: FlatMotion, friction: FrictionLaw,
     dt = caps[motion.segment(t)] / 2.0
     n = 0
     critical, warned = [], False       # critical_factor at the starts of sliding and after
+    slow, stop_reason = 0, ""          # steps in a row below stall_fraction of their cap
     while t < motion.end * (1 - 1e-12) and n < max_steps:
         n += 1
         step_start = time.perf_counter()
         cuts, iterations = StepCuts(n, max_cuts), 0
         phase = motion.phase(t)
+        cap = caps[motion.segment(t)]
         while True:
             t_new = next_time(t, min(dt, caps[motion.segment(t)]), motion.next_knot(t))
             h = t_new - t
@@ -1175,6 +1198,19 @@ def solve_sliding(geometry, material, motion: FlatMotion, friction: FrictionLaw,
                             "expect step cuts, stalls and forces that depend on the mesh",
                             t, _critical_text(s_c, friction))
         dt = strain_limited(PACE.factor(iterations, cuts.count) * h, h, step_inel, max_inel)
+        slow = slow + 1 if h < stall_fraction * cap else 0
+        if slow >= stall_steps and t < motion.end * (1 - 1e-12):
+            pace = (t - rows[-stall_steps - 1]["time"]) / stall_steps
+            stop_reason = (
+                f"stalled at step {n} (t = {t:.6g} s, delta = {delta:.4g} m): the last "
+                f"{stall_steps} steps advanced {pace:.3g} s each on average, under "
+                f"{stall_fraction:g} of the step cap {cap:.4g} s; the remaining "
+                f"{motion.end - t:.6g} s would take about {(motion.end - t) / pace:.3g} more "
+                "steps" + (f"; smallest critical factor {_critical_text(min(critical), friction)}"
+                           if critical else ""))
+            log.warning("%s", stop_reason)
+            say(f"stopped: {stop_reason}")
+            break
 
     total = time.perf_counter() - t_start
     head = dataset({name: np.array([r[name] for r in rows]) for name in OUTPUTS}, geometry,
@@ -1197,6 +1233,8 @@ def solve_sliding(geometry, material, motion: FlatMotion, friction: FrictionLaw,
         total_newton_iterations=int(sum(r["newton_iterations"] for r in rows)),
         factorizations=int(sm.linear.factorizations), krylov_solves=int(sm.linear.krylov_solves),
         completed=int(t >= motion.end * (1 - 1e-12)),
+        stop_reason=stop_reason or ("" if t >= motion.end * (1 - 1e-12) else
+                                    f"max_steps ({max_steps}) reached at t = {t:.6g} s"),
         mesh_wall_time=t_mesh, total_wall_time=total))
 
 

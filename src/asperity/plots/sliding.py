@@ -57,6 +57,10 @@ def sliding_figure(ds: xr.Dataset, length_unit: str = "um") -> plt.Figure:
     if s_c is not None and s_c < 1.0:
         notes.append(f"not unique while sliding: the junction's tangent turns singular at\n"
                      f"{s_c:.2g} times the shear resistance (the critical friction coefficient)")
+    if not ds.attrs.get("completed", 1):
+        notes.append(f"stopped at t = {t[-1]:.0f} s of {times[-1]:.0f} s (stop_reason)"
+                     if times.size else "stopped before the end (stop_reason)")
+        ax_f.set_xlim(right=times[-1] if times.size else None)
     ax_f.set_title("\n".join(["Fig. 9.4: forces on the asperity (whole body)"] + notes),
                    fontsize=9)
     w_end = float(ds["normal_displacement"].values[-1])
