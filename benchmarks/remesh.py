@@ -19,6 +19,13 @@ that the presets can be run separately: fine takes minutes)::
 
     python benchmarks/remesh.py --cases j2_sphere --presets standard fine --remesh on off
     python benchmarks/remesh.py --cases viscoplastic_hill --presets standard --remesh on off
+
+``--mesh-levels COUNT REACH`` adapts the fixed mesh to COUNT elastic solutions up to REACH
+times the largest interference (the driver's default: 6 up to 1): the elastic contact
+edge at w_max lies well inside the plastic one (a sphere: sqrt(R w) against nearly
+sqrt(2 R w)), so with REACH 2 the refined band covers the plastic edge::
+
+    python benchmarks/remesh.py --cases j2_sphere viscoplastic_hill --presets standard --remesh off --mesh-levels 12 2
 """
 
 from __future__ import annotations
@@ -36,7 +43,7 @@ import numpy as np
 from asperity.fe import J2Plasticity, Sphere
 from asperity.fe.bodner_partom import BodnerPartom
 from asperity.fe.geometry import CosineHill
-from asperity.fe.inelastic import History, solve_asperity_history
+from asperity.fe.inelastic import MESH_RANGE, History, solve_asperity_history
 
 OUT = Path(__file__).with_name("results") / "remesh.json"
 
@@ -45,25 +52,37 @@ Y = E / 400
 W_C = (math.pi * 1.6 * Y / (2 * E / (1 - NU**2))) ** 2
 
 
-def j2_sphere(accuracy):
+def levels(w_max: float, spec) -> np.ndarray | None:
+    """The elastic interferences of the one-off mesh: the driver's default (None), or
+    (count, reach) levels spread geometrically from MESH_RANGE w_max to reach w_max."""
+    if spec is None:
+        return None
+    count, reach = spec
+    return np.geomspace(MESH_RANGE * w_max, reach * w_max, count)
+
+
+def j2_sphere(accuracy, mesh=None):
+    w_max = 50 * W_C
     return solve_asperity_history(Sphere(1.0), J2Plasticity(E, NU, Y),
-                                  History.loading(50 * W_C, 1.0), accuracy=accuracy)
+                                  History.loading(w_max, 1.0), accuracy=accuracy,
+                                  mesh_levels=levels(w_max, mesh))
 
 
-def viscoplastic_hill(accuracy):
+def viscoplastic_hill(accuracy, mesh=None):
     ratio = np.pi / (np.sqrt(2.0) * 0.160)
     hill = CosineHill.from_aspect(ratio, 2.0 * np.pi**2 / (ratio**2 * 0.042e6))
+    w_max = 0.1 * hill.height
     return solve_asperity_history(hill, BodnerPartom.sae_1020(),
-                                  History.load_unload(0.1 * hill.height, 0.25e-6),
-                                  accuracy=accuracy)
+                                  History.load_unload(w_max, 0.25e-6),
+                                  accuracy=accuracy, mesh_levels=levels(w_max, mesh))
 
 
 CASES = {"j2_sphere": j2_sphere, "viscoplastic_hill": viscoplastic_hill}
 
 
-def run(case: str, preset: str, remesh: bool) -> dict:
+def run(case: str, preset: str, remesh: bool, mesh=None) -> dict:
     t0 = time.process_time()
-    ds = CASES[case](dict(base=preset, remesh=remesh))
+    ds = CASES[case](dict(base=preset, remesh=remesh), mesh)
     cpu = time.process_time() - t0
     k = int(np.argmax(ds.interference.values))
     return dict(
@@ -104,12 +123,21 @@ def main(argv=None):
     ap.add_argument("--presets", nargs="+", default=["standard", "fine"])
     ap.add_argument("--remesh", nargs="+", default=["on"], choices=["on", "off"],
                     help="remeshing on, off (the fixed mesh) or both")
+    ap.add_argument("--mesh-levels", nargs=2, type=float, metavar=("COUNT", "REACH"),
+                    help="the fixed mesh adapted to COUNT elastic solutions from "
+                    f"{MESH_RANGE:g} to REACH times the largest interference instead of the "
+                    "driver's default (runs recorded as <case>/<preset>/fixed-<COUNT>x<REACH>)")
     args = ap.parse_args(argv)
+    mesh = None if args.mesh_levels is None else (int(args.mesh_levels[0]),
+                                                  args.mesh_levels[1])
+    suffix = "" if mesh is None else f"-{mesh[0]}x{mesh[1]:g}"
     for case in args.cases:
         for preset in args.presets:
             for remesh in [m == "on" for m in args.remesh]:
-                key = f"{case}/{preset}/{'remesh' if remesh else 'fixed'}"
-                r = run(case, preset, remesh)
+                if remesh and mesh is not None:
+                    ap.error("--mesh-levels sets the fixed mesh: give --remesh off")
+                key = f"{case}/{preset}/{'remesh' if remesh else 'fixed'}{suffix}"
+                r = run(case, preset, remesh, mesh)
                 record = _read()  # other presets may run at the same time
                 record["runs"][key] = r
                 print(f"{key:<36s} {r['cpu_seconds']:8.1f} s CPU  {r['steps']:4d} steps  "
@@ -140,6 +168,26 @@ def main(argv=None):
             cpu_remesh_over_fixed=on["cpu_seconds"] / off["cpu_seconds"],
             steps_remesh=on["steps"], steps_fixed=off["steps"],
             force_at_top_remesh_over_fixed=on["force_at_top"] / off["force_at_top"] - 1)
+    for key in sorted(k for k in runs if k.startswith("j2_sphere/standard/fixed-")):
+        mode = key.rsplit("/", 1)[1]
+        s, f = runs[key], runs.get(f"j2_sphere/fine/{mode}")
+        if f:
+            summary[f"j2_sphere_{mode}"] = dict(
+                cpu_fine_over_standard=f["cpu_seconds"] / s["cpu_seconds"],
+                standard_against_fine=compare(s, f))
+        if runs.get("j2_sphere/fine/fixed"):
+            summary[f"j2_sphere_standard_{mode}_against_fine_fixed"] = compare(
+                s, runs["j2_sphere/fine/fixed"])
+        if f and runs.get("j2_sphere/fine/fixed"):
+            summary[f"j2_sphere_fine_{mode}_against_fine_fixed"] = compare(
+                f, runs["j2_sphere/fine/fixed"])
+    for key in sorted(k for k in runs if k.startswith("viscoplastic_hill/standard/fixed-")):
+        off = runs.get("viscoplastic_hill/standard/fixed")
+        if off:
+            summary[f"viscoplastic_hill_standard_{key.rsplit('/', 1)[1]}"] = dict(
+                cpu_over_fixed=runs[key]["cpu_seconds"] / off["cpu_seconds"],
+                steps=runs[key]["steps"], steps_fixed=off["steps"],
+                force_at_top_over_fixed=runs[key]["force_at_top"] / off["force_at_top"] - 1)
     fixed_fine = runs.get("j2_sphere/fine/fixed")
     if fixed_fine and runs.get("j2_sphere/fine/remesh"):
         summary["j2_sphere_fine_remesh_against_fine_fixed"] = compare(
