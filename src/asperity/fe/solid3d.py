@@ -109,7 +109,11 @@ time (`FlatMotion`); steps end on its knots; a step is cut in half when
 Newton fails, gives non-finite values or the local update fails, or when
 the equivalent inelastic strain changed anywhere by more than
 ``max_inelastic_step``; the time step grows back (x1.5) after easy steps,
-up to the preset's cap (the segment's duration / its step count).
+up to the preset's cap (the segment's duration / its step count).  A run
+whose accepted steps stay under ``STALL_FRACTION`` of their cap for
+``STALL_STEPS`` steps in a row has stalled (past the critical coefficient,
+above): it stops there with ``completed`` 0 and ``stop_reason``, keeping its
+steps, instead of grinding on at that pace.
 """
 
 from __future__ import annotations
