@@ -435,7 +435,7 @@ def test_a_stalled_run_stops_and_keeps_its_steps(caplog):
     """A run whose steps stay under stall_fraction of their cap for stall_steps steps in
     a row stops there: completed 0, stop_reason with the step, time and the steps the
     rest would take at that pace, the steps so far identical to those of the same run
-    stopped by max_steps, and the figure says so.  Here every step counts as slow
+    stopped by max_steps, the section "end" its last state, and the figure says so.  Here every step counts as slow
     (fraction 0.999): the first two are half and three quarters of the cap 100 s / 6,
     t = 20.8333 s, 10.4167 s a step, 179.167 s left: 17.2 steps."""
     mot = FlatMotion.press_and_slide(0.05e-6, 0.1e-6, (0.0, 100.0), (100.0, 200.0))
@@ -454,6 +454,7 @@ def test_a_stalled_run_stops_and_keeps_its_steps(caplog):
     for name in ("time", "normal_force", "tangential_force", "contact_area"):
         np.testing.assert_array_equal(ds[name].values, ref[name].values)
     assert ds.sizes["step"] == 3
+    assert float(ds["snapshot_time"].sel(snapshot="end")) == ds["time"].values[-1]
     from asperity.plots.sliding import sliding_figure
     fig = sliding_figure(ds)
     assert "stopped at t = 21 s of 200 s (stop_reason)" in fig.axes[0].get_title()

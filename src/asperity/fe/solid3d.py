@@ -113,7 +113,8 @@ up to the preset's cap (the segment's duration / its step count).  A run
 whose accepted steps stay under ``STALL_FRACTION`` of their cap for
 ``STALL_STEPS`` steps in a row has stalled (past the critical coefficient,
 above): it stops there with ``completed`` 0 and ``stop_reason``, keeping its
-steps, instead of grinding on at that pace.
+steps (the section "end" is then its last state), instead of grinding on at
+that pace.
 """
 
 from __future__ import annotations
@@ -1216,6 +1217,8 @@ def solve_sliding(geometry, material, motion: FlatMotion, friction: FrictionLaw,
             say(f"stopped: {stop_reason}")
             break
 
+    if "end" in snap_times and "end" not in snap:  # a run stopped early: its last state
+        snap["end"] = (t, _snapshot(model, u, state), {})
     total = time.perf_counter() - t_start
     head = dataset({name: np.array([r[name] for r in rows]) for name in OUTPUTS}, geometry,
                    material, accuracy, preset, "time step index")
