@@ -1212,7 +1212,10 @@ def solve_sliding(geometry, material, motion: FlatMotion, friction: FrictionLaw,
                 f"{stall_fraction:g} of the step cap {cap:.4g} s; the remaining "
                 f"{motion.end - t:.6g} s would take about {(motion.end - t) / pace:.3g} more "
                 "steps" + (f"; smallest critical factor {_critical_text(min(critical), friction)}"
-                           if critical else ""))
+                           if critical else "")
+                + ("; past it the sliding problem is not unique: a lower shear resistance, "
+                   "or a constant shear strength (asperity_sliding_junction), slides"
+                   if critical and min(critical) < 1.0 else ""))
             log.warning("%s", stop_reason)
             say(f"stopped: {stop_reason}")
             break
