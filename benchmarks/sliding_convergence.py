@@ -513,6 +513,44 @@ def study(out: Path, until: float, path: Path) -> dict:
     return res
 
 
+def stalls(names, out: Path, law: dict | None, study: bool) -> list:
+    """Per run log in `out`: the longest streak of accepted steps that each advanced less
+    than `solid3d.STALL_FRACTION` of their segment's step cap (STALL_STEPS of them stop a
+    run), the step where it ended, and how the run ended (finished, reached its --until,
+    or stopped: by hand, --timeout or a stall)."""
+    from asperity.fe.presets import resolve
+    from asperity.fe.solid3d import STALL_FRACTION, step_caps
+    from asperity.scene import Sliding, Units
+
+    sc = scene()
+    rows = []
+    for name in names:
+        log = out / f"{slug(name)}.log"
+        if not log.exists():
+            continue
+        preset, overrides = STUDY[name] if study else (name, {})
+        if law is not None:
+            overrides = dict(overrides, shear_resistance=law)
+        s = Sliding.from_section(study_section(sc["sliding"], overrides),
+                                 Units.from_section(sc["units"]))
+        motion = s.motion()
+        caps = step_caps(motion, resolve("sliding", s.preset(preset)))
+        text = log.read_text()
+        t = np.array([motion.start] + [float(m.group(2)) for m in STEP.finditer(text)])
+        slow = np.diff(t) < STALL_FRACTION * np.array([caps[motion.segment(x)] for x in t[:-1]])
+        longest = end = run = 0
+        for k, flag in enumerate(slow, start=1):
+            run = run + 1 if flag else 0
+            if run > longest:
+                longest, end = run, k
+        rows.append(dict(run=name, steps=int(slow.size), longest_slow_streak=longest,
+                         ending_at_step=end,
+                         end=("finished" if t[-1] >= motion.end * (1 - 1e-9) else
+                              "reached its --until" if re.search(r"^reached:", text, flags=re.M)
+                              else "stopped")))
+    return rows
+
+
 def shear_law(coefficient: float | None, strength: float | None):
     """The scene's ``shear_resistance`` replaced by a friction coefficient or a constant
     shear strength [MPa] (report 3.21: c1 = mu, or c0 = k ramped in over the pressures
@@ -546,6 +584,8 @@ def main(argv=None) -> int:
                        "instead of the report's 20 (runs in <out>-mu<mu>)")
     other.add_argument("--shear-strength", type=float, help="a junction of constant shear "
                        "strength c0 [MPa] instead of mu = 20 (runs in <out>-k<c0>)")
+    ap.add_argument("--stalls", action="store_true", help="only report, per run log in --out, "
+                    "the longest streak of steps under solid3d.STALL_FRACTION of their cap")
     ap.add_argument("--worker", help=argparse.SUPPRESS)
     a = ap.parse_args(argv)
     if a.study and a.until is None:
@@ -560,6 +600,12 @@ def main(argv=None) -> int:
     a.out.mkdir(parents=True, exist_ok=True)
     if a.worker:
         worker(a.worker, a.out, until, law, a.study)
+        return 0
+    if a.stalls:
+        for r in stalls(list(STUDY) if a.study else a.presets, a.out, law, a.study):
+            print(f"{a.out.name}/{slug(r['run'])}: {r['steps']} steps, longest streak under "
+                  f"the stall fraction {r['longest_slow_streak']} (ending at step "
+                  f"{r['ending_at_step']}), {r['end']}")
         return 0
     if a.study:
         if not a.reuse:

@@ -172,8 +172,9 @@ JUNCTION_DEPTH_FRACTION = 0.25
 #: than STALL_FRACTION of their segment's step cap: at that pace the rest of the
 #: motion would take thousands of steps (report 9.2's mu = 20 past the critical
 #: coefficient, README "Sliding of one asperity"); the run stops there with
-#: ``completed`` 0.  No run that went on to finish had more than 10 such steps
-#: in a row; the stalled ones 13 to 40 before they were stopped by hand.
+#: ``completed`` 0.  No run of the sliding benchmarks that finished or reached its
+#: target had more than 12 such steps in a row; stopped by hand, the stalled mu = 20
+#: runs had 13 to 42 (``benchmarks/sliding_convergence.py --stalls``, README).
 STALL_STEPS, STALL_FRACTION = 20, 1e-3
 
 # ----------------------------------------------------------------------------- mesh
@@ -1010,6 +1011,21 @@ def _snapshot(model: HalfModel, u, state) -> dict:
     return dict(ux=nd[0], uz=nd[2], ep=ep)
 
 
+def step_caps(motion: FlatMotion, preset: dict) -> list:
+    """The largest time step [s] of each segment of `motion`: its duration over the
+    preset's ``tangential_steps`` where the flat slides, else its ``normal_steps``."""
+    times = np.asarray(motion.times, float)
+    w_knots = np.asarray(motion.normal, float)
+    d_knots = np.asarray(motion.tangential, float)
+    caps = []
+    for i in range(len(times) - 1):
+        kind = ("sliding" if d_knots[i + 1] != d_knots[i] else
+                "normal" if w_knots[i + 1] != w_knots[i] else "hold")
+        n = preset["tangential_steps"] if kind == "sliding" else preset["normal_steps"]
+        caps.append((times[i + 1] - times[i]) / max(int(n), 1))
+    return caps
+
+
 def solve_sliding(geometry, material, motion: FlatMotion, friction: FrictionLaw,
                   accuracy="standard", mesh: MeshSpec | None = None,
                   contact_radius: float | None = None, penalty_factor: float = PENALTY_FACTOR_3D,
@@ -1092,12 +1108,7 @@ def solve_sliding(geometry, material, motion: FlatMotion, friction: FrictionLaw,
 
     # --- time stepping --------------------------------------------------------------------------
     times = np.asarray(motion.times, float)
-    caps = []
-    for i in range(len(times) - 1):
-        kind = ("sliding" if d_knots[i + 1] != d_knots[i] else
-                "normal" if w_knots[i + 1] != w_knots[i] else "hold")
-        n = preset["tangential_steps"] if kind == "sliding" else preset["normal_steps"]
-        caps.append((times[i + 1] - times[i]) / max(int(n), 1))
+    caps = step_caps(motion, preset)
     max_inel = float(preset["max_inelastic_step"])
     max_cuts = int(preset["max_cuts"])
     if snapshots is None:
