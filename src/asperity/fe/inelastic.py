@@ -695,6 +695,11 @@ def solve_asperity_history(geometry, material, history: History, accuracy="stand
         to the largest, so that the mesh also resolves the small contacts of
         first touch and of the end of unloading.  With ``remesh`` on, the
         first mesh is the one for the elastic contact at the smallest level.
+        The elastic contact edge at the largest level lies inside a plastic
+        one (a sphere: sqrt(R w) against up to sqrt(2 R w)); levels up to
+        2 x the largest interference refine where the plastic edge goes
+        (README, "Meshes that follow the contact": 12 levels to 2 w_max put
+        a J2 sphere's area at standard within 0.1 % of fine at 50 w_c).
     stop_at_zero_force
         on unloading, stop once the force vanishes (falls below
         ``ZERO_FORCE`` x the largest force; the crossing is
