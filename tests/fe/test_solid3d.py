@@ -435,9 +435,10 @@ def test_a_stalled_run_stops_and_keeps_its_steps(caplog):
     """A run whose steps stay under stall_fraction of their cap for stall_steps steps in
     a row stops there: completed 0, stop_reason with the step, time and the steps the
     rest would take at that pace, the steps so far identical to those of the same run
-    stopped by max_steps, the section "end" its last state, and the figure says so.  Here every step counts as slow
-    (fraction 0.999): the first two are half and three quarters of the cap 100 s / 6,
-    t = 20.8333 s, 10.4167 s a step, 179.167 s left: 17.2 steps."""
+    stopped by max_steps, the section "end" its last state, and the figure says so.
+    Here every step counts as slow (fraction 0.999): the first two are half and three
+    quarters of the cap 100 s / 6, t = 20.8333 s, 10.4167 s a step, 179.167 s left:
+    17.2 steps."""
     mot = FlatMotion.press_and_slide(0.05e-6, 0.1e-6, (0.0, 100.0), (100.0, 200.0))
     law = FrictionLaw(ShearResistance.coulomb(0.3), 1e-8)
     with caplog.at_level("WARNING", logger="asperity.fe.solid3d"):

@@ -1147,7 +1147,7 @@ def solve_sliding(geometry, material, motion: FlatMotion, friction: FrictionLaw,
         phase = motion.phase(t)
         cap = caps[motion.segment(t)]
         while True:
-            t_new = next_time(t, min(dt, caps[motion.segment(t)]), motion.next_knot(t))
+            t_new = next_time(t, min(dt, cap), motion.next_knot(t))
             h = t_new - t
             w_new, d_new = motion(t_new)
             reason = None
@@ -1215,7 +1215,7 @@ def solve_sliding(geometry, material, motion: FlatMotion, friction: FrictionLaw,
                             t, _critical_text(s_c, friction))
         dt = strain_limited(PACE.factor(iterations, cuts.count) * h, h, step_inel, max_inel)
         slow = slow + 1 if h < stall_fraction * cap else 0
-        if slow >= stall_steps and t < motion.end * (1 - 1e-12):
+        if slow >= stall_steps and t < motion.end * (1 - 1e-12):  # not on the last step
             pace = (t - rows[-stall_steps - 1]["time"]) / stall_steps
             stop_reason = (
                 f"stalled at step {n} (t = {t:.6g} s, delta = {delta:.4g} m): the last "
@@ -1231,6 +1231,9 @@ def solve_sliding(geometry, material, motion: FlatMotion, friction: FrictionLaw,
             say(f"stopped: {stop_reason}")
             break
 
+    completed = t >= motion.end * (1 - 1e-12)
+    if not stop_reason and not completed:
+        stop_reason = f"max_steps ({max_steps}) reached at t = {t:.6g} s"
     if "end" in snap_times and "end" not in snap:  # a run stopped early: its last state
         snap["end"] = (t, _snapshot(model, u, state), {})
     total = time.perf_counter() - t_start
@@ -1253,9 +1256,7 @@ def solve_sliding(geometry, material, motion: FlatMotion, friction: FrictionLaw,
         steps=len(rows) - 1, total_step_cuts=int(sum(r["step_cuts"] for r in rows)),
         total_newton_iterations=int(sum(r["newton_iterations"] for r in rows)),
         factorizations=int(sm.linear.factorizations), krylov_solves=int(sm.linear.krylov_solves),
-        completed=int(t >= motion.end * (1 - 1e-12)),
-        stop_reason=stop_reason or ("" if t >= motion.end * (1 - 1e-12) else
-                                    f"max_steps ({max_steps}) reached at t = {t:.6g} s"),
+        completed=int(completed), stop_reason=stop_reason,
         mesh_wall_time=t_mesh, total_wall_time=total))
 
 
