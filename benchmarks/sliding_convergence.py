@@ -313,6 +313,7 @@ def _history(preset: str, out: Path) -> dict | None:
         h.update(completed=bool(a["completed"]), stop_reason=str(a.get("stop_reason", "")),
                  dofs=int(a["dofs"]), steps=int(a["steps"]),
                  cuts=int(a["total_step_cuts"]), newton=int(a["total_newton_iterations"]),
+                 steps_through_slip=int(a.get("steps_through_slip", 0)),
                  cpu_time=float(a["cpu_time"]), contact_facets=int(a["contact_facets"]),
                  tip_element_size=float(a["tip_element_size"]),
                  largest_deformation=str(a["largest_deformation"]),
@@ -335,6 +336,7 @@ def _history(preset: str, out: Path) -> dict | None:
              dofs=int(dofs.group(1)) if dofs else None, steps=len(rows),
              wall_time_reached=float(wall[-1]) if wall else None,
              cuts=len(re.findall(r": cut to dt", text)),
+             steps_through_slip=len(re.findall(r", through the slip in \d+ damped solves", text)),
              stopped=not re.search(r"^reached:", text, flags=re.M))
     if cpu:  # the last step's, or where the run stopped (--until)
         h["cpu_time"] = float(cpu[-1][0] or cpu[-1][1])

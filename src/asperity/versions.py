@@ -40,7 +40,7 @@ VERSIONS: dict[str, int] = {
     # uniaxial, sliding, plane strain, accuracy
     "uniaxial": 1,
     "accuracy_bodner_partom": 2,
-    "sliding": 8,
+    "sliding": 9,
     "plane_strain": 1,
     "accuracy_hertz": 1,
     "accuracy_scenes": 1,
@@ -58,7 +58,7 @@ VERSIONS: dict[str, int] = {
     "friction_figure": 1,
     "laws_figure": 1,
     "uniaxial_figure": 1,
-    "sliding_figure": 2,
+    "sliding_figure": 3,
     "plane_strain_figure": 1,
     "reference_figure": 1,
 }

@@ -17,8 +17,9 @@ from asperity.fe.presets import resolve
 from asperity.fe.geometry import CosineHill, Paraboloid
 from asperity.fe.material import equivalent_strain, von_mises
 from asperity.fe.sliding import FrictionLaw, ShearResistance
-from asperity.fe.solid3d import (DEVELOPED_SLIP, FlatMotion, HalfModel, MeshSpec, SlidingModel,
-                                 build_mesh, solve_prescribed, solve_sliding)
+from asperity.fe.solid3d import (DEVELOPED_SLIP, SLIP_DAMPING, STALL_FRACTION, FlatMotion,
+                                 HalfModel, MeshSpec, SlidingModel, build_mesh, solve_prescribed,
+                                 solve_sliding)
 from asperity.references.hertz import hertz_response
 
 MPA = 1e6
@@ -363,6 +364,45 @@ def test_full_jacobian_matches_finite_differences(flat_model):
         fd = (Rp - Rm)[free] / (2 * h)
         an = K @ v[free]
         assert np.abs(fd - an).max() <= 1e-6 * np.abs(an).max()
+    # with the dashpot of `solve_through_slip` (c (x - x_k) on the touching vertices)
+    damping = (c["position"] - 1e-3 * A_H, 0.01 * sm.law.kappa)
+    _, o = sm.evaluate(u, W, d, st, iface, 1.0, damping=damping)
+    K = sm.jacobian(o)
+    assert np.abs(K - sm.jacobian(sm.evaluate(u, W, d, st, iface, 1.0)[1])).max() > 0
+    v = np.zeros(m.ndofs)
+    v[free] = rng.normal(size=free.size) * 1e-3 * A_H
+    Rp, _ = sm.evaluate(u + h * v, W, d, st, iface, 1.0, tangent=False, damping=damping)
+    Rm, _ = sm.evaluate(u - h * v, W, d, st, iface, 1.0, tangent=False, damping=damping)
+    an = K @ v[free]
+    assert np.abs((Rp - Rm)[free] / (2 * h) - an).max() <= 1e-6 * np.abs(an).max()
+
+
+def test_a_step_through_the_slip_is_the_step_where_that_is_unique(flat_model):
+    """Below the critical coefficient (mu = 0.3) the step's solution is unique: taken
+    through the damped solves of `solve_through_slip` from the state at its start (10
+    of them, 31 Newton iterations in all against 9), a partly slipping step ends where
+    Newton from the predictor does: forces to 1e-7 and displacements to 1e-8 of their
+    largest (they differ by 8.5e-9 and 8e-10; the Newton tolerance is 1e-9)."""
+    law = FrictionLaw(ShearResistance.coulomb(0.3), 1e-4 * A_H)
+    m = flat_model
+    sm = SlidingModel(m, ELASTIC, law, tolerance=1e-9, max_iterations=40)
+    st = sm.material.initial_state(m.shape, components=6)
+    iface = sm.initial_interface()
+    u = np.zeros(m.ndofs)
+    _, out = sm.evaluate(u, 0.0, 0.0, st, iface, 0.0)
+    u, out, _ = sm.solve_step(sm.predict(u, out, W, 0.0), W, 0.0, st, iface, 1.0)
+    iface = sm.commit(out, iface)
+    _, out = sm.evaluate(u, W, 0.0, st, iface, 1.0)
+    d = 0.003 * A_H
+    plain, o1, _ = sm.solve_step(sm.predict(u, out, 0.0, d), W, d, st, iface, 1.0)
+    damped, o2, its, solves = sm.solve_through_slip(u, W, d, st, iface, 1.0)
+    first, factor, last = SLIP_DAMPING
+    assert solves == math.floor(math.log(first / last) / math.log(factor)) + 1
+    r1, r2 = sm.record(plain, W, d, o1), sm.record(damped, W, d, o2)
+    assert 0 < r1["slip_fraction"] < 1
+    for name in ("normal_force", "tangential_force"):
+        assert r2[name] == pytest.approx(r1[name], rel=1e-7)
+    assert np.abs(damped - plain).max() <= 1e-8 * np.abs(plain).max()
 
 
 def _det_sign(A) -> float:
@@ -497,3 +537,41 @@ def test_viscoplastic_asperity_press_and_slide(caplog):
     plt.close(fig)
     for v in list(ds.data_vars) + list(ds.coords):
         assert "units" in ds[v].attrs and "long_name" in ds[v].attrs
+
+
+@pytest.mark.slow
+def test_the_report_scene_slides_through_its_instabilities_at_draft():
+    """Report 9.2 at draft: the hill pressed 0.125 um in 1800 s, then slid 1 um in
+    2200 s with mu = 20, past the junction's critical coefficient from the start of
+    sliding (13.1).  At 0.083 um Newton fails at the full step and at every cut of it
+    (before `solve_through_slip`: ConvergenceError at step 10 after 10 cuts); now the
+    step cut below the stall fraction of its cap is taken through damped solves, a
+    touching vertex lets go (the area falls from 0.93 to 0.70 um^2), and the run
+    completes.  Every step, that one included, ends on the plain Newton solve of the
+    model: an equilibrium of it, finite; and from there the junction slides on its
+    touching points, F_T = 20 F_N (1e-6) with every touching vertex slipping at the
+    end, as the report's full slip."""
+    mot = FlatMotion.press_and_slide(0.125e-6, 1e-6, (0.0, 1800.0), (1800.0, 4000.0))
+    law = FrictionLaw(ShearResistance.coulomb(20.0), 1e-8)
+    ds = solve_sliding(HILL, BodnerPartom.sae_1020(), mot, law, accuracy="draft")
+    assert ds.attrs["completed"] == 1 and ds.attrs["stop_reason"] == ""
+    damped = ds["damped_solves"].values
+    slide = ds["phase"].values == "sliding"
+    assert ds.attrs["steps_through_slip"] == np.count_nonzero(damped) >= 1
+    assert np.all(damped[~slide] == 0)
+    cap = 2200.0 / resolve("sliding", "draft")["tangential_steps"]
+    assert np.all(ds["time_step"].values[damped > 0] < STALL_FRACTION * cap)
+    for name in ("normal_force", "tangential_force", "contact_area"):
+        assert np.all(np.isfinite(ds[name].values))
+    assert ds.attrs["critical_shear_factor"] < 1.0
+    last = ds.isel(step=-1)
+    assert float(last["slip_fraction"]) == 1.0
+    assert float(last["tangential_force"]) == pytest.approx(20 * float(last["normal_force"]),
+                                                             rel=1e-6)
+    from asperity.plots.sliding import sliding_figure          # the figure marks them
+    fig = sliding_figure(ds)
+    n = ds.attrs["steps_through_slip"]
+    assert f"{n} steps taken through the slip instability" in fig.axes[0].get_title()
+    marks = [ln for ln in fig.axes[0].lines if ln.get_label().startswith("step through")]
+    np.testing.assert_array_equal(marks[0].get_xdata(), ds["time"].values[damped > 0])
+    plt.close(fig)

@@ -115,6 +115,20 @@ whose accepted steps stay under ``STALL_FRACTION`` of their cap for
 above): it stops there with ``completed`` 0 and ``stop_reason``, keeping its
 steps (the section "end" is then its last state), instead of grinding on at
 that pace.
+
+Through the slip instability (`SlidingModel.solve_through_slip`): once the
+junction has been past its critical coefficient (a critical factor below 1
+at the start of sliding or after a sliding step), a sliding step whose
+Newton fails after it was cut below ``STALL_FRACTION`` of its cap (where
+the steps would stall) is solved again from the state at its start through
+damped solves, a pseudo-transient continuation whose dashpot on the
+touching vertices makes each solve's problem unique; the step ends with the
+plain Newton solve of the model.  Past the critical coefficient the
+quasi-static path can turn back in the sliding displacement (the junction
+would slip dynamically) and the step's problem has several solutions: the
+damped motion selects the one the junction slips to, at the sliding
+displacement where the cut steps stopped converging.  The step is cut again
+only if that fails too.  ``damped_solves`` records it per step.
 """
 
 from __future__ import annotations
@@ -176,6 +190,18 @@ JUNCTION_DEPTH_FRACTION = 0.25
 #: target had more than 12 such steps in a row; stopped by hand, the stalled mu = 20
 #: runs had 13 to 42 (``benchmarks/sliding_convergence.py --stalls``, README).
 STALL_STEPS, STALL_FRACTION = 20, 1e-3
+#: `SlidingModel.solve_through_slip`: the dashpot on the touching points starts at
+#: SLIP_DAMPING[0] times the normal penalty stiffness; after a damped solve that
+#: converges it is divided by a factor of at most SLIP_DAMPING[1], down to
+#: SLIP_DAMPING[2] times the stiffness, then the undamped step is solved.  A damped
+#: solve that fails (in SLIP_DAMPED_ITERATIONS Newton iterations) takes the square
+#: root of the factor and retries from the last converged one (a trust region on
+#: the damping: it settles just above the junction's negative stiffness, where the
+#: iterates run through the instability fastest); a factor near 1 that still fails
+#: raises the damping by SLIP_DAMPING[1].  At most SLIP_DAMPED_SOLVES tries a step.
+SLIP_DAMPING = (1.0, 4.0, 1e-6)
+SLIP_DAMPED_ITERATIONS = 15
+SLIP_DAMPED_SOLVES = 100
 
 # ----------------------------------------------------------------------------- mesh
 @dataclass(frozen=True)
@@ -778,10 +804,13 @@ class SlidingModel:
         self.trace = None
 
     # --- contact --------------------------------------------------------------------------
-    def contact(self, u, w, delta, anchors, tangent=True, friction: FrictionLaw | None = None):
+    def contact(self, u, w, delta, anchors, tangent=True, friction: FrictionLaw | None = None,
+                damping=None):
         """Contact tractions at the contact vertices: the penalty pressure t_N of the
         weighted penetration and the tangential traction with h(t_N) at this pressure
         (3.24-3.27) of the weighted slip; ``friction`` replaces the model's law.
+        ``damping`` (start (2, nV), c (nV,) [Pa/m]) adds the dashpot -c (position -
+        start) on the touching vertices (`solve_through_slip`).
         ``fc`` is the contact force on the free dofs."""
         m = self.m
         friction = self.friction if friction is None else friction
@@ -796,6 +825,11 @@ class SlidingModel:
             dt_dtn = np.zeros_like(b)
         else:
             txy, dt_db, dt_dtn = friction.traction(b, tn)
+        if damping is not None:
+            start, c = damping
+            c = c * (tn > 0)
+            txy = txy - c * (pos - start)
+            dt_db = dt_db - np.eye(2)[:, :, None] * c
         tv = np.stack((txy[0], txy[1], -tn))                     # traction on the body
         fc = m.VT @ (m.vw * tv).ravel()
         out = dict(a=a, tn=tn, txy=txy, b=b, position=pos, fc=fc)
@@ -814,12 +848,12 @@ class SlidingModel:
         return out
 
     # --- residual and tangent ---------------------------------------------------------------
-    def evaluate(self, u, w, delta, state, iface, dt, tangent=True):
+    def evaluate(self, u, w, delta, state, iface, dt, tangent=True, damping=None):
         m = self.m
         strain = (m.Bsp @ u).reshape((6,) + m.shape)
         stress, D, new = self.material.update(strain, state, dt, tangent=tangent)
         R = m.Bsp.T @ (stress.ravel() * m.MW)
-        c = self.contact(u, w, delta, iface.anchor, tangent=tangent)
+        c = self.contact(u, w, delta, iface.anchor, tangent=tangent, damping=damping)
         R[m.free] -= c["fc"]
         return R, dict(strain=strain, stress=stress, D=D, state=new, contact=c)
 
@@ -916,6 +950,65 @@ class SlidingModel:
                                 self.tolerance, self.max_iterations,
                                 ResidualSearch(self.line_search))
 
+    def solve_through_slip(self, u0, w, delta, state, iface, dt, reference: float = 0.0):
+        """The step ending at (w, delta) from the state u0 at its start, for a junction
+        past its critical coefficient, where Newton from u0 fails: a pseudo-transient
+        continuation.  Returns (u, out, iterations, damped solves).
+
+        Past the critical coefficient the step's problem need not have a solution
+        near u0 (the sliding path turns back in delta: the junction would slip
+        dynamically, a stick-slip event) and has more than one elsewhere.  Each
+        damped solve adds a dashpot c (x - x_k) on the touching vertices' tangential
+        positions x, x_k those of the last damped solution (the start: u0 at the
+        step's flat position, so the body's points first follow the flat), with c a
+        multiple of the normal penalty stiffness (`SLIP_DAMPING`): a proximal point
+        iteration, i.e. backward Euler of the junction's damped motion with growing
+        pseudo-time steps, the damping lowered as long as the solves converge.  With
+        c large the tangent is regular whatever the friction coefficient; near the
+        junction's negative stiffness the iterates run through the instability; as c
+        falls they relax to an equilibrium the damped motion reaches, and the last
+        solve is the undamped step itself, from there.
+        The material takes the step's dt in every solve (the pseudo-time is not
+        physical time), so the result is the backward-Euler step of the model, on the
+        branch this motion selects.  Raises `StepFailed` after `SLIP_DAMPED_SOLVES`
+        damped tries, or if the undamped solve fails.
+        """
+        first, factor, last = SLIP_DAMPING
+        kappa = self.law.kappa
+        s, s_ok, f, u = first, None, factor, u0
+        total = solves = tries = 0
+        while s >= last:
+            if tries == SLIP_DAMPED_SOLVES:
+                raise StepFailed(f"{tries} damped solves ({solves} converged) did not get "
+                                 f"through: the damping at {s:.3g} times the penalty "
+                                 "stiffness", total)
+            tries += 1
+            start = self.contact(u, w, delta, iface.anchor, tangent=False)["position"]
+            problem = _Step(self, w, delta, state, iface, dt, reference, damping=(start, s * kappa))
+            try:
+                u, _, its = nonlinear.newton(problem, u, self.tolerance, SLIP_DAMPED_ITERATIONS,
+                                             ResidualSearch(self.line_search))
+            except StepFailed as exc:
+                total += exc.iterations
+                if s_ok is None:             # not even the first: more damping
+                    s *= factor
+                    continue
+                f = math.sqrt(f)
+                if f < 1.05:                 # the last converged damping no longer holds
+                    s_ok, f = s_ok * factor, factor
+                s = s_ok / f
+                continue
+            total += its
+            solves += 1
+            s_ok, f = s, min(f * f, factor)
+            s = s_ok / f
+        try:
+            u, out, its = self.solve_step(u, w, delta, state, iface, dt, reference)
+        except StepFailed as exc:
+            raise StepFailed(f"undamped solve after {solves} damped ones: {exc}",
+                             total + exc.iterations) from None
+        return u, out, total + its, solves
+
     def initial_interface(self, delta=0.0) -> "Interface":
         m = self.m
         return Interface(anchor=np.stack((m.vX[0] - delta, m.vX[1])))
@@ -957,19 +1050,22 @@ OUTPUTS = ("time", "normal_displacement", "tangential_displacement", "normal_for
            "tangential_force", "contact_area", "mean_pressure",
            "mean_tangential_traction", "max_pressure", "slip_fraction", "critical_shear_factor",
            "max_inelastic_strain", "max_von_mises", "phase", "newton_iterations", "step_cuts",
-           "time_step", "wall_time")
+           "damped_solves", "time_step", "wall_time")
 
 
 class _Step(Problem):
     """Equilibrium at the end of a step (`SlidingModel.solve_step`)."""
 
-    def __init__(self, sm: SlidingModel, w, delta, state, iface, dt, reference: float):
+    def __init__(self, sm: SlidingModel, w, delta, state, iface, dt, reference: float,
+                 damping=None):
         self.sm, self.w, self.delta = sm, w, delta
         self.state, self.iface, self.dt = state, iface, dt
+        self.damping = damping
         self.force_scale = nonlinear.ContactScale(reference)
 
     def evaluate(self, u):
-        R, out = self.sm.evaluate(u, self.w, self.delta, self.state, self.iface, self.dt)
+        R, out = self.sm.evaluate(u, self.w, self.delta, self.state, self.iface, self.dt,
+                                  damping=self.damping)
         return R[self.sm.m.free], out
 
     def check(self, out, iteration):
@@ -1132,7 +1228,8 @@ def solve_sliding(geometry, material, motion: FlatMotion, friction: FrictionLaw,
     f_ref = 0.0  # contact force norm of the last accepted step
     rows.append(dict(sm.record(u, w, delta, out0), critical_shear_factor=math.nan,
                      time=t, phase=motion.phase(t),
-                     newton_iterations=0, step_cuts=0, time_step=0.0, wall_time=0.0))
+                     newton_iterations=0, step_cuts=0, damped_solves=0, time_step=0.0,
+                     wall_time=0.0))
     for k, ts in snap_times.items():
         if ts <= t:
             snap[k] = (t, _snapshot(model, u, state), {})
@@ -1152,8 +1249,19 @@ def solve_sliding(geometry, material, motion: FlatMotion, friction: FrictionLaw,
             w_new, d_new = motion(t_new)
             reason = None
             u0 = sm.predict(u, out_last, w_new - w, d_new - delta)
+            damped = 0
             try:
-                u_new, out, its = sm.solve_step(u0, w_new, d_new, state, iface, h, f_ref)
+                try:
+                    u_new, out, its = sm.solve_step(u0, w_new, d_new, state, iface, h, f_ref)
+                except StepFailed as exc:
+                    if not (phase == "sliding" and critical and min(critical) < 1.0
+                            and h < stall_fraction * cap):
+                        raise
+                    # a junction that has been past its critical coefficient, cut to
+                    # where its steps would stall: through the slip instability
+                    iterations += exc.iterations
+                    u_new, out, its, damped = sm.solve_through_slip(u, w_new, d_new, state,
+                                                                   iface, h, f_ref)
                 iterations += its
                 step_inel = float(np.max(equivalent_strain(
                     out["state"].inelastic_strain - state.inelastic_strain)))
@@ -1185,7 +1293,7 @@ def solve_sliding(geometry, material, motion: FlatMotion, friction: FrictionLaw,
         # the converged state with the dragged anchors, for the next predictor
         _, out_last = sm.evaluate(u, w, delta, state, iface, h)
         rows.append(dict(rec, time=t, phase=phase, newton_iterations=iterations,
-                         step_cuts=cuts.count, time_step=h, wall_time=time.perf_counter() - step_start))
+                         step_cuts=cuts.count, damped_solves=damped, time_step=h, wall_time=time.perf_counter() - step_start))
         for k, ts in snap_times.items():
             if k not in snap and t >= ts * (1 - 1e-12):
                 a_max = max(r["contact_area"] for r in rows)
@@ -1197,6 +1305,7 @@ def solve_sliding(geometry, material, motion: FlatMotion, friction: FrictionLaw,
             f"F_N = {rec['normal_force']:.4g} N, F_T = {rec['tangential_force']:.4g} N, "
             f"A = {rec['contact_area']:.4g} m^2, "
             f"{iterations} Newton iterations, {cuts.count} cuts"
+            + (f", through the slip in {damped} damped solves" if damped else "")
             + ("" if math.isnan(s_c) else f", critical: {_critical_text(s_c, friction)}"))
         if phase != "sliding" and motion.phase(t) == "sliding" and t < motion.end * (1 - 1e-12):
             s_c = sm.critical_factor(u, w, delta, out, _direction(motion, d_knots, t))
@@ -1255,6 +1364,7 @@ def solve_sliding(geometry, material, motion: FlatMotion, friction: FrictionLaw,
         motion_tangential=d_knots,
         steps=len(rows) - 1, total_step_cuts=int(sum(r["step_cuts"] for r in rows)),
         total_newton_iterations=int(sum(r["newton_iterations"] for r in rows)),
+        steps_through_slip=int(sum(r["damped_solves"] > 0 for r in rows)),
         factorizations=int(sm.linear.factorizations), krylov_solves=int(sm.linear.krylov_solves),
         completed=int(completed), stop_reason=stop_reason,
         mesh_wall_time=t_mesh, total_wall_time=total))

@@ -57,6 +57,14 @@ def sliding_figure(ds: xr.Dataset, length_unit: str = "um") -> plt.Figure:
     if s_c is not None and s_c < 1.0:
         notes.append(f"not unique while sliding: the junction's tangent turns singular at\n"
                      f"{s_c:.2g} times the shear resistance (the critical friction coefficient)")
+    if "damped_solves" in ds:
+        jumped = ds["damped_solves"].values > 0
+        if jumped.any():
+            ax_f.plot(t[jumped], 1e3 * ds["tangential_force"].values[jumped], "rx", ms=9,
+                      mew=1.5, label="step through the slip (damped solves)")
+            ax_f.legend(loc="best")
+            notes.append(f"{int(jumped.sum())} steps taken through the slip instability "
+                         "(x: damped solves)")
     if not ds.attrs.get("completed", 1):
         notes.append(f"stopped at t = {t[-1]:.0f} s of {times[-1]:.0f} s (stop_reason)"
                      if times.size else "stopped before the end (stop_reason)")
