@@ -976,6 +976,8 @@ class SlidingModel:
         first, factor, last = SLIP_DAMPING
         kappa = self.law.kappa
         s, s_ok, f, u = first, None, factor, u0
+        # the touching vertices' positions at u (those of a solution: its own output)
+        start = self.contact(u, w, delta, iface.anchor, tangent=False)["position"]
         total = solves = tries = 0
         while s >= last:
             if tries == SLIP_DAMPED_SOLVES:
@@ -983,11 +985,10 @@ class SlidingModel:
                                  f"through: the damping at {s:.3g} times the penalty "
                                  "stiffness", total)
             tries += 1
-            start = self.contact(u, w, delta, iface.anchor, tangent=False)["position"]
             problem = _Step(self, w, delta, state, iface, dt, reference, damping=(start, s * kappa))
             try:
-                u, _, its = nonlinear.newton(problem, u, self.tolerance, SLIP_DAMPED_ITERATIONS,
-                                             ResidualSearch(self.line_search))
+                u, out, its = nonlinear.newton(problem, u, self.tolerance, SLIP_DAMPED_ITERATIONS,
+                                               ResidualSearch(self.line_search))
             except StepFailed as exc:
                 total += exc.iterations
                 if s_ok is None:             # not even the first: more damping
@@ -1000,6 +1001,7 @@ class SlidingModel:
                 continue
             total += its
             solves += 1
+            start = out["contact"]["position"]
             s_ok, f = s, min(f * f, factor)
             s = s_ok / f
         try:
