@@ -4,11 +4,15 @@ Runs the scene's 3-D asperity (report 9.2: pressed 0.125 um in 0-1800 s, slid 1.
 in 1800-4000 s with a friction coefficient of 20) at the sliding presets, one process
 per preset (one BLAS thread, `nice`), and compares:
 
-* the normal and tangential force histories of each preset with the next finer one:
-  the finer history interpolated (linearly in time) onto the coarser one's step times,
-  over the pressing phase (0 < t <= 1800 s) and the sliding phase (t > 1800 s), and
-  the largest difference divided by the largest force of the finer run in that phase
-  ("largest relative difference"); also the difference of the phase means;
+* the normal and tangential force histories of each preset with the next finer one,
+  over the pressing phase (0 < t <= 1800 s) and the sliding phase (t > 1800 s): at the
+  step times the two runs share (every run's steps land on the times of
+  `solid3d.step_grid`, the same for presets with the same steps, as `standard` and
+  `fine`), or, in a phase where they share none (runs with different steps), the finer
+  history interpolated linearly in time onto the coarser one's step times
+  (``compared_at``); the largest difference divided by the largest force of the finer
+  run in that phase ("largest relative difference"); also the difference of the phase
+  means over those times;
 * what each run costs (dofs, steps, cuts, Newton iterations, CPU time);
 * the mean tangential traction while sliding, F_T / A, A the contact area of the
   model (quadrature weights of the contact points with a positive pressure), next to
@@ -357,6 +361,13 @@ def compare(coarse: dict, fine: dict) -> dict:
             fsel = (tf > lo - 1e-9) & (tf <= hi)
             if not sel.any() or fsel.sum() < 2:
                 continue
+            # the times both runs reached, else the finer run interpolated
+            i = np.clip(np.searchsorted(tf, tc), 1, tf.size - 1)
+            shared = np.minimum(np.abs(tf[i] - tc), np.abs(tf[i - 1] - tc)) <= (
+                1e-9 * np.maximum(np.abs(tc), 1.0))
+            at = "shared step times" if (sel & shared).any() else "finer run interpolated"
+            if (sel & shared).any():
+                sel &= shared
             ff = np.interp(tc[sel], tf, fine[name])
             fc = coarse[name][sel]
             peak = float(np.abs(fine[name][fsel & (tf > lo)]).max())
@@ -375,7 +386,7 @@ def compare(coarse: dict, fine: dict) -> dict:
                 mean_coarse=float(fc.mean()), mean_fine=float(ff.mean()),
                 relative_difference_of_means=(float(fc.mean() / ff.mean() - 1)
                                               if ff.mean() else None),
-                compared_up_to=float(tc[sel][-1]), points=int(sel.sum()))
+                compared_up_to=float(tc[sel][-1]), points=int(sel.sum()), compared_at=at)
     return out
 
 

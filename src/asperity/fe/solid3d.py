@@ -761,11 +761,6 @@ class FlatMotion:
             return "normal"
         return "hold"
 
-    def next_knot(self, t) -> float:
-        tk = np.asarray(self.times, float)
-        later = tk[tk > t + 1e-12 * max(abs(t), 1.0)]
-        return float(later[0]) if later.size else self.end
-
 
 # ------------------------------------------------------------------------------ solver
 @dataclass
@@ -1113,15 +1108,30 @@ def step_caps(motion: FlatMotion, preset: dict) -> list:
     """The largest time step [s] of each segment of `motion`: its duration over the
     preset's ``tangential_steps`` where the flat slides, else its ``normal_steps``."""
     times = np.asarray(motion.times, float)
+    return [(times[i + 1] - times[i]) / n for i, n in enumerate(_segment_steps(motion, preset))]
+
+
+def step_grid(motion: FlatMotion, preset: dict) -> np.ndarray:
+    """The times every step of a run lands on: each segment of `motion` divided into
+    its preset's steps (`step_caps`).  A step may be shorter (cut, or paced by Newton)
+    but never crosses one of these times, so runs whose presets have the same steps
+    (``standard`` and ``fine``) both report their force histories at these times and
+    are compared there without interpolating either (`benchmarks/sliding_convergence.py`)."""
+    times = np.asarray(motion.times, float)
+    parts = [times[i] + (times[i + 1] - times[i]) * np.arange(n) / n
+             for i, n in enumerate(_segment_steps(motion, preset))]
+    return np.append(np.concatenate(parts), times[-1])
+
+
+def _segment_steps(motion: FlatMotion, preset: dict) -> list:
+    """The preset's steps for each segment of `motion` (`step_caps`)."""
     w_knots = np.asarray(motion.normal, float)
     d_knots = np.asarray(motion.tangential, float)
-    caps = []
-    for i in range(len(times) - 1):
-        kind = ("sliding" if d_knots[i + 1] != d_knots[i] else
-                "normal" if w_knots[i + 1] != w_knots[i] else "hold")
-        n = preset["tangential_steps"] if kind == "sliding" else preset["normal_steps"]
-        caps.append((times[i + 1] - times[i]) / max(int(n), 1))
-    return caps
+    steps = []
+    for i in range(len(w_knots) - 1):
+        sliding = d_knots[i + 1] != d_knots[i]
+        steps.append(max(int(preset["tangential_steps" if sliding else "normal_steps"]), 1))
+    return steps
 
 
 def solve_sliding(geometry, material, motion: FlatMotion, friction: FrictionLaw,
@@ -1207,6 +1217,7 @@ def solve_sliding(geometry, material, motion: FlatMotion, friction: FrictionLaw,
     # --- time stepping --------------------------------------------------------------------------
     times = np.asarray(motion.times, float)
     caps = step_caps(motion, preset)
+    grid = step_grid(motion, preset)
     max_inel = float(preset["max_inelastic_step"])
     max_cuts = int(preset["max_cuts"])
     if snapshots is None:
@@ -1245,8 +1256,10 @@ def solve_sliding(geometry, material, motion: FlatMotion, friction: FrictionLaw,
         cuts, iterations = StepCuts(n, max_cuts), 0
         phase = motion.phase(t)
         cap = caps[motion.segment(t)]
+        proposed = min(dt, cap)
+        knot = float(grid[np.searchsorted(grid, t + 1e-12 * max(abs(t), 1.0), side="right")])
         while True:
-            t_new = next_time(t, min(dt, cap), motion.next_knot(t))
+            t_new = next_time(t, min(dt, cap), knot)
             h = t_new - t
             w_new, d_new = motion(t_new)
             reason = None
@@ -1324,8 +1337,12 @@ def solve_sliding(geometry, material, motion: FlatMotion, friction: FrictionLaw,
                             "this mesh is not unique near this state (Hassani et al. 2003); "
                             "expect step cuts, stalls and forces that depend on the mesh",
                             t, _critical_text(s_c, friction))
-        dt = strain_limited(PACE.factor(iterations, cuts.count) * h, h, step_inel, max_inel)
-        slow = slow + 1 if h < stall_fraction * cap else 0
+        # a step that ended on a time of the grid before its try's length grows from
+        # that length, not from the rest of the way to the grid time
+        reached = h if cuts.count else max(h, proposed)
+        dt = strain_limited(PACE.factor(iterations, cuts.count) * reached, h, step_inel,
+                            max_inel)
+        slow = slow + 1 if reached < stall_fraction * cap else 0
         if slow >= stall_steps and t < motion.end * (1 - 1e-12):  # not on the last step
             pace = (t - rows[-stall_steps - 1]["time"]) / stall_steps
             stop_reason = (
