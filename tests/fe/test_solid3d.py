@@ -580,10 +580,11 @@ def test_the_report_scene_slides_through_its_instabilities_at_draft():
     cut of it; the step cut below the stall fraction of its cap is taken through damped
     solves (14), a touching vertex lets go (the area falls from 0.93 to 0.70 um^2), and
     the run completes.  (With the preset's 6 pressing steps on the step grid the junction
-    starts to slide below its critical coefficient, "none below 1000", and the cuts of
-    that step converge at 0.18 s, just above the stall fraction: the same vertex lets
-    go, with no step through the slip; before the grid, the preset's own steps went
-    through it, and before `solve_through_slip` they failed with a ConvergenceError.)
+    starts to slide below its critical coefficient, "none below 1000", and here the
+    ninth cut of that step, 0.18 s, converges in plain Newton: the same vertex lets go,
+    with no step through the slip.  The scene's own constants, `make time-sliding`, go
+    through it at that cut.  Before `solve_through_slip` these runs failed with a
+    ConvergenceError.)
     Every step, that one included, ends on the plain Newton solve of the model: an
     equilibrium of it, finite; and from there the junction slides on its touching
     points, F_T = 20 F_N (1e-6) with every touching vertex slipping at the end, as the
