@@ -365,9 +365,9 @@ def compare(coarse: dict, fine: dict) -> dict:
             i = np.clip(np.searchsorted(tf, tc), 1, tf.size - 1)
             shared = np.minimum(np.abs(tf[i] - tc), np.abs(tf[i - 1] - tc)) <= (
                 1e-9 * np.maximum(np.abs(tc), 1.0))
-            at = "shared step times" if (sel & shared).any() else "finer run interpolated"
+            at = "finer run interpolated"
             if (sel & shared).any():
-                sel &= shared
+                sel, at = sel & shared, "shared step times"
             ff = np.interp(tc[sel], tf, fine[name])
             fc = coarse[name][sel]
             peak = float(np.abs(fine[name][fsel & (tf > lo)]).max())

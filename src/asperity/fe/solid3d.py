@@ -105,11 +105,14 @@ factorization is reused as the preconditioner of GMRES for the next
 iterations and steps while that converges in a few iterations.
 
 Time stepping (`solve_sliding`): the flat's motion is piecewise linear in
-time (`FlatMotion`); steps end on its knots; a step is cut in half when
+time (`FlatMotion`); steps never cross a time of the step grid
+(`step_grid`: each segment divided into the preset's steps for it, so runs
+of presets with the same steps share those times); a step is cut in half when
 Newton fails, gives non-finite values or the local update fails, or when
 the equivalent inelastic strain changed anywhere by more than
 ``max_inelastic_step``; the time step grows back (x1.5) after easy steps,
-up to the preset's cap (the segment's duration / its step count).  A run
+up to the preset's cap (the segment's duration / its step count), from the
+length it tried when the grid cut it short.  A run
 whose accepted steps stay under ``STALL_FRACTION`` of their cap for
 ``STALL_STEPS`` steps in a row has stalled (past the critical coefficient,
 above): it stops there with ``completed`` 0 and ``stop_reason``, keeping its
@@ -949,7 +952,8 @@ class SlidingModel:
     def solve_through_slip(self, u0, w, delta, state, iface, dt, reference: float = 0.0):
         """The step ending at (w, delta) from the state u0 at its start, for a sliding
         junction where Newton from u0 fails (past its critical coefficient, or where a
-        touching vertex lets go): a pseudo-transient continuation.  Returns (u, out, iterations, damped solves).
+        touching vertex lets go): a pseudo-transient continuation.  Returns (u, out,
+        iterations, damped solves).
 
         Past the critical coefficient the step's problem need not have a solution
         near u0 (the sliding path turns back in delta: the junction would slip
