@@ -5,12 +5,11 @@ in 1800-4000 s with a friction coefficient of 20) at the sliding presets, one pr
 per preset (one BLAS thread, `nice`), and compares:
 
 * the normal and tangential force histories of each preset with the next finer one,
-  over the pressing phase (0 < t <= 1800 s) and the sliding phase (t > 1800 s): at the
-  step times the two runs share (every run's steps land on the times of
-  `solid3d.step_grid`, the same for presets with the same steps, as `standard` and
-  `fine`), or, in a phase where they share none (runs with different steps), the finer
-  history interpolated linearly in time onto the coarser one's step times
-  (``compared_at``); the largest difference divided by the largest force of the finer
+  over the pressing phase (0 < t <= 1800 s) and the sliding phase (t > 1800 s): for
+  presets with the same steps (as `standard` and `fine`: every run's steps land on the
+  times of `solid3d.step_grid`, the same for both) at the step times both runs reached,
+  else the finer history interpolated linearly in time onto the coarser one's step
+  times (``compared_at``); the largest difference divided by the largest force of the finer
   run in that phase ("largest relative difference"); also the difference of the phase
   means over those times;
 * what each run costs (dofs, steps, cuts, Newton iterations, CPU time);
@@ -194,6 +193,14 @@ def study_section(section: dict, overrides: dict) -> dict:
     return out
 
 
+def sliding(sc: dict, overrides: dict):
+    """The scene's `Sliding` section with `overrides` (`study_section`)."""
+    from asperity.scene import Sliding, Units
+
+    return Sliding.from_section(study_section(sc["sliding"], overrides),
+                                Units.from_section(sc["units"]))
+
+
 def worker(name: str, out: Path, until: float | None = None,
            law: dict | None = None, study: bool = False) -> None:
     """Run the scene at preset `name` (with `study`, the `STUDY` run `name`); progress lines to
@@ -349,8 +356,10 @@ def _history(preset: str, out: Path) -> dict | None:
     return h
 
 
-def compare(coarse: dict, fine: dict) -> dict:
-    """Largest differences of the force histories (module docstring)."""
+def compare(coarse: dict, fine: dict, same_steps: bool = False) -> dict:
+    """Largest differences of the force histories (module docstring): at the step times
+    both runs reached if they have `same_steps` (the same step grid), else the finer
+    history interpolated onto the coarser one's step times."""
     out = {}
     t_end = fine["time"][-1]
     for name in ("normal_force", "tangential_force"):
@@ -361,13 +370,12 @@ def compare(coarse: dict, fine: dict) -> dict:
             fsel = (tf > lo - 1e-9) & (tf <= hi)
             if not sel.any() or fsel.sum() < 2:
                 continue
-            # the times both runs reached, else the finer run interpolated
-            i = np.clip(np.searchsorted(tf, tc), 1, tf.size - 1)
-            shared = np.minimum(np.abs(tf[i] - tc), np.abs(tf[i - 1] - tc)) <= (
-                1e-9 * np.maximum(np.abs(tc), 1.0))
             at = "finer run interpolated"
-            if (sel & shared).any():
-                sel, at = sel & shared, "shared step times"
+            if same_steps:  # the times both runs reached
+                i = np.clip(np.searchsorted(tf, tc), 1, tf.size - 1)
+                sel &= np.minimum(np.abs(tf[i] - tc), np.abs(tf[i - 1] - tc)) <= (
+                    1e-9 * np.maximum(np.abs(tc), 1.0))
+                at = "shared step times"
             ff = np.interp(tc[sel], tf, fine[name])
             fc = coarse[name][sel]
             peak = float(np.abs(fine[name][fsel & (tf > lo)]).max())
@@ -533,7 +541,6 @@ def stalls(names, out: Path, law: dict | None, study: bool) -> list:
     or stopped: by hand, --timeout or a stall)."""
     from asperity.fe.presets import resolve
     from asperity.fe.solid3d import STALL_FRACTION, step_caps
-    from asperity.scene import Sliding, Units
 
     sc = scene()
     rows = []
@@ -544,8 +551,7 @@ def stalls(names, out: Path, law: dict | None, study: bool) -> list:
         preset, overrides = STUDY[name] if study else (name, {})
         if law is not None:
             overrides = dict(overrides, shear_resistance=law)
-        s = Sliding.from_section(study_section(sc["sliding"], overrides),
-                                 Units.from_section(sc["units"]))
+        s = sliding(sc, overrides)
         motion = s.motion()
         caps = step_caps(motion, resolve("sliding", s.preset(preset)))
         text = log.read_text()
@@ -643,8 +649,10 @@ def main(argv=None) -> int:
         info.update(patch_summary(p, a.out))
         res["presets"][p] = info
     done = [p for p in a.presets if runs.get(p) is not None]
+    s = sliding(sc, {})
+    steps = {p: (s.preset(p)["normal_steps"], s.preset(p)["tangential_steps"]) for p in done}
     for c, f in zip(done, done[1:]):
-        res["comparisons"][f"{c} vs {f}"] = compare(runs[c], runs[f])
+        res["comparisons"][f"{c} vs {f}"] = compare(runs[c], runs[f], steps[c] == steps[f])
     path = a.results
     path.parent.mkdir(parents=True, exist_ok=True)
     path.write_text(json.dumps(res, indent=1, default=float) + "\n")
