@@ -117,3 +117,30 @@ def test_the_sliding_junction_is_the_report_hill_sheared_at_the_steel_shear_stre
 
     assert k(1e-4) < law["c0"] < k(1e-2)
     assert k(1e-4) == pytest.approx(274.0, abs=1.0) and k(1e-2) == pytest.approx(292.0, abs=1.0)
+
+
+@pytest.mark.slow
+def test_the_report_sliding_scene_completes_at_draft():
+    """`asperity_sliding` (report 9.2, mu = 20) at draft through its stage, as
+    ``snakemake --config 'scenes=[asperity_sliding]' accuracy=draft`` runs it.  On the
+    step grid its junction's tangent is regular at every accepted step (critical factor
+    inf), and at 0.083 um a touching vertex lets go within a step: Newton fails at every
+    cut of it, and the cut below the stall fraction goes through the slip (until
+    a8b372c only a junction that had been past its critical coefficient was admitted to
+    the damped solves, and this run failed with a ConvergenceError).  It completes and
+    ends in full slip, F_T = 20 F_N (1e-6) with every touching vertex slipping."""
+    import yaml
+    from pathlib import Path
+
+    from asperity.stages.sliding import sliding_dataset
+
+    path = Path(__file__).resolve().parents[1] / "config" / "scenes" / "asperity_sliding.yaml"
+    scene = filled_scene(yaml.safe_load(path.read_text()))
+    ds = sliding_dataset("asperity_sliding", scene["sliding"], scene["units"], "draft")
+    assert ds.attrs["completed"] == 1 and ds.attrs["stop_reason"] == ""
+    assert ds.attrs["critical_shear_factor"] == math.inf
+    assert ds.attrs["steps_through_slip"] >= 1
+    last = ds.isel(step=-1)
+    assert float(last["slip_fraction"]) == 1.0
+    assert float(last["tangential_force"]) == pytest.approx(20 * float(last["normal_force"]),
+                                                             rel=1e-6)
