@@ -368,14 +368,14 @@ def compare(coarse: dict, fine: dict, same_steps: bool = False) -> dict:
             sel = (tc > lo) & (tc <= min(hi, t_end) * (1 + 1e-12))
             tf = fine["time"]
             fsel = (tf > lo - 1e-9) & (tf <= hi)
-            if not sel.any() or fsel.sum() < 2:
-                continue
             at = "finer run interpolated"
             if same_steps:  # the times both runs reached
                 i = np.clip(np.searchsorted(tf, tc), 1, tf.size - 1)
                 sel &= np.minimum(np.abs(tf[i] - tc), np.abs(tf[i - 1] - tc)) <= (
                     1e-9 * np.maximum(np.abs(tc), 1.0))
                 at = "shared step times"
+            if not sel.any() or fsel.sum() < 2:
+                continue
             ff = np.interp(tc[sel], tf, fine[name])
             fc = coarse[name][sel]
             peak = float(np.abs(fine[name][fsel & (tf > lo)]).max())
@@ -539,7 +539,6 @@ def stalls(names, out: Path, law: dict | None, study: bool) -> list:
     than `solid3d.STALL_FRACTION` of their segment's step cap (STALL_STEPS of them stop a
     run), the step where it ended, and how the run ended (finished, reached its --until,
     or stopped: by hand, --timeout or a stall)."""
-    from asperity.fe.presets import resolve
     from asperity.fe.solid3d import STALL_FRACTION, step_caps
 
     sc = scene()
@@ -553,7 +552,7 @@ def stalls(names, out: Path, law: dict | None, study: bool) -> list:
             overrides = dict(overrides, shear_resistance=law)
         s = sliding(sc, overrides)
         motion = s.motion()
-        caps = step_caps(motion, resolve("sliding", s.preset(preset)))
+        caps = step_caps(motion, s.preset(preset))
         text = log.read_text()
         t = np.array([motion.start] + [float(m.group(2)) for m in STEP.finditer(text)])
         slow = np.diff(t) < STALL_FRACTION * np.array([caps[motion.segment(x)] for x in t[:-1]])

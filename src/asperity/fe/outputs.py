@@ -78,7 +78,8 @@ VARIABLES: dict[str, tuple[str, str]] = {
     "step_cuts": ("1", "times the step was cut: halved, or rejected and retried with a smaller "
                        "step (adhesive: failures and discontinuities)"),
     "damped_solves": ("1", "3-D sliding: damped solves of a step taken through the slip "
-                           "instability past the critical coefficient (0: plain Newton; "
+                           "instability, where Newton failed below the stall fraction of "
+                           "the step cap (0: plain Newton; "
                            "solid3d.SlidingModel.solve_through_slip)"),
     "time_step": ("s", "time step of the accepted step"),
     "integration_order": ("1", "time integration of the step: 1 backward Euler, 2 BDF2 "

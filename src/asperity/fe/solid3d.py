@@ -1312,7 +1312,8 @@ def solve_sliding(geometry, material, motion: FlatMotion, friction: FrictionLaw,
         # the converged state with the dragged anchors, for the next predictor
         _, out_last = sm.evaluate(u, w, delta, state, iface, h)
         rows.append(dict(rec, time=t, phase=phase, newton_iterations=iterations,
-                         step_cuts=cuts.count, damped_solves=damped, time_step=h, wall_time=time.perf_counter() - step_start))
+                         step_cuts=cuts.count, damped_solves=damped, time_step=h,
+                         wall_time=time.perf_counter() - step_start))
         for k, ts in snap_times.items():
             if k not in snap and t >= ts * (1 - 1e-12):
                 a_max = max(r["contact_area"] for r in rows)
