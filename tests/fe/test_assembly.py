@@ -5,7 +5,7 @@ import pytest
 import scipy.sparse.linalg as spl
 
 from asperity.fe import CosineHill, Cylinder, LinearElastic, Sphere
-from asperity.fe.assembly import CondensedStiffness, Discretization
+from asperity.fe.assembly import CondensedStiffness, Discretization, OrderedLU
 from asperity.fe.material import METRIC
 from asperity.fe.mesh import AsperityMesh, MeshSpec
 
@@ -101,6 +101,38 @@ def test_condensed_stiffness_is_the_exact_schur_complement():
     np.testing.assert_allclose((K @ u)[free], rhs[free], atol=1e-9 * np.abs(f).max())
     # and the condensed relation K_S u_S = f_S
     np.testing.assert_allclose(cond.stiffness @ u[S], f, atol=1e-9)
+
+
+def test_ordered_lu_keeps_the_ordering_of_a_pattern_and_solves_as_superlu():
+    """The second matrix of a pattern is factorized in the kept order: its solution
+    agrees with SuperLU's own to 1e-12 and the fill is SuperLU's; a new pattern gets
+    a new ordering; a zero pivot raises SuperLU's RuntimeError."""
+    disc = _disc(Sphere(1.0))
+    free = disc.free
+    K1 = disc.stiffness(MAT.tangent())[free][:, free].tocsc()
+    K2 = disc.stiffness(LinearElastic(70.0, 0.45).tangent())[free][:, free].tocsc()
+    b = np.linspace(-1.0, 2.0, K1.shape[0])
+    ordered = OrderedLU(diag_pivot_thresh=0.0)
+    first, second = ordered.factor(K1), ordered.factor(K2)
+    assert first.order is None and second.order is not None
+    own = spl.splu(K2, permc_spec="MMD_AT_PLUS_A", diag_pivot_thresh=0.0,
+                   options=dict(SymmetricMode=True))
+    x = second.solve(b)
+    np.testing.assert_allclose(x, own.solve(b), rtol=0, atol=1e-12 * np.abs(x).max())
+    assert second.lu.L.nnz + second.lu.U.nnz == own.L.nnz + own.U.nnz
+    np.testing.assert_allclose(K2 @ x, b, rtol=0, atol=1e-9 * np.abs(b).max())
+    # two right-hand sides at once
+    B = np.stack([b, -2.0 * b], axis=1)
+    np.testing.assert_allclose(second.solve(B)[:, 1], -2.0 * x, rtol=1e-12)
+    # another pattern (a smaller block): ordered afresh, still right
+    K3 = K1[:200][:, :200].tocsc()
+    third = ordered.factor(K3)
+    assert third.order is None
+    np.testing.assert_allclose(K3 @ third.solve(b[:200]), b[:200], atol=1e-9)
+    zero = K2.copy()
+    zero.data[:] = 0.0
+    with pytest.raises(RuntimeError):
+        ordered.factor(zero)
 
 
 def test_supports():

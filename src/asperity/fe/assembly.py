@@ -281,3 +281,62 @@ class CondensedStiffness:
         u = np.zeros((disc.ndofs,) + f_surface.shape[1:])
         u[disc.free[self.perm]] = x
         return u
+
+
+class OrderedLU:
+    """SuperLU factorizations of a sequence of sparse matrices (a Newton tangent
+    step after step), the fill-reducing ordering computed once per sparsity pattern.
+
+    SuperLU orders the columns again at every factorization (minimum degree on
+    the pattern of A^T + A, ``permc_spec="MMD_AT_PLUS_A"``), although a mesh's
+    tangent keeps its pattern for a whole run: on the viscoplastic hill of
+    `benchmarks/remesh.py` (7 946 dofs) the ordering was a quarter of each
+    factorization.  Here the first factorization of a pattern is SuperLU's own;
+    its column order (postordered) is kept, and the next matrices of the same
+    pattern are permuted symmetrically by it and factorized in their natural order
+    with the same options.  The factors are SuperLU's up to round-off (their
+    fill is the same; solutions agree to about 1e-14).  ``diag_pivot_thresh``
+    and ``SymmetricMode`` are SuperLU's (0: pivots on the diagonal only).
+    """
+
+    def __init__(self, diag_pivot_thresh: float):
+        self.options = dict(diag_pivot_thresh=float(diag_pivot_thresh),
+                            options=dict(SymmetricMode=True))
+        self._pattern = None
+
+    def factor(self, K: sp.csc_matrix) -> "OrderedLU.Factors":
+        """Factors of the CSC matrix `K`, with ``solve(b)`` for K x = b.  Raises
+        SuperLU's RuntimeError (a zero pivot) as `scipy.sparse.linalg.splu` does."""
+        K = K.tocsc()
+        pattern = self._pattern
+        if pattern is None or not (np.array_equal(pattern[0], K.indptr)
+                                   and np.array_equal(pattern[1], K.indices)):
+            lu = spl.splu(K, permc_spec="MMD_AT_PLUS_A", **self.options)
+            self._set_order(K, np.argsort(lu.perm_c))
+            return self.Factors(lu, None)
+        order, slots, indptr, indices = self._permuted
+        Kp = sp.csc_matrix((K.data[slots], indices, indptr), shape=K.shape)
+        return self.Factors(spl.splu(Kp, permc_spec="NATURAL", **self.options), order)
+
+    def _set_order(self, K, order):
+        """Keep `order` for K's pattern, and where each entry of K lands in
+        K[order][:, order] (CSC, sorted indices)."""
+        self._pattern = (K.indptr.copy(), K.indices.copy())
+        tag = sp.csc_matrix((np.arange(1.0, K.nnz + 1.0), K.indices, K.indptr), shape=K.shape)
+        Kp = tag[order][:, order].tocsc()
+        Kp.sort_indices()
+        self._permuted = (order, Kp.data.astype(np.int64) - 1, Kp.indptr, Kp.indices)
+
+    class Factors:
+        """LU factors of K, or of K[order][:, order] (`order` not None)."""
+
+        def __init__(self, lu, order):
+            self.lu = lu
+            self.order = order
+
+        def solve(self, b: np.ndarray) -> np.ndarray:
+            if self.order is None:
+                return self.lu.solve(b)
+            x = np.empty_like(b, dtype=float)
+            x[self.order] = self.lu.solve(np.asarray(b, float)[self.order])
+            return x

@@ -153,6 +153,7 @@ import scipy.sparse.linalg as spl
 import xarray as xr
 
 from . import nonlinear
+from .assembly import OrderedLU
 from .contact import PENALTY_FACTOR, C1Penalty, ContactZone, contact_edge_pressure
 from .errors import ContactZoneError, RuptureError, StepFailed
 from .kinematics import KINEMATICS, SmallStrain, kinematics_for
@@ -279,6 +280,7 @@ class InelasticModel:
         self._pattern()
         self._set_zone(r_candidate)
         self.factorizations = 0
+        self._lu = OrderedLU(diag_pivot_thresh=0.0)
 
     def _pattern(self):
         """Sparsity of the free-free tangent, built once (CSC), and the map of
@@ -407,15 +409,15 @@ class InelasticModel:
 
     def factorize(self, out):
         """LU factors of the consistent tangent at `out`: SuperLU with a
-        symmetric ordering and diagonal pivots (the tangent is structurally
-        symmetric, nearly always symmetric positive definite), or, if that
-        fails, with the default partial pivoting.  Returns (lu, K, pivoted)."""
+        symmetric ordering, kept for the mesh's pattern (`OrderedLU`), and
+        diagonal pivots (the tangent is structurally symmetric, nearly always
+        symmetric positive definite), or, if that fails, with the default
+        partial pivoting.  Returns (lu, K, pivoted)."""
         K = self.jacobian(out)
         self.factorizations += 1
         try:
             with np.errstate(all="ignore"):
-                return spl.splu(K, permc_spec="MMD_AT_PLUS_A", diag_pivot_thresh=0.0,
-                                options=dict(SymmetricMode=True)), K, False
+                return self._lu.factor(K), K, False
         except RuntimeError:
             return spl.splu(K), K, True
 

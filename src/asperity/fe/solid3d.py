@@ -149,6 +149,7 @@ import xarray as xr
 from skfem import Basis, ElementTetP2, ElementVector, FacetBasis, MeshTet, MeshTet2
 
 from . import nonlinear
+from .assembly import OrderedLU
 from .contact import SMOOTHING, C1Penalty
 from .errors import ContactZoneError, StepFailed
 from .material import METRIC6, equivalent_strain, von_mises
@@ -386,13 +387,13 @@ class _LinearSolver:
         self.max_krylov = max_krylov
         self.factorizations = 0
         self.krylov_solves = 0
+        self._ordered = OrderedLU(diag_pivot_thresh=0.1)
 
     def reset(self):
         self.lu = None
 
     def _factor(self, K):
-        self.lu = spl.splu(K, permc_spec="MMD_AT_PLUS_A", diag_pivot_thresh=0.1,
-                           options=dict(SymmetricMode=True))
+        self.lu = self._ordered.factor(K)
         self.factorizations += 1
 
     def solve(self, K, rhs) -> np.ndarray:
