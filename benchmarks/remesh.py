@@ -20,12 +20,14 @@ that the presets can be run separately: fine takes minutes)::
     python benchmarks/remesh.py --cases j2_sphere --presets standard fine --remesh on off
     python benchmarks/remesh.py --cases viscoplastic_hill --presets standard --remesh on off
 
-``--mesh-levels COUNT REACH`` adapts the fixed mesh to COUNT elastic solutions up to REACH
-times the largest interference (the driver's default: 6 up to 1): the elastic contact
-edge at w_max lies well inside the plastic one (a sphere: sqrt(R w) against nearly
-sqrt(2 R w)), so with REACH 2 the refined band covers the plastic edge::
+``--edge-band`` refines the fixed mesh along the surface where the plastic contact edge
+goes (the preset key ``edge_size``, `asperity.fe.remesh.edge_band`; ``EDGE_SIZE`` below
+per preset; runs recorded as <case>/<preset>/fixed-edge): the elastic contact edge at
+w_max lies well inside the plastic one (a sphere: sqrt(R w) against nearly sqrt(2 R w)),
+so the elastic adaptation leaves the plastic edge's path coarse::
 
-    python benchmarks/remesh.py --cases j2_sphere viscoplastic_hill --presets standard --remesh off --mesh-levels 12 2
+    python benchmarks/remesh.py --cases j2_sphere viscoplastic_hill --presets standard --remesh off --edge-band
+    python benchmarks/remesh.py --cases j2_sphere --presets fine --remesh off --edge-band
 """
 
 from __future__ import annotations
@@ -43,7 +45,7 @@ import numpy as np
 from asperity.fe import J2Plasticity, Sphere
 from asperity.fe.bodner_partom import BodnerPartom
 from asperity.fe.geometry import CosineHill
-from asperity.fe.inelastic import MESH_RANGE, History, solve_asperity_history
+from asperity.fe.inelastic import History, solve_asperity_history
 
 OUT = Path(__file__).with_name("results") / "remesh.json"
 
@@ -52,37 +54,33 @@ Y = E / 400
 W_C = (math.pi * 1.6 * Y / (2 * E / (1 - NU**2))) ** 2
 
 
-def levels(w_max: float, spec) -> np.ndarray | None:
-    """The elastic interferences of the one-off mesh: the driver's default (None), or
-    (count, reach) levels spread geometrically from MESH_RANGE w_max to reach w_max."""
-    if spec is None:
-        return None
-    count, reach = spec
-    return np.geomspace(MESH_RANGE * w_max, reach * w_max, count)
+#: ``edge_size`` of the fixed meshes of ``--edge-band`` (times the intersection radius)
+EDGE_SIZE = {"draft": 0.04, "standard": 0.02, "fine": 0.0125}
 
 
-def j2_sphere(accuracy, mesh=None):
+def j2_sphere(accuracy):
     w_max = 50 * W_C
     return solve_asperity_history(Sphere(1.0), J2Plasticity(E, NU, Y),
-                                  History.loading(w_max, 1.0), accuracy=accuracy,
-                                  mesh_levels=levels(w_max, mesh))
+                                  History.loading(w_max, 1.0), accuracy=accuracy)
 
 
-def viscoplastic_hill(accuracy, mesh=None):
+def viscoplastic_hill(accuracy):
     ratio = np.pi / (np.sqrt(2.0) * 0.160)
     hill = CosineHill.from_aspect(ratio, 2.0 * np.pi**2 / (ratio**2 * 0.042e6))
     w_max = 0.1 * hill.height
     return solve_asperity_history(hill, BodnerPartom.sae_1020(),
-                                  History.load_unload(w_max, 0.25e-6),
-                                  accuracy=accuracy, mesh_levels=levels(w_max, mesh))
+                                  History.load_unload(w_max, 0.25e-6), accuracy=accuracy)
 
 
 CASES = {"j2_sphere": j2_sphere, "viscoplastic_hill": viscoplastic_hill}
 
 
-def run(case: str, preset: str, remesh: bool, mesh=None) -> dict:
+def run(case: str, preset: str, remesh: bool, edge: bool = False) -> dict:
+    accuracy = dict(base=preset, remesh=remesh)
+    if edge:
+        accuracy["edge_size"] = EDGE_SIZE[preset]
     t0 = time.process_time()
-    ds = CASES[case](dict(base=preset, remesh=remesh), mesh)
+    ds = CASES[case](accuracy)
     cpu = time.process_time() - t0
     k = int(np.argmax(ds.interference.values))
     return dict(
@@ -123,21 +121,18 @@ def main(argv=None):
     ap.add_argument("--presets", nargs="+", default=["standard", "fine"])
     ap.add_argument("--remesh", nargs="+", default=["on"], choices=["on", "off"],
                     help="remeshing on, off (the fixed mesh) or both")
-    ap.add_argument("--mesh-levels", nargs=2, type=float, metavar=("COUNT", "REACH"),
-                    help="the fixed mesh adapted to COUNT elastic solutions from "
-                    f"{MESH_RANGE:g} to REACH times the largest interference instead of the "
-                    "driver's default (runs recorded as <case>/<preset>/fixed-<COUNT>x<REACH>)")
+    ap.add_argument("--edge-band", action="store_true",
+                    help="the fixed mesh refined where the plastic edge goes (edge_size "
+                    f"{EDGE_SIZE}; runs recorded as <case>/<preset>/fixed-edge)")
     args = ap.parse_args(argv)
-    mesh = None if args.mesh_levels is None else (int(args.mesh_levels[0]),
-                                                  args.mesh_levels[1])
-    suffix = "" if mesh is None else f"-{mesh[0]}x{mesh[1]:g}"
+    if args.edge_band and "on" in args.remesh:
+        ap.error("--edge-band refines the fixed mesh: give --remesh off")
+    suffix = "-edge" if args.edge_band else ""
     for case in args.cases:
         for preset in args.presets:
             for remesh in [m == "on" for m in args.remesh]:
-                if remesh and mesh is not None:
-                    ap.error("--mesh-levels sets the fixed mesh: give --remesh off")
                 key = f"{case}/{preset}/{'remesh' if remesh else 'fixed'}{suffix}"
-                r = run(case, preset, remesh, mesh)
+                r = run(case, preset, remesh, args.edge_band)
                 record = _read()  # other presets may run at the same time
                 record["runs"][key] = r
                 print(f"{key:<36s} {r['cpu_seconds']:8.1f} s CPU  {r['steps']:4d} steps  "

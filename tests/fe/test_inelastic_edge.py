@@ -63,6 +63,39 @@ def test_standard_grows_with_the_force_and_agrees_with_fine():
     np.testing.assert_allclose(np.sqrt(area / FINE_AREA), 1.0, atol=0.02)
 
 
+#: contact area [m^2] of the same sphere at `fine` with the top refined where the
+#: plastic edge goes (``edge_size`` 0.0125; 161 steps, `benchmarks/remesh.py --presets
+#: fine --remesh off --edge-band`), interpolated in ln w between its steps, at these
+#: fractions of the largest interference
+BAND_W = np.array([0.5, 0.6, 0.7, 0.8, 0.9, 1.0])
+BAND_AREA = np.array([3.83450e-3, 4.72644e-3, 5.64656e-3, 6.57003e-3, 7.51227e-3, 8.46502e-3])
+
+
+def _scatter(ds, start=0.3):
+    """Largest relative deviation of the area from a cubic in ln w fitted over
+    w >= start x the largest interference (ln A against ln w)."""
+    w, A = ds.interference.values, ds.contact_area.values
+    late = w >= start * w.max()
+    x, y = np.log(w[late]), np.log(A[late])
+    return float(np.max(np.abs(np.expm1(y - np.polyval(np.polyfit(x, y, 3), x)))))
+
+
+@pytest.mark.slow
+def test_edge_band_smooths_the_area_and_puts_standard_within_one_percent_of_fine():
+    """Issue #14: the contact area at `standard` within 1 % of `fine`.  With the top
+    refined over the radii the plastic edge sweeps (`remesh.edge_band`) the area is
+    within 0.2 % of fine's at these interferences (1 % asserted, the target) and
+    scatters by 0.5 % about a smooth curve; the default mesh, adapted to elastic
+    edges only, scatters by 2.3 % (asserted above 1.5 %: the band is what removes it)."""
+    band = _sphere(dict(base="standard", edge_size=0.02))
+    _grows_with_the_force(band)
+    w, A = band.interference.values, band.contact_area.values
+    area = np.exp(np.interp(np.log(BAND_W * W_MAX), np.log(w), np.log(A)))
+    np.testing.assert_allclose(area / BAND_AREA, 1.0, atol=0.01)
+    assert _scatter(band) < 0.008
+    assert _scatter(_sphere("standard")) > 0.015
+
+
 def test_elastic_j2_body_has_the_hertz_area():
     """With nothing yielding the edge is that of Hertz (report 6.1: A = pi R w)
     within the elastic solver's tolerance at `standard` (2 % in radius), on

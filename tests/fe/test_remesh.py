@@ -12,7 +12,7 @@ import pytest
 from asperity.fe import J2Plasticity, LinearElastic, Sphere, solve_asperity_history
 from asperity.fe.inelastic import History
 from asperity.fe.presets import resolve
-from asperity.fe.remesh import Transfer, contact_mesh, integral
+from asperity.fe.remesh import EDGE_BAND, Transfer, contact_mesh, edge_band, integral
 
 E, NU = 1000.0, 0.3
 Y = E / 400  # elastic-perfectly plastic, E/Y = 400
@@ -31,6 +31,29 @@ def meshes():
     zone = np.array([[0.0, 0.05, 0.1], [-0.03, -0.05, -0.02]])
     new, _ = contact_mesh(SPHERE, elastic, pre, 0.1, 100.0, plastic_points=zone)
     return old, new, Transfer(old, new)
+
+
+def _top_facets(mesh):
+    """Inner and outer radius and length of every top facet of a mesh."""
+    p = mesh.vertices.p
+    f = mesh.vertices.facets[:, mesh.top_facets()]
+    return (np.minimum(p[0, f[0]], p[0, f[1]]), np.maximum(p[0, f[0]], p[0, f[1]]),
+            np.hypot(*(p[:, f[0]] - p[:, f[1]])))
+
+
+def test_edge_band_refines_the_top_where_the_plastic_edge_goes_and_nowhere_else(meshes):
+    old, _, _ = meshes
+    w_max, size = 0.005, 0.02
+    r_g = math.sqrt(2 * w_max - w_max**2)  # the unit sphere's intersection radius
+    lo, hi = EDGE_BAND[0] * r_g, EDGE_BAND[1] * r_g
+    before = _top_facets(old.mesh)
+    after = _top_facets(edge_band(old.mesh, SPHERE, w_max, size))
+    in_band = [(b > lo) & (a < hi) for a, b, _ in (before, after)]
+    assert before[2][in_band[0]].max() > 2 * size * r_g  # the band was coarser
+    assert after[2][in_band[1]].max() <= size * r_g * (1 + 1e-9)
+    # away from the band (beyond the elements next to it) the top is unchanged
+    far = [(b < 0.5 * lo) | (a > 2 * hi) for a, b, _ in (before, after)]
+    np.testing.assert_allclose(np.sort(after[2][far[1]]), np.sort(before[2][far[0]]))
 
 
 def _nodal(disc):

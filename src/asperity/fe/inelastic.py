@@ -30,9 +30,11 @@ off the mesh is FIXED: it is adapted once, by the existing machinery
 (`solve.adapted_model` with the material's elastic constants), to elastic
 solutions at a few interferences up to the largest of the history
 (``mesh_levels``), so that it resolves the contact edge from first touch
-to the largest load.  Either way, plastic contacts are wider than elastic
-ones at the same interference: the candidate contact zone is larger
-(``INELASTIC_CANDIDATE_FACTOR``) and grows if reached.
+to the largest load, and with the preset key ``edge_size`` refined along
+the surface where the wider plastic edge goes (`remesh.edge_band`).  Either
+way, plastic contacts are wider than elastic ones at the same interference:
+the candidate contact zone is larger (``INELASTIC_CANDIDATE_FACTOR``) and
+grows if reached.
 
 Time integration of the material (report 3.6).  The material's own update
 is backward Euler (BE): y_n+1 = y_n + dt f(y_n+1) for the internal
@@ -153,7 +155,7 @@ import scipy.sparse.linalg as spl
 import xarray as xr
 
 from . import nonlinear
-from .assembly import OrderedLU
+from .assembly import Discretization, OrderedLU
 from .contact import PENALTY_FACTOR, C1Penalty, ContactZone, contact_edge_pressure
 from .errors import ContactZoneError, RuptureError, StepFailed
 from .kinematics import KINEMATICS, SmallStrain, kinematics_for
@@ -162,7 +164,7 @@ from .nonlinear import (Pace, Problem, ResidualSearch, StepCuts, check_local_upd
                         strain_limited)
 from .outputs import INELASTIC_THRESHOLD, SMALL_STRAIN_LIMIT, dataset
 from .presets import resolve
-from .remesh import ContactMeshes, Transfer
+from .remesh import ContactMeshes, Transfer, edge_band
 from .solve import adapted_model, check_levels, run_attrs
 
 #: on unloading, a force below this fraction of the largest force counts as zero
@@ -698,10 +700,9 @@ def solve_asperity_history(geometry, material, history: History, accuracy="stand
         first touch and of the end of unloading.  With ``remesh`` on, the
         first mesh is the one for the elastic contact at the smallest level.
         The elastic contact edge at the largest level lies inside a plastic
-        one (a sphere: sqrt(R w) against up to sqrt(2 R w)); levels up to
-        2 x the largest interference refine where the plastic edge goes
-        (README, "Meshes that follow the contact": 12 levels to 2 w_max put
-        a J2 sphere's area at standard within 0.1 % of fine at 50 w_c).
+        one (a sphere: sqrt(R w) against up to sqrt(2 R w)): the preset key
+        ``edge_size`` refines the band of radii the plastic edge sweeps
+        (`remesh.edge_band`; README, "Meshes that follow the contact").
     stop_at_zero_force
         on unloading, stop once the force vanishes (falls below
         ``ZERO_FORCE`` x the largest force; the crossing is
@@ -793,6 +794,9 @@ def solve_asperity_history(geometry, material, history: History, accuracy="stand
                                   "penalty", factor)
         r_cand = max(r_cand, emodel.r_candidate)
         disc = emodel.disc
+        if preset["edge_size"] is not None:  # the band the plastic edge sweeps
+            disc = Discretization(edge_band(emodel.mesh, geometry, w_max,
+                                            float(preset["edge_size"])))
     model = InelasticModel(disc, geometry, material, preset, r_cand, factor, tolerance,
                            kinematics)
     t_mesh = time.perf_counter() - t_start
