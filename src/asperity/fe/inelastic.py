@@ -783,6 +783,14 @@ def solve_asperity_history(geometry, material, history: History, accuracy="stand
     if tolerance is None and rate_dependent and math.isfinite(time_tolerance):
         tolerance = max(preset["tolerance"], NEWTON_FRACTION * time_tolerance)
     remesh = bool(preset["remesh"])
+    edge_size = preset["edge_size"]
+    if edge_size is not None:
+        if remesh:
+            raise ValueError("accuracy key edge_size refines the one mesh of remesh off; "
+                             "with remesh on the meshes follow the contact edge")
+        if not 0 < float(edge_size) < 1:
+            raise ValueError(f"accuracy key edge_size must be None or between 0 and 1 "
+                             f"(times the intersection radius), got {edge_size!r}")
     remesh_times = sorted(float(x) for x in np.atleast_1d(remesh_times))
     meshes = ContactMeshes(geometry, elastic_part(material), preset, factor, INELASTIC_THRESHOLD)
     if remesh:
@@ -794,9 +802,8 @@ def solve_asperity_history(geometry, material, history: History, accuracy="stand
                                   "penalty", factor)
         r_cand = max(r_cand, emodel.r_candidate)
         disc = emodel.disc
-        if preset["edge_size"] is not None:  # the band the plastic edge sweeps
-            disc = Discretization(edge_band(emodel.mesh, geometry, w_max,
-                                            float(preset["edge_size"])))
+        if edge_size is not None:  # the band the plastic edge sweeps
+            disc = Discretization(edge_band(emodel.mesh, geometry, w_max, float(edge_size)))
     model = InelasticModel(disc, geometry, material, preset, r_cand, factor, tolerance,
                            kinematics)
     t_mesh = time.perf_counter() - t_start
