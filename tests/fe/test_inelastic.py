@@ -79,7 +79,8 @@ def test_history_load_unload():
 def test_rejects_an_edge_band_it_cannot_build(extra):
     with pytest.raises(ValueError, match="edge_size"):
         solve_asperity_history(Paraboloid(1.0), J2Plasticity(E, NU, 30.0),
-                               History.load_unload(W_MAX, 1.0), accuracy=dict(base="draft", **extra))
+                               History.load_unload(W_MAX, 1.0),
+                               accuracy=dict(base="draft", **extra))
 
 
 def test_rejects_elastic_material():
