@@ -15,7 +15,9 @@ on or off (``--remesh on off``; off is every preset's default):
   than the fixed mesh, 131 steps).
 
 Writes benchmarks/results/remesh.json (merged with what is already there, so
-that the presets can be run separately: fine takes minutes)::
+that the presets can be run separately: fine takes minutes) and, from what it holds,
+docs/figures/remesh_j2_sphere.png (``--cases`` with no case: the summary and the figure
+only)::
 
     python benchmarks/remesh.py --cases j2_sphere --presets standard fine --remesh on off
     python benchmarks/remesh.py --cases viscoplastic_hill --presets standard --remesh on off
@@ -48,6 +50,7 @@ from asperity.fe.geometry import CosineHill
 from asperity.fe.inelastic import History, solve_asperity_history
 
 OUT = Path(__file__).with_name("results") / "remesh.json"
+FIGURE = Path(__file__).resolve().parents[1] / "docs" / "figures" / "remesh_j2_sphere.png"
 
 E, NU = 1000.0, 0.3
 Y = E / 400
@@ -105,6 +108,54 @@ def compare(coarse: dict, fine: dict) -> dict:
         out[name + "_at_top"] = coarse[name + "_at_top"] / fine[name + "_at_top"] - 1
         out[name + "_largest"] = float(np.max(np.abs(np.asarray(coarse[name])[late] / ref - 1)))
     return out
+
+
+def figure(runs: dict, path: Path = FIGURE) -> bool:
+    """The J2 sphere's contact area over the geometric one, against w / w_c, of the
+    meshes recorded at both presets, and standard's difference from fine on the same
+    kind of mesh (interpolated at standard's interferences); False if none is."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    # the band's curves first: below half the largest interference they lie under the
+    # default mesh's (the band refines only beyond it)
+    kinds = {"fixed-edge": "edge band", "fixed": "default fixed mesh", "remesh": "remeshing"}
+    pairs = {k: (runs.get(f"j2_sphere/standard/{k}"), runs.get(f"j2_sphere/fine/{k}"))
+             for k in kinds}
+    pairs = {k: v for k, v in pairs.items() if v[0] and v[1]}
+    if not pairs:
+        return False
+    fig, (left, right) = plt.subplots(1, 2, figsize=(11, 4.2))
+    for i, (kind, (standard, fine)) in enumerate(pairs.items()):
+        colour = f"C{i}"
+        for run, style, preset in ((standard, "o-", "standard"), (fine, "-", "fine")):
+            w = np.asarray(run["interference"][1:])
+            area = np.asarray(run["contact_area"][1:]) / (np.pi * (2 * w - w**2))
+            left.plot(w / W_C, area, style, color=colour, ms=2.5, lw=1,
+                      label=f"{preset}, {kinds[kind]}")
+        w = np.asarray(standard["interference"][1:])
+        ref = np.interp(w, fine["interference"][1:], fine["contact_area"][1:])
+        right.plot(w / W_C, 100 * (np.asarray(standard["contact_area"][1:]) / ref - 1), "o-",
+                   color=colour, ms=2.5, lw=1, label=kinds[kind])
+    left.set(xscale="log", xlabel="interference / critical interference w_c",
+             ylabel="contact area / geometric area pi (2 R w - w^2)",
+             title="J2 sphere, E/Y = 400: contact area")
+    left.legend(fontsize=7)
+    right.axhspan(-1, 1, color="0.9", label="target: 1 %")
+    right.axvline(25, color="0.6", lw=0.8, ls=":", label="second half of the loading")
+    right.set(xscale="log", xlabel="interference / critical interference w_c",
+              ylabel="standard / fine - 1 [%]", ylim=(-6, 6),
+              title="standard against fine on the same kind of mesh")
+    right.legend(fontsize=7)
+    fig.tight_layout()
+    path.parent.mkdir(parents=True, exist_ok=True)
+    tmp = path.with_suffix(".tmp.png")
+    fig.savefig(tmp, dpi=110)
+    plt.close(fig)
+    tmp.replace(path)
+    return True
 
 
 def _read() -> dict:
@@ -191,6 +242,8 @@ def main(argv=None):
     OUT.write_text(json.dumps(record, indent=1))
     print(json.dumps(summary, indent=1))
     print(f"written {OUT}")
+    if figure(runs):
+        print(f"written {FIGURE}")
 
 
 if __name__ == "__main__":
