@@ -64,11 +64,12 @@ def test_standard_grows_with_the_force_and_agrees_with_fine():
 
 
 #: contact area [m^2] of the same sphere at `fine` with the top refined where the
-#: plastic edge goes (``edge_size`` 0.0125; 161 steps, `benchmarks/remesh.py --presets
+#: plastic edge goes (``edge_size`` 0.0125; 162 steps, `benchmarks/remesh.py --presets
 #: fine --remesh off --edge-band`), interpolated in ln w between its steps, at these
 #: fractions of the largest interference
-BAND_W = np.array([0.5, 0.6, 0.7, 0.8, 0.9, 1.0])
-BAND_AREA = np.array([3.83450e-3, 4.72644e-3, 5.64656e-3, 6.57003e-3, 7.51227e-3, 8.46502e-3])
+BAND_W = np.array([0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 0.9, 1.0])
+BAND_AREA = np.array([1.32956e-3, 2.13197e-3, 2.96996e-3, 3.83447e-3, 4.72650e-3,
+                      5.64657e-3, 6.57001e-3, 7.51218e-3, 8.46503e-3])
 
 
 def _scatter(ds, start=0.3):
@@ -84,15 +85,16 @@ def _scatter(ds, start=0.3):
 def test_edge_band_smooths_the_area_and_puts_standard_within_one_percent_of_fine():
     """Issue #14: the contact area at `standard` within 1 % of `fine`.  With the top
     refined over the radii the plastic edge sweeps (`remesh.edge_band`) the area is
-    within 0.2 % of fine's at these interferences (1 % asserted, the target) and
-    scatters by 0.5 % about a smooth curve; the default mesh, adapted to elastic
-    edges only, scatters by 2.3 % (asserted above 1.5 %: the band is what removes it)."""
+    within 0.8 % of fine's at these interferences (1 % asserted, the target) and
+    scatters by 0.7 % about a smooth curve (below 1 % asserted); the default mesh,
+    adapted to elastic edges only, scatters by 2.3 % (asserted above 1.5 %: the band
+    is what removes it)."""
     band = _sphere(dict(base="standard", edge_size=0.02))
     _grows_with_the_force(band)
     w, A = band.interference.values, band.contact_area.values
     area = np.exp(np.interp(np.log(BAND_W * W_MAX), np.log(w), np.log(A)))
     np.testing.assert_allclose(area / BAND_AREA, 1.0, atol=0.01)
-    assert _scatter(band) < 0.008
+    assert _scatter(band) < 0.01
     assert _scatter(_sphere("standard")) > 0.015
 
 

@@ -51,8 +51,10 @@ def test_edge_band_refines_the_top_where_the_plastic_edge_goes_and_nowhere_else(
     in_band = [(b > lo) & (a < hi) for a, b, _ in (before, after)]
     assert before[2][in_band[0]].max() > 2 * size * r_g  # the band was coarser
     assert after[2][in_band[1]].max() <= size * r_g * (1 + 1e-9)
-    # away from the band (beyond the elements next to it) the top is unchanged
-    far = [(b < 0.5 * lo) | (a > 2 * hi) for a, b, _ in (before, after)]
+    # away from the band (beyond the elements next to it, which refine_around may
+    # refine) the top is unchanged
+    far = [(b < 0.25 * lo) | (a > 2 * hi) for a, b, _ in (before, after)]
+    assert np.count_nonzero(far[0]) >= 5
     np.testing.assert_allclose(np.sort(after[2][far[1]]), np.sort(before[2][far[0]]))
 
 

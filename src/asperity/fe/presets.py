@@ -80,10 +80,10 @@ edge_size
     radius at the largest interference), refined on top of the elastic
     adaptation, which resolves the elastic edges only.  None in every preset:
     on the J2 sphere of `make time-remesh`, 0.02 at standard and 0.0125 at
-    fine put standard's contact area within 0.7 % of fine's over the second
-    half of the loading (3 % on the default meshes), for 1.5 times standard's
-    CPU; but the viscoplastic hill takes twice as long with it (README
-    "Meshes that follow the contact").
+    fine put standard's contact area within 0.9 % of fine's from a tenth of
+    the largest interference on (3.8 % on the default meshes), for 1.7 times
+    standard's CPU; but the viscoplastic hill takes 2.5 times as long with it
+    (README "Meshes that follow the contact").
 
 Adhesive presets (`ADHESIVE_ACCURACY`, `adhesive.solve_asperity_adhesive`)
 add to the elastic preset of the same name: the mesh of the adhesive band

@@ -92,10 +92,11 @@ INSIDE = 1e-10
 PLASTIC_FRACTION = 0.01
 #: refinement passes of the plastic zone at most
 PLASTIC_PASSES = 12
-#: radii the plastic contact edge of a history sweeps in its second half, as
-#: fractions of the intersection radius r_g at the largest interference: from
-#: about the elastic edge at half of it (r_g / 2 on a sphere) to a little pile-up
-EDGE_BAND = (0.5, 1.1)
+#: radii the plastic contact edge of a history sweeps, as fractions of the
+#: intersection radius r_g at the largest interference: on a sphere r_g / 4 is
+#: the plastic edge at about a tenth of the largest interference, 1.1 r_g a
+#: little pile-up at the largest
+EDGE_BAND = (0.25, 1.1)
 
 _P2 = ElementTriP2()
 
