@@ -186,6 +186,17 @@ def _trailing(A: sp.csc_matrix, m: int) -> np.ndarray:
     return out
 
 
+#: SuperLU options of a symmetric factorization with diagonal pivots
+SYMMETRIC = dict(diag_pivot_thresh=0.0, options=dict(SymmetricMode=True))
+
+
+def minimum_degree(K: sp.csc_matrix, **options):
+    """SuperLU's factorization of `K` in its minimum degree order (on the pattern
+    of K^T + K), and that order (scipy gives it only with the factors)."""
+    lu = spl.splu(K, permc_spec="MMD_AT_PLUS_A", **options)
+    return lu, np.argsort(lu.perm_c)
+
+
 class CondensedStiffness:
     """The elastic stiffness condensed onto the candidate contact dofs S.
 
@@ -217,13 +228,10 @@ class CondensedStiffness:
         inner = np.ones(n, dtype=bool)
         inner[spos] = False
         inner = np.nonzero(inner)[0]
-        order = np.argsort(spl.splu(Kff[inner][:, inner].tocsc(), permc_spec="MMD_AT_PLUS_A",
-                                    diag_pivot_thresh=0.0,
-                                    options=dict(SymmetricMode=True)).perm_c)
+        _, order = minimum_degree(Kff[inner][:, inner].tocsc(), **SYMMETRIC)
         perm = np.concatenate((inner[order], spos))
         Kp = Kff[perm][:, perm].tocsc()
-        lu = spl.splu(Kp, permc_spec="NATURAL", diag_pivot_thresh=0.0,
-                      options=dict(SymmetricMode=True))
+        lu = spl.splu(Kp, permc_spec="NATURAL", **SYMMETRIC)
         tail = np.arange(n - m, n)
         if not (np.array_equal(lu.perm_c[tail], tail) and np.array_equal(lu.perm_r[tail], tail)):
             raise RuntimeError("the factorization did not keep the contact dofs last")
@@ -274,8 +282,8 @@ class OrderedLU:
         pattern = self._pattern
         if pattern is None or not (np.array_equal(pattern[0], K.indptr)
                                    and np.array_equal(pattern[1], K.indices)):
-            lu = spl.splu(K, permc_spec="MMD_AT_PLUS_A", **self.options)
-            self._set_order(K, np.argsort(lu.perm_c))
+            lu, order = minimum_degree(K, **self.options)
+            self._set_order(K, order)
             return self.Factors(lu, None)
         order, slots, indptr, indices = self._permuted
         Kp = sp.csc_matrix((K.data[slots], indices, indptr), shape=K.shape)
