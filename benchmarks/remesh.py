@@ -23,7 +23,7 @@ only)::
     python benchmarks/remesh.py --cases viscoplastic_hill --presets standard --remesh on off
 
 ``--edge-band`` refines the fixed mesh along the surface where the plastic contact edge
-goes (the preset key ``edge_size``, `asperity.fe.remesh.edge_band`; ``EDGE_SIZE`` below
+goes (the preset key ``edge_size``, `asperity.fe.remesh.edge_band`; ``presets.EDGE_SIZE``
 per preset; runs recorded as <case>/<preset>/fixed-edge): the elastic contact edge at
 w_max lies well inside the plastic one (a sphere: sqrt(R w) against nearly sqrt(2 R w)),
 so the elastic adaptation leaves the plastic edge's path coarse::
@@ -48,6 +48,7 @@ from asperity.fe import J2Plasticity, Sphere
 from asperity.fe.bodner_partom import BodnerPartom
 from asperity.fe.geometry import CosineHill
 from asperity.fe.inelastic import History, solve_asperity_history
+from asperity.fe.presets import EDGE_SIZE
 
 OUT = Path(__file__).with_name("results") / "remesh.json"
 FIGURE = Path(__file__).resolve().parents[1] / "docs" / "figures" / "remesh_j2_sphere.png"
@@ -56,9 +57,6 @@ E, NU = 1000.0, 0.3
 Y = E / 400
 W_C = (math.pi * 1.6 * Y / (2 * E / (1 - NU**2))) ** 2
 
-
-#: ``edge_size`` of the fixed meshes of ``--edge-band`` (times the intersection radius)
-EDGE_SIZE = {"draft": 0.04, "standard": 0.02, "fine": 0.0125}
 
 
 def j2_sphere(accuracy):

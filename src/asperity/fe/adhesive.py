@@ -168,7 +168,7 @@ from .material import equivalent_strain, von_mises
 from .mesh import AsperityMesh, MeshSpec
 from .newton import ROUNDOFF_FACTOR
 from .nonlinear import EnergySearch, Problem
-from .outputs import dataset, describe
+from .outputs import accuracy_attrs, dataset, describe
 from .presets import PLANE_STRAIN_DOMAIN, resolve
 
 #: Newton iterations of a step attempt are the preset's ``max_iterations``
@@ -1860,7 +1860,7 @@ def smooth_aluminum_curves(radii=(15.4e-6, 30e-6, 60e-6), d: float = 0.3e-9,
                                 dict(units="N", long_name="JKR pull-off 3/2 pi R W_c(d)"))
     ds.attrs.update(material=describe(mat), adhesion=describe(law), report="7.3, Fig. 7.6",
                     geometry="Paraboloid (shallow: half space with a paraboloidal gap)",
-                    accuracy=accuracy if isinstance(accuracy, str) else "custom",
+                    **accuracy_attrs(accuracy),
                     w_max=float(w_max),
                     sign_convention="force compressive positive; adhesion (attraction) negative")
     return ds

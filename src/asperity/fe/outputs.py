@@ -112,6 +112,19 @@ def describe(obj) -> str:
     return repr(obj)
 
 
+def accuracy_attrs(accuracy) -> dict:
+    """The attributes naming a run's accuracy: ``accuracy``, the preset (for a dict of
+    overrides its ``base``, standard unless named), and, where a dict changes keys of it,
+    ``accuracy_overrides`` (e.g. ``edge_size=0.02``)."""
+    if isinstance(accuracy, str):
+        return dict(accuracy=accuracy)
+    extra = dict(accuracy)
+    out = dict(accuracy=extra.pop("base", "standard"))
+    if extra:
+        out["accuracy_overrides"] = ", ".join(f"{k}={v!r}" for k, v in sorted(extra.items()))
+    return out
+
+
 def dataset(rec: dict, geometry, material, accuracy, preset: dict, step_name: str,
             attrs: dict | None = None) -> xr.Dataset:
     """The per-step Dataset of a run: the arrays of `rec` on dim ``step``
@@ -131,8 +144,8 @@ def dataset(rec: dict, geometry, material, accuracy, preset: dict, step_name: st
         geometry=describe(geometry),
         material=describe(material),
         symmetry="axisymmetric" if axi else "plane strain (per unit length)",
-        accuracy=accuracy if isinstance(accuracy, str) else "custom",
         accuracy_parameters=repr(preset),
+        **accuracy_attrs(accuracy),
     )
     ds.attrs.update(attrs or {})
     return ds

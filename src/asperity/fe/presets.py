@@ -83,7 +83,8 @@ edge_size
     fine put standard's contact area within 0.9 % of fine's from a tenth of
     the largest interference on (3.8 % on the default meshes), for 1.7 times
     standard's CPU; but the viscoplastic hill takes 2.5 times as long with it
-    (README "Meshes that follow the contact").
+    (README "Meshes that follow the contact").  `EDGE_SIZE` holds the size of
+    each preset, which a scene's ``asperity: {edge_band: true}`` sets.
 
 Adhesive presets (`ADHESIVE_ACCURACY`, `adhesive.solve_asperity_adhesive`)
 add to the elastic preset of the same name: the mesh of the adhesive band
@@ -192,6 +193,12 @@ ADHESIVE_ACCURACY: dict[str, dict] = {
                  max_band_facets=6000, follow_above=1600, edge_band=True,
                  follow_margin=0.0, follow_margin_elements=20.0),
 }
+
+#: ``edge_size`` at each preset where a scene asks for the band the plastic contact edge
+#: sweeps (``asperity: {edge_band: true}``; `benchmarks/remesh.py --edge-band` measures
+#: these): standard's within 1 % of fine's in contact area on the J2 sphere
+EDGE_SIZE = {"draft": 0.04, "standard": 0.02, "fine": 0.0125}
+
 
 #: accuracy presets of the sliding model: mesh sizes relative to the
 #: contact radius estimate r (the geometric intersection radius at the

@@ -173,10 +173,13 @@ def samples_by_key(plan: xr.Dataset, samples: Mapping[str, xr.Dataset]) -> dict[
 
 def fe_cost(jobs) -> dict:
     """What a set of FE jobs cost, for the gathered file's attributes: their
-    preset, count and total CPU time, and the largest Newton, step-cut, dof and time-step
-    counts of any of them (each only where every job records it)."""
+    preset (and the keys of it they override), count and total CPU time, and the
+    largest Newton, step-cut, dof and time-step counts of any of them (each only where
+    every job records it)."""
     out = dict(accuracy=str(jobs[0].attrs.get("accuracy", "")), fe_jobs=len(jobs),
                fe_cpu_time=float(sum(j.attrs.get("cpu_time", np.nan) for j in jobs)))
+    if "accuracy_overrides" in jobs[0].attrs:  # e.g. a scene's asperity.edge_band
+        out["accuracy_overrides"] = str(jobs[0].attrs["accuracy_overrides"])
     for attr, var in (("max_newton_iterations", "newton_iterations"), ("max_step_cuts", "step_cuts"),
                       ("max_dofs", "dofs")):
         if all(var in j for j in jobs):

@@ -91,7 +91,9 @@ class Asperity:
     unloading_smallest, unloading_check: the computed unloading paths (8.3); scaling:
     ``auto``, ``self_similar`` or ``none``; reference_curvature [1/m] of the computed
     member of a self-similar family (None: the geometric mean of the grid); aspects,
-    aspect_check: the FE jobs of the coupled hill's family of aspects (2.5.1, 8.2.2).
+    aspect_check: the FE jobs of the coupled hill's family of aspects (2.5.1, 8.2.2);
+    edge_band: inelastic jobs refine their mesh where the plastic contact edge goes
+    (the preset's `asperity.fe.presets.EDGE_SIZE`).
     """
 
     model: str
@@ -111,6 +113,7 @@ class Asperity:
     reference_curvature: float | None
     aspects: int = 6
     aspect_check: bool = False
+    edge_band: bool = False
 
     @classmethod
     @parses("asperity")
@@ -130,6 +133,7 @@ class Asperity:
             unloading_check=section["unloading_check"], scaling=section["scaling"],
             reference_curvature=reference / length if reference else None,
             aspects=section.get("aspects", 6), aspect_check=section.get("aspect_check", False),
+            edge_band=section.get("edge_band", False),
         )
 
     @property

@@ -58,6 +58,9 @@ class Kind:
         if "finite_strain" in effects:
             raise ValueError("effect `finite_strain` needs an FE asperity with effect `plasticity` "
                              "(the finite-strain kinematics are the inelastic asperity's)")
+        if asperity.edge_band:
+            raise ValueError("asperity.edge_band needs an FE asperity with effect `plasticity` "
+                             "(it refines the mesh where the plastic contact edge goes)")
 
     def grid(self, base: np.ndarray, largest: float, count: int, adhesion: Adhesion | None) -> np.ndarray:
         """The interference grid [m] of the plan; `base` is the geometric grid of

@@ -11,13 +11,17 @@ asperity's whole range so that the loading branches of its levels coincide (the
 corners of the blend, 8.3). Coupled cosine hills (2.5.1) are loaded only: one job per
 sample, or per aspect of their family under ``scaling: self_similar`` (8.2.2). With the
 effect ``finite_strain`` the jobs are in finite-strain kinematics (`asperity.fe.kinematics`);
-the effect enters the spec with the others, so it reruns them.
+the effect enters the spec with the others, so it reruns them. A scene's
+``asperity: {edge_band: true}`` makes the spec's accuracy the preset with its
+``edge_size`` (`edge_band_accuracy`): the one mesh refined where the plastic contact
+edge goes.
 """
 
 from __future__ import annotations
 
 import math
 import time
+from dataclasses import replace
 
 import numpy as np
 
@@ -41,6 +45,15 @@ def history(level: float, top: float, velocity: float | None):
     return fe.History.load_unload(w_max, v)
 
 
+def edge_band_accuracy(preset: str) -> dict:
+    """The accuracy of a job of a scene with ``asperity: {edge_band: true}``: the preset
+    with its one mesh refined where the plastic contact edge goes (preset key
+    ``edge_size``, `asperity.fe.presets.EDGE_SIZE`)."""
+    from asperity.fe.presets import EDGE_SIZE
+
+    return {"base": preset, "edge_size": EDGE_SIZE[preset]}
+
+
 def kinematics(effects) -> str:
     """The FE job's kinematics: finite strain with the effect ``finite_strain``."""
     return "finite" if "finite_strain" in effects else "small"
@@ -53,7 +66,8 @@ class Inelastic(FiniteElementKind):
         if "unloading" in effects and not asperity.shift_invariant:
             raise ValueError("effect `unloading` needs an asperity whose response does not depend "
                              "on its peak height (mapping: representative, sphere or paraboloid)")
-        super().check(asperity, material, effects - {"unloading", "finite_strain"})
+        super().check(replace(asperity, edge_band=False), material,
+                      effects - {"unloading", "finite_strain"})
 
     def scalable(self, asperity, material, effects):
         return self_similar(asperity, material, effects)
@@ -68,6 +82,8 @@ class Inelastic(FiniteElementKind):
 
     def spec(self, planning, height, curvature, level):
         spec = self.base_spec(planning, height, curvature)
+        if planning.asperity.edge_band:
+            spec["accuracy"] = edge_band_accuracy(planning.accuracy)
         if not planning.material.rate_independent(planning.effects):
             spec["velocity"] = planning.asperity.velocity
         if not math.isnan(level):

@@ -1,0 +1,66 @@
+"""A scene's ``asperity: {edge_band: true}`` (issue #14): the inelastic jobs refine their
+one mesh where the plastic contact edge goes, at the preset's size
+(`asperity.fe.presets.EDGE_SIZE`); the key changes with it, and elsewhere it is an error."""
+
+from __future__ import annotations
+
+import math
+
+import pytest
+
+from asperity.fe.presets import EDGE_SIZE
+from asperity.population import samples as population
+from asperity.population.kinds import KINDS, Planning
+from asperity.population.plan import interference_grid
+from asperity.population.plan import sample_key
+from asperity.scene import Asperity, Material, Units
+from tests.scene_defaults import filled
+
+J2 = Material(model="j2", youngs_modulus=65e9, poisson=0.33, yield_stress=320e6)
+ELASTIC = Material(model="elastic", youngs_modulus=65e9, poisson=0.33)
+
+
+def asperity(**section) -> Asperity:
+    return Asperity.from_section(filled("asperity", {"model": "fe", "geometry": "sphere", **section}),
+                                 Units("m", "Pa"))
+
+
+def spec(edge_band: bool, accuracy: str = "draft") -> dict:
+    """The job of a J2 sphere of radius 100 um pressed to 0.3 um (about 30 times its
+    critical interference)."""
+    planning = Planning(asperity=asperity(edge_band=edge_band), material=J2,
+                        effects=frozenset({"plasticity"}), accuracy=accuracy, adhesion=None,
+                        grid=interference_grid(0.3e-6, 20), family=None, width_to_height=None)
+    return KINDS["inelastic"].spec(planning, None, 1e4, math.nan)
+
+
+@pytest.mark.parametrize("preset", sorted(EDGE_SIZE))
+def test_the_band_reaches_the_job_spec_at_the_presets_size_and_changes_its_key(preset):
+    band, plain = spec(True, preset), spec(False, preset)
+    assert plain["accuracy"] == preset
+    assert band["accuracy"] == {"base": preset, "edge_size": EDGE_SIZE[preset]}
+    assert {k: v for k, v in band.items() if k != "accuracy"} == \
+        {k: v for k, v in plain.items() if k != "accuracy"}
+    assert sample_key(band) != sample_key(plain)
+
+
+@pytest.mark.parametrize("kind, material, effects", [("elastic", ELASTIC, set()),
+                                                     ("adhesive", ELASTIC, {"adhesion"}),
+                                                     ("hertz", ELASTIC, set())])
+def test_the_band_is_refused_without_plasticity(kind, material, effects):
+    with pytest.raises(ValueError, match=r"asperity\.edge_band needs an FE asperity with "
+                                         r"effect `plasticity`"):
+        KINDS[kind].check(asperity(edge_band=True), material, frozenset(effects))
+    KINDS["inelastic"].check(asperity(edge_band=True), J2, frozenset({"plasticity"}))
+
+
+def test_a_job_with_the_band_runs_on_the_refined_mesh_and_says_so():
+    """The job solved from the spec: more dofs than without the band (the surface from
+    0.25 to 1.1 intersection radii at 0.04 of it, against the elastic adaptation's
+    grading), and the attributes name the preset and the override."""
+    band = population.solve(spec(True), "band")
+    plain = population.solve(spec(False), "plain")
+    assert band.attrs["accuracy"] == plain.attrs["accuracy"] == "draft"
+    assert band.attrs["accuracy_overrides"] == "edge_size=0.04"
+    assert "accuracy_overrides" not in plain.attrs
+    assert int(band["dofs"].max()) > 1.2 * int(plain["dofs"].max())
