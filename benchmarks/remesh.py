@@ -191,12 +191,13 @@ def main(argv=None):
     record = _read()
     runs = record["runs"]
     summary = {}
-    for mode in ("remesh", "fixed"):
-        s, f = runs.get(f"j2_sphere/standard/{mode}"), runs.get(f"j2_sphere/fine/{mode}")
-        if s and f:
-            summary[f"j2_sphere_{mode}"] = dict(
-                cpu_fine_over_standard=f["cpu_seconds"] / s["cpu_seconds"],
-                standard_against_fine=compare(s, f))
+    for case in CASES:  # standard against fine on the same kind of mesh
+        for mode in ("remesh", "fixed", "fixed-edge"):
+            s, f = runs.get(f"{case}/standard/{mode}"), runs.get(f"{case}/fine/{mode}")
+            if s and f:
+                summary[f"{case}_{mode}"] = dict(
+                    cpu_fine_over_standard=f["cpu_seconds"] / s["cpu_seconds"],
+                    standard_against_fine=compare(s, f))
     s, f = runs.get("j2_sphere/standard/remesh"), runs.get("j2_sphere/fine/fixed")
     if s and f:
         summary["j2_sphere_standard_remesh_against_fine_fixed"] = dict(
@@ -215,10 +216,6 @@ def main(argv=None):
     for key in sorted(k for k in runs if k.startswith("j2_sphere/standard/fixed-")):
         mode = key.rsplit("/", 1)[1]
         s, f = runs[key], runs.get(f"j2_sphere/fine/{mode}")
-        if f:
-            summary[f"j2_sphere_{mode}"] = dict(
-                cpu_fine_over_standard=f["cpu_seconds"] / s["cpu_seconds"],
-                standard_against_fine=compare(s, f))
         if runs.get("j2_sphere/fine/fixed"):
             summary[f"j2_sphere_standard_{mode}_against_fine_fixed"] = compare(
                 s, runs["j2_sphere/fine/fixed"])
