@@ -16,7 +16,7 @@ on or off (``--remesh on off``; off is every preset's default):
 
 Writes benchmarks/results/remesh.json (merged with what is already there, so
 that the presets can be run separately: fine takes minutes) and, from what it holds,
-docs/figures/remesh_j2_sphere.png (``--cases`` with no case: the summary and the figure
+docs/figures/remesh_contact_area.png (``--cases`` with no case: the summary and the figure
 only)::
 
     python benchmarks/remesh.py --cases j2_sphere --presets standard fine --remesh on off
@@ -51,7 +51,7 @@ from asperity.fe.inelastic import History, solve_asperity_history
 from asperity.fe.presets import EDGE_SIZE
 
 OUT = Path(__file__).with_name("results") / "remesh.json"
-FIGURE = Path(__file__).resolve().parents[1] / "docs" / "figures" / "remesh_j2_sphere.png"
+FIGURE = Path(__file__).resolve().parents[1] / "docs" / "figures" / "remesh_contact_area.png"
 
 E, NU = 1000.0, 0.3
 Y = E / 400
@@ -96,22 +96,26 @@ def run(case: str, preset: str, remesh: bool, edge: bool = False) -> dict:
 
 
 def compare(coarse: dict, fine: dict) -> dict:
-    """Relative differences of `coarse` from `fine`: at the top of the loading,
-    and the largest at equal interference over its second half."""
+    """Relative differences of `coarse` from `fine`: at the top of the loading, and
+    the largest at equal interference over its second half (``_largest``) and from a
+    tenth to a half of it (``_largest_early``; `fine` interpolated at `coarse`'s
+    interferences)."""
     w = np.asarray(coarse["interference"])
-    late = w >= 0.5 * w[-1]
+    ranges = {"_largest": w >= 0.5 * w[-1], "_largest_early": (w >= 0.1 * w[-1]) & (w < 0.5 * w[-1])}
     out = {}
     for name in ("force", "contact_area"):
-        ref = np.interp(w[late], fine["interference"], fine[name])
         out[name + "_at_top"] = coarse[name + "_at_top"] / fine[name + "_at_top"] - 1
-        out[name + "_largest"] = float(np.max(np.abs(np.asarray(coarse[name])[late] / ref - 1)))
+        for suffix, part in ranges.items():
+            ref = np.interp(w[part], fine["interference"], fine[name])
+            out[name + suffix] = float(np.max(np.abs(np.asarray(coarse[name])[part] / ref - 1)))
     return out
 
 
 def figure(runs: dict, path: Path = FIGURE) -> bool:
-    """The J2 sphere's contact area over the geometric one, against w / w_c, of the
-    meshes recorded at both presets, and standard's difference from fine on the same
-    kind of mesh (interpolated at standard's interferences); False if none is."""
+    """Left, the J2 sphere's contact area over the geometric one, against w / w_c, of
+    the meshes recorded at both presets; then, for each case, standard's contact area
+    over fine's on the same kind of mesh (interpolated at standard's interferences).
+    False if no case has both presets."""
     import matplotlib
 
     matplotlib.use("Agg")
@@ -120,33 +124,42 @@ def figure(runs: dict, path: Path = FIGURE) -> bool:
     # the band's curves first: below half the largest interference they lie under the
     # default mesh's (the band refines only beyond it)
     kinds = {"fixed-edge": "edge band", "fixed": "default fixed mesh", "remesh": "remeshing"}
-    pairs = {k: (runs.get(f"j2_sphere/standard/{k}"), runs.get(f"j2_sphere/fine/{k}"))
-             for k in kinds}
-    pairs = {k: v for k, v in pairs.items() if v[0] and v[1]}
+    pairs = {(case, k): (runs.get(f"{case}/standard/{k}"), runs.get(f"{case}/fine/{k}"))
+             for case in CASES for k in kinds}
+    pairs = {ck: v for ck, v in pairs.items() if v[0] and v[1]}
     if not pairs:
         return False
-    fig, (left, right) = plt.subplots(1, 2, figsize=(11, 4.2))
-    for i, (kind, (standard, fine)) in enumerate(pairs.items()):
-        colour = f"C{i}"
-        for run, style, preset in ((standard, "o-", "standard"), (fine, "-", "fine")):
-            w = np.asarray(run["interference"][1:])
-            area = np.asarray(run["contact_area"][1:]) / (np.pi * (2 * w - w**2))
-            left.plot(w / W_C, area, style, color=colour, ms=2.5, lw=1,
-                      label=f"{preset}, {kinds[kind]}")
+    fig, (left, *right) = plt.subplots(1, 3, figsize=(15, 4.2))
+    panels = dict(zip(CASES, right))
+    titles = {"j2_sphere": ("J2 sphere", "interference / critical interference w_c"),
+              "viscoplastic_hill": ("viscoplastic hill (loading)",
+                                    "interference / largest interference")}
+    for (case, kind), (standard, fine) in pairs.items():
+        colour = f"C{list(kinds).index(kind)}"
         w = np.asarray(standard["interference"][1:])
+        scale = W_C if case == "j2_sphere" else w[-1]
+        if case == "j2_sphere":
+            for run, style, preset in ((standard, "o-", "standard"), (fine, "-", "fine")):
+                wr = np.asarray(run["interference"][1:])
+                area = np.asarray(run["contact_area"][1:]) / (np.pi * (2 * wr - wr**2))
+                left.plot(wr / W_C, area, style, color=colour, ms=2.5, lw=1,
+                          label=f"{preset}, {kinds[kind]}")
         ref = np.interp(w, fine["interference"][1:], fine["contact_area"][1:])
-        right.plot(w / W_C, 100 * (np.asarray(standard["contact_area"][1:]) / ref - 1), "o-",
-                   color=colour, ms=2.5, lw=1, label=kinds[kind])
+        panels[case].plot(w / scale, 100 * (np.asarray(standard["contact_area"][1:]) / ref - 1),
+                          "o-", color=colour, ms=2.5, lw=1, label=kinds[kind])
     left.set(xscale="log", xlabel="interference / critical interference w_c",
              ylabel="contact area / geometric area pi (2 R w - w^2)",
              title="J2 sphere, E/Y = 400: contact area")
     left.legend(fontsize=7)
-    right.axhspan(-1, 1, color="0.9", label="target: 1 %")
-    right.axvline(25, color="0.6", lw=0.8, ls=":", label="second half of the loading")
-    right.set(xscale="log", xlabel="interference / critical interference w_c",
-              ylabel="standard / fine - 1 [%]", ylim=(-6, 6),
-              title="standard against fine on the same kind of mesh")
-    right.legend(fontsize=7)
+    for case, ax in panels.items():
+        title, xlabel = titles[case]
+        ax.axhspan(-1, 1, color="0.9", label="1 %")
+        half = 25 if case == "j2_sphere" else 0.5
+        ax.axvline(half, color="0.6", lw=0.8, ls=":", label="second half of the loading")
+        ax.set(xscale="log", xlabel=xlabel, ylabel="standard / fine - 1 [%]", ylim=(-6, 6),
+               title=f"{title}: standard against fine on the same kind of mesh")
+        ax.title.set_fontsize(9)
+        ax.legend(fontsize=7)
     fig.tight_layout()
     path.parent.mkdir(parents=True, exist_ok=True)
     tmp = path.with_suffix(".tmp.png")
