@@ -133,8 +133,9 @@ def interface_dataset(
         out.attrs["unloading_from"] = h0
     out.attrs["rule"] = rule
     out.attrs["cells"] = str(homogenization.cells)
-    for name in ("accuracy", "fe_jobs", "fe_cpu_time", "max_newton_iterations", "max_step_cuts",
-                 "max_dofs", "max_time_steps"):  # what the asperities cost (FE scenes)
+    for name in ("accuracy", "accuracy_overrides", "fe_jobs", "fe_cpu_time",
+                 "max_newton_iterations", "max_step_cuts", "max_dofs",
+                 "max_time_steps"):  # what the asperities cost (FE scenes)
         if name in asperities.attrs:
             out.attrs[name] = asperities.attrs[name]
     if validity_cfg is not None:  # where the result holds
