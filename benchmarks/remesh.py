@@ -95,6 +95,16 @@ def run(case: str, preset: str, remesh: bool, edge: bool = False) -> dict:
         contact_area=ds.contact_area.values[:k + 1].tolist())
 
 
+def area_scatter(w, area, start: float = 0.3) -> float:
+    """How much a contact area curve scatters from step to step: the largest relative
+    deviation of the area from a cubic in ln w fitted to ln A over w >= `start` x the
+    largest interference (tests/fe/test_inelastic_edge.py asserts it)."""
+    w, area = np.asarray(w), np.asarray(area)
+    late = w >= start * w.max()
+    x, y = np.log(w[late]), np.log(area[late])
+    return float(np.max(np.abs(np.expm1(y - np.polyval(np.polyfit(x, y, 3), x)))))
+
+
 def compare(coarse: dict, fine: dict) -> dict:
     """Relative differences of `coarse` from `fine`: at the top of the loading, and
     the largest at equal interference over its second half (``_largest``) and from a
@@ -246,6 +256,8 @@ def main(argv=None):
     if fixed_fine and runs.get("j2_sphere/fine/remesh"):
         summary["j2_sphere_fine_remesh_against_fine_fixed"] = compare(
             runs["j2_sphere/fine/remesh"], fixed_fine)
+    summary["contact_area_scatter"] = {
+        key: area_scatter(r["interference"], r["contact_area"]) for key, r in sorted(runs.items())}
     record["summary"] = summary
     OUT.write_text(json.dumps(record, indent=1))
     print(json.dumps(summary, indent=1))

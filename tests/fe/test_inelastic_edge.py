@@ -11,6 +11,7 @@ import pytest
 from asperity.fe import J2Plasticity, Paraboloid, Sphere, solve_asperity_history
 from asperity.fe.contact import contact_edge_pressure
 from asperity.fe.inelastic import History
+from benchmarks.remesh import area_scatter
 
 E, NU = 1000.0, 0.3
 E_STAR = E / (1 - NU**2)
@@ -72,13 +73,10 @@ BAND_AREA = np.array([1.32956e-3, 2.13197e-3, 2.96996e-3, 3.83447e-3, 4.72650e-3
                       5.64657e-3, 6.57001e-3, 7.51218e-3, 8.46503e-3])
 
 
-def _scatter(ds, start=0.3):
-    """Largest relative deviation of the area from a cubic in ln w fitted over
-    w >= start x the largest interference (ln A against ln w)."""
-    w, A = ds.interference.values, ds.contact_area.values
-    late = w >= start * w.max()
-    x, y = np.log(w[late]), np.log(A[late])
-    return float(np.max(np.abs(np.expm1(y - np.polyval(np.polyfit(x, y, 3), x)))))
+def _scatter(ds):
+    """The area's step-to-step scatter (`benchmarks.remesh.area_scatter`, which
+    `make time-remesh` reports for every run)."""
+    return area_scatter(ds.interference.values, ds.contact_area.values)
 
 
 @pytest.mark.slow
