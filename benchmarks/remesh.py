@@ -107,11 +107,12 @@ def area_scatter(w, area, start: float = 0.3) -> float:
 
 def compare(coarse: dict, fine: dict) -> dict:
     """Relative differences of `coarse` from `fine`: at the top of the loading, and
-    the largest at equal interference over its second half (``_largest``) and from a
-    tenth to a half of it (``_largest_early``; `fine` interpolated at `coarse`'s
-    interferences)."""
+    the largest at equal interference over its second half (``_largest``), from a
+    tenth to a half of it (``_largest_early``) and below a tenth (``_largest_start``;
+    `fine` interpolated at `coarse`'s interferences)."""
     w = np.asarray(coarse["interference"])
-    ranges = {"_largest": w >= 0.5 * w[-1], "_largest_early": (w >= 0.1 * w[-1]) & (w < 0.5 * w[-1])}
+    ranges = {"_largest": w >= 0.5 * w[-1], "_largest_early": (w >= 0.1 * w[-1]) & (w < 0.5 * w[-1]),
+              "_largest_start": (w > 0) & (w < 0.1 * w[-1])}
     out = {}
     for name in ("force", "contact_area"):
         out[name + "_at_top"] = coarse[name + "_at_top"] / fine[name + "_at_top"] - 1
