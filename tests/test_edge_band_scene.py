@@ -11,8 +11,7 @@ import pytest
 from asperity.fe.presets import EDGE_SIZE
 from asperity.population import samples as population
 from asperity.population.kinds import KINDS, Planning
-from asperity.population.plan import interference_grid
-from asperity.population.plan import sample_key
+from asperity.population.plan import interference_grid, sample_key
 from asperity.scene import Asperity, Material, Units
 from tests.scene_defaults import filled
 
@@ -26,8 +25,8 @@ def asperity(**section) -> Asperity:
 
 
 def spec(edge_band: bool, accuracy: str = "draft") -> dict:
-    """The job of a J2 sphere of radius 100 um pressed to 0.3 um (about 30 times its
-    critical interference)."""
+    """The job of a J2 sphere of radius 100 um pressed to 0.3 um (about 25 times its
+    critical interference, 0.012 um)."""
     planning = Planning(asperity=asperity(edge_band=edge_band), material=J2,
                         effects=frozenset({"plasticity"}), accuracy=accuracy, adhesion=None,
                         grid=interference_grid(0.3e-6, 20), family=None, width_to_height=None)
