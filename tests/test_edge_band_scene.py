@@ -63,3 +63,13 @@ def test_a_job_with_the_band_runs_on_the_refined_mesh_and_says_so():
     assert band.attrs["accuracy_overrides"] == "edge_size=0.04"
     assert "accuracy_overrides" not in plain.attrs
     assert int(band["dofs"].max()) > 1.2 * int(plain["dofs"].max())
+
+
+def test_a_scene_without_the_key_validates_as_before():
+    """The key has no schema default: a scene that does not set it validates to the
+    asperity section it had before the key existed, so the plan's params are unchanged
+    and an upgrade reruns none of its stages (with a default of false every scene's plan
+    and everything after it reran: measured with a run made before the key and a dry run
+    after, on smooth_aluminum and greenwood_williamson)."""
+    assert "edge_band" not in filled("asperity", {"model": "fe", "geometry": "sphere"})
+    assert asperity().edge_band is False
