@@ -8,7 +8,7 @@ CORES ?= 2
 export OPENBLAS_NUM_THREADS = 1
 export OMP_NUM_THREADS = 1
 
-.PHONY: all reproduce test test-fast bench time-scenes time-jobs time-adhesion time-plane-strain time-reference time-surface time-sliding time-remesh time-finite-strain compare-results figures clean-results
+.PHONY: all reproduce test test-fast bench time-scenes time-jobs time-adhesion time-plane-strain time-reference time-surface time-sliding time-remesh time-edge-band time-finite-strain compare-results figures clean-results
 
 all: reproduce
 
@@ -86,6 +86,13 @@ time-sliding: $(STAMP)
 REMESH_ARGS ?= --remesh on off
 time-remesh: $(STAMP)
 	$(BIN)/python benchmarks/remesh.py $(REMESH_ARGS)
+
+# A scene's FE jobs as planned and with the band the plastic contact edge sweeps
+# (asperity.edge_band): kinks of force and area, CPU. About 20 minutes at standard.
+# Writes benchmarks/results/edge-band-<scene>-<preset>.json and its figure.
+EDGE_BAND_ARGS ?= --scene steel_glass_bead --accuracy standard
+time-edge-band: $(STAMP)
+	$(BIN)/python benchmarks/edge_band_scene.py $(EDGE_BAND_ARGS)
 
 # Finite against small strain (a J2 sphere at 2 % strain, the steepest coupled steel
 # hill pressed to its amplitude) at draft and standard: CPU, force, area, strain.
