@@ -118,6 +118,8 @@ def figure(record: dict, path: Path) -> None:
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
+    from asperity.io.figures import save_figure
+
     fig, axes = plt.subplots(2, 2, figsize=(11, 6.5), sharex=True, sharey=True)
     for i, (key, runs) in enumerate(record["jobs"].items()):
         for col, mesh in enumerate(("plain", "band")):
@@ -136,11 +138,7 @@ def figure(record: dict, path: Path) -> None:
         ax.axvline(record["from"], color="0.6", lw=0.8, ls=":")
     axes[0, 0].legend(fontsize=6)
     fig.tight_layout()
-    path.parent.mkdir(parents=True, exist_ok=True)
-    tmp = path.with_suffix(".tmp.png")
-    fig.savefig(tmp, dpi=110)
-    plt.close(fig)
-    tmp.replace(path)
+    save_figure(fig, path, dpi=110)
 
 
 def main(argv=None) -> int:

@@ -132,6 +132,8 @@ def figure(runs: dict, path: Path = FIGURE) -> bool:
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
+    from asperity.io.figures import save_figure
+
     # the band's curves first: below half the largest interference they lie under the
     # default mesh's (the band refines only beyond it)
     kinds = {"fixed-edge": "edge band", "fixed": "default fixed mesh", "remesh": "remeshing"}
@@ -172,11 +174,7 @@ def figure(runs: dict, path: Path = FIGURE) -> bool:
         ax.title.set_fontsize(9)
         ax.legend(fontsize=7)
     fig.tight_layout()
-    path.parent.mkdir(parents=True, exist_ok=True)
-    tmp = path.with_suffix(".tmp.png")
-    fig.savefig(tmp, dpi=110)
-    plt.close(fig)
-    tmp.replace(path)
+    save_figure(fig, path, dpi=110)
     return True
 
 
