@@ -17,7 +17,10 @@ on or off (``--remesh on off``; off is every preset's default):
 Writes benchmarks/results/remesh.json (merged with what is already there, so
 that the presets can be run separately: fine takes minutes) and, from what it holds,
 docs/figures/remesh_contact_area.png (``--cases`` with no case: the summary and the figure
-only)::
+only).  The summary compares every recorded run (`compare`): standard with fine on the
+same kind of mesh (``against_fine``), each kind of mesh with the preset's default fixed
+one (``against_fixed``, with the CPU ratio and steps), and each run with fine on its
+default mesh (``against_fine_fixed``); and gives each run's ``contact_area_scatter``::
 
     python benchmarks/remesh.py --cases j2_sphere --presets standard fine --remesh on off
     python benchmarks/remesh.py --cases viscoplastic_hill --presets standard --remesh on off
@@ -212,49 +215,24 @@ def main(argv=None):
                 OUT.write_text(json.dumps(record, indent=1))
     record = _read()
     runs = record["runs"]
-    summary = {}
-    for case in CASES:  # standard against fine on the same kind of mesh
-        for mode in ("remesh", "fixed", "fixed-edge"):
-            s, f = runs.get(f"{case}/standard/{mode}"), runs.get(f"{case}/fine/{mode}")
-            if s and f:
-                summary[f"{case}_{mode}"] = dict(
-                    cpu_fine_over_standard=f["cpu_seconds"] / s["cpu_seconds"],
-                    standard_against_fine=compare(s, f))
-    s, f = runs.get("j2_sphere/standard/remesh"), runs.get("j2_sphere/fine/fixed")
-    if s and f:
-        summary["j2_sphere_standard_remesh_against_fine_fixed"] = dict(
-            cpu_fine_over_standard=f["cpu_seconds"] / s["cpu_seconds"],
-            standard_against_fine=compare(s, f))
-    for preset in ("standard", "fine"):
-        on, off = runs.get(f"j2_sphere/{preset}/remesh"), runs.get(f"j2_sphere/{preset}/fixed")
-        if on and off:
-            summary[f"j2_sphere_{preset}_cpu_remesh_over_fixed"] = on["cpu_seconds"] / off["cpu_seconds"]
-    on, off = runs.get("viscoplastic_hill/standard/remesh"), runs.get("viscoplastic_hill/standard/fixed")
-    if on and off:
-        summary["viscoplastic_hill_standard"] = dict(
-            cpu_remesh_over_fixed=on["cpu_seconds"] / off["cpu_seconds"],
-            steps_remesh=on["steps"], steps_fixed=off["steps"],
-            force_at_top_remesh_over_fixed=on["force_at_top"] / off["force_at_top"] - 1)
-    for key in sorted(k for k in runs if k.startswith("j2_sphere/standard/fixed-")):
-        mode = key.rsplit("/", 1)[1]
-        s, f = runs[key], runs.get(f"j2_sphere/fine/{mode}")
-        if runs.get("j2_sphere/fine/fixed"):
-            summary[f"j2_sphere_standard_{mode}_against_fine_fixed"] = compare(
-                s, runs["j2_sphere/fine/fixed"])
-        if f and runs.get("j2_sphere/fine/fixed"):
-            summary[f"j2_sphere_fine_{mode}_against_fine_fixed"] = compare(
-                f, runs["j2_sphere/fine/fixed"])
-    for key in sorted(k for k in runs if k.startswith("viscoplastic_hill/standard/fixed-")):
-        off = runs.get("viscoplastic_hill/standard/fixed")
-        if off:
-            summary[f"viscoplastic_hill_standard_{key.rsplit('/', 1)[1]}"] = dict(
-                cpu_over_fixed=runs[key]["cpu_seconds"] / off["cpu_seconds"],
-                steps=runs[key]["steps"], steps_fixed=off["steps"],
-                force_at_top_over_fixed=runs[key]["force_at_top"] / off["force_at_top"] - 1)
-    fixed_fine = runs.get("j2_sphere/fine/fixed")
-    if fixed_fine and runs.get("j2_sphere/fine/remesh"):
-        summary["j2_sphere_fine_remesh_against_fine_fixed"] = compare(
-            runs["j2_sphere/fine/remesh"], fixed_fine)
+    summary = dict(against_fine={}, against_fixed={}, against_fine_fixed={})
+    for key, r in sorted(runs.items()):
+        case, preset, mode = key.split("/")
+        # standard against fine on the same kind of mesh
+        fine = runs.get(f"{case}/fine/{mode}")
+        if preset == "standard" and fine:
+            summary["against_fine"][f"{case}/{mode}"] = dict(
+                cpu_fine_over_standard=fine["cpu_seconds"] / r["cpu_seconds"], **compare(r, fine))
+        # another kind of mesh against the preset's default fixed mesh
+        fixed = runs.get(f"{case}/{preset}/fixed")
+        if mode != "fixed" and fixed:
+            summary["against_fixed"][key] = dict(
+                cpu_over_fixed=r["cpu_seconds"] / fixed["cpu_seconds"], steps=r["steps"],
+                steps_fixed=fixed["steps"], **compare(r, fixed))
+        # any run against fine on its default fixed mesh
+        reference = runs.get(f"{case}/fine/fixed")
+        if reference and key != f"{case}/fine/fixed":
+            summary["against_fine_fixed"][key] = compare(r, reference)
     summary["contact_area_scatter"] = {
         key: area_scatter(r["interference"], r["contact_area"]) for key, r in sorted(runs.items())}
     record["summary"] = summary
