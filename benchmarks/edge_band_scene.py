@@ -14,8 +14,9 @@ otherwise idle).  For each job and mesh it records the history and:
   largest |y_i / y*_i - 1| over the steps, y*_i the value at w_i on the straight line
   in (ln w, ln y) through the steps before and after (0 for a power law), over
   w >= ``--from`` x the job's largest interference;
-* the band's difference from the plain mesh at equal interference (largest, over the
-  same range).
+* the band's difference from the plain mesh at equal interference
+  (`benchmarks.remesh.compare`: at the top, the largest over the second half, from a
+  tenth to a half and below a tenth of the loading).
 
 Writes benchmarks/results/edge-band-<scene>-<preset>.json and, from it,
 docs/figures/edge_band_<scene>.png (every step's kink against the interference over
@@ -39,6 +40,7 @@ from pathlib import Path
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))  # run as a script: `benchmarks` importable
+from benchmarks.remesh import compare  # noqa: E402
 from benchmarks.workflow_copy import SNAKEMAKE, copy_workflow  # noqa: E402
 
 RESULTS = Path(__file__).with_name("results")
@@ -89,7 +91,8 @@ def solve(spec: dict, key: str) -> dict:
                 newton_iterations=int(ds.newton_iterations.sum()),
                 interference=loading.interference.values[keep].tolist(),
                 force=loading.force.values[keep].tolist(),
-                contact_area=loading.contact_area.values[keep].tolist())
+                contact_area=loading.contact_area.values[keep].tolist(),
+                force_at_top=float(ds.force[k]), contact_area_at_top=float(ds.contact_area[k]))
 
 
 def summary(jobs: dict, start: float) -> dict:
@@ -100,12 +103,7 @@ def summary(jobs: dict, start: float) -> dict:
             row[f"{mesh}_kink_force"] = kink(r["interference"], r["force"], start)
             row[f"{mesh}_kink_area"] = kink(r["interference"], r["contact_area"], start)
             row[f"{mesh}_cpu_seconds"] = r["cpu_seconds"]
-        plain, band = runs["plain"], runs["band"]
-        w = np.asarray(band["interference"])
-        use = w >= start * w.max()
-        for name in ("force", "contact_area"):
-            ref = np.interp(w[use], plain["interference"], plain[name])
-            row[f"band_against_plain_{name}"] = float(np.max(np.abs(np.asarray(band[name])[use] / ref - 1)))
+        row["band_against_plain"] = compare(runs["band"], runs["plain"])
         out[key] = row
     return out
 
