@@ -163,3 +163,37 @@ def test_stiffness_accepts_a_tangent_per_quadrature_point():
     work = np.sum(METRIC[:, None, None] * s * e * disc.weights)
     assert u @ K1 @ u == pytest.approx(work, rel=1e-10)
     assert u @ K1 @ u > u @ K2 @ u
+
+
+@pytest.mark.parametrize("geometry", [Sphere(1.0), Cylinder(1.0)])
+def test_mesh_fields_of_an_affine_field(geometry):
+    """`inelastic.mesh_fields` (the fields drawn as Figs. 6.15-6.21) on u = (a r, b z + c r),
+    exact in P2: the displacement at the vertices, det(I + grad u) = (1 + a)(1 + b) (times
+    the hoop stretch 1 + a of a body of revolution) to round-off, and its sign flipped
+    for a = -2 (every element inside out); the element mean of a uniform inelastic strain
+    is its equivalent value."""
+    from asperity.fe import J2Plasticity
+    from asperity.fe.inelastic import END_FIELDS, mesh_fields
+    from asperity.fe.material import equivalent_strain
+
+    disc = _disc(geometry)
+    state = J2Plasticity(200.0, 0.3, 1.0).initial_state(disc.weights.shape)
+    eps = np.array([1e-3, -2e-3, 1e-3, 5e-4])
+    state.inelastic_strain[:] = eps[:, None, None]
+    p = disc.mesh.vertices.p
+    for a, b, c in ((1e-3, -2e-3, 5e-4), (-2.0, 0.5, 0.1)):
+        ds = mesh_fields(disc, _field(disc, lambda r, z: a * r, lambda r, z: b * z + c * r),
+                         state)
+        assert set(END_FIELDS) <= set(ds.data_vars)
+        np.testing.assert_allclose(ds["vertex_r"].values, p[0])
+        np.testing.assert_allclose(ds["vertex_displacement_r"].values, a * p[0], atol=1e-14)
+        np.testing.assert_allclose(ds["vertex_displacement_z"].values, b * p[1] + c * p[0],
+                                   atol=1e-14)
+        det = (1 + a) * (1 + b) * ((1 + a) if geometry.axisymmetric else 1.0)
+        np.testing.assert_allclose(ds["element_jacobian"].values, det, rtol=1e-10)
+        assert (ds["element_jacobian"].values <= 0).all() == (det <= 0)
+    np.testing.assert_allclose(ds["element_inelastic_strain"].values,
+                               float(equivalent_strain(eps[:, None]).ravel()[0]), rtol=1e-12)
+    assert ds["triangle_vertices"].shape == (disc.mesh.vertices.t.shape[1], 3)
+    for v in ds.variables.values():
+        assert v.attrs["units"] and v.attrs["long_name"]

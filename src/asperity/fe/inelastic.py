@@ -633,6 +633,51 @@ OUTPUTS = ("time", "interference", "force", "contact_area", "contact_radius",
            "step_cuts", "time_step", "integration_order", "time_error", "dofs", "wall_time")
 
 
+#: the variables of `mesh_fields` (`solve_asperity_history`'s ``end_fields``)
+END_FIELDS = ("vertex_r", "vertex_z", "triangle_vertices", "vertex_displacement_r",
+              "vertex_displacement_z", "element_inelastic_strain", "element_jacobian")
+
+
+def mesh_fields(disc: Discretization, u: np.ndarray, state) -> xr.Dataset:
+    """The mesh of `disc` and the fields of displacement `u` and material `state` on it,
+    on dims ``vertex``, ``triangle`` and ``corner`` (`END_FIELDS`): the undeformed
+    vertices (r or x, z), the corners of the triangles (the P2 elements'
+    straight-sided skeleton), the displacement at the vertices and the equivalent
+    inelastic strain averaged over each element (by volume: its quadrature weights)."""
+    m = disc.mesh.vertices
+    ur, uz = u[disc.basis.nodal_dofs]
+    ep = equivalent_strain(state.inelastic_strain)
+    ep_e = np.sum(ep * disc.weights, axis=1) / np.sum(disc.weights, axis=1)
+    field = disc.basis.interpolate(u)
+    g = field.grad  # (2, 2, ne, nq): d u_i / d x_j
+    jac = (1 + g[0, 0]) * (1 + g[1, 1]) - g[0, 1] * g[1, 0]
+    if disc.axisymmetric:
+        jac = jac * (1 + np.asarray(field)[0] / disc.x[0])
+    x = "r" if disc.axisymmetric else "x"
+
+    def var(dims, values, units, long_name):
+        return dims, values, dict(units=units, long_name=long_name)
+
+    return xr.Dataset(
+        {"vertex_r": var("vertex", m.p[0], "m", f"{x} of the mesh vertex (undeformed)"),
+         "vertex_z": var("vertex", m.p[1], "m", "z of the mesh vertex (undeformed, up)"),
+         "triangle_vertices": var(("triangle", "corner"), m.t.T.astype(np.int32), "1",
+                                  "vertex indices of the element's corners"),
+         "vertex_displacement_r": var("vertex", ur, "m",
+                                      f"displacement u_{x} at the vertex, end of the run"),
+         "vertex_displacement_z": var("vertex", uz, "m",
+                                      "displacement u_z at the vertex, end of the run"),
+         "element_inelastic_strain": var("triangle", ep_e, "1",
+                                         "equivalent inelastic strain, the element's volume "
+                                         "mean, end of the run"),
+         "element_jacobian": var("triangle", jac.min(axis=1), "1",
+                                 "smallest det(I + grad u) at the element's quadrature points, "
+                                 "end of the run (<= 0: turned inside out)")},
+        coords={"vertex": var("vertex", np.arange(m.p.shape[1]), "1", "mesh vertex"),
+                "triangle": var("triangle", np.arange(m.t.shape[1]), "1", "mesh element"),
+                "corner": var("corner", np.arange(3), "1", "element corner")})
+
+
 def solve_asperity_history(geometry, material, history: History, accuracy="standard",
                            initial_time_step: float | None = None,
                            max_time_step: float | None = None,
@@ -648,7 +693,7 @@ def solve_asperity_history(geometry, material, history: History, accuracy="stand
                            integration: str = "bdf2",
                            on_rupture: str = "continue",
                            remesh_times=(), kinematics: str = "small",
-                           progress=None) -> xr.Dataset:
+                           end_fields: bool = False, progress=None) -> xr.Dataset:
     """Incremental solution of an inelastic asperity along `history`.
 
     Parameters
@@ -729,6 +774,12 @@ def solve_asperity_history(geometry, material, history: History, accuracy="stand
         small-strain range (report 7.3: about 8 %).  The strain outputs are
         then Hencky strains, the stresses their work conjugates (rotated
         Kirchhoff stresses), the contact radius that of the deformed surface.
+    end_fields
+        also return the mesh of the end of the run and its fields there
+        (`END_FIELDS`: the vertices, the triangles, the displacement at the
+        vertices and the equivalent inelastic strain of each element), to
+        draw the mesh and the deformed body (report Figs. 6.15, 6.16, 6.19
+        to 6.21).
     progress
         optional callable(str), told of every accepted step (time,
         interference, force, Newton iterations, cuts, wall time).
@@ -1048,9 +1099,11 @@ def solve_asperity_history(geometry, material, history: History, accuracy="stand
         extra.update(rupture_step=rupture["step"], rupture_time=rupture["time"],
                      rupture_interference=rupture["interference"],
                      rupture_position=rupture["position"], rupture_depth=rupture["depth"])
-    return dataset(rec, geometry, material, accuracy, preset, "time step index", {
+    ds = dataset(rec, geometry, material, accuracy, preset, "time step index", {
         **run_attrs("penalty", factor,
                     "rebuilt around the contact edge and the plastic zone as they move (remesh)"
                     if remesh else
                     "fixed, adapted once to the elastic solution at the largest interference"),
         **extra})
+    return xr.merge([ds, mesh_fields(model.disc, u, state)], combine_attrs="override") \
+        if end_fields else ds
