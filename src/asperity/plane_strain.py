@@ -70,7 +70,8 @@ def _padded(values: np.ndarray, n: int) -> np.ndarray:
 
 
 def plane_strain_study(geometry, body, elastic, history, meshes: Mapping[str, dict],
-                       points: int = 24, progress=None) -> xr.Dataset:
+                       points: int = 24, kinematics: str = "small",
+                       progress=None) -> xr.Dataset:
     """Force against interference of a plane-strain asperity, elastic and viscoplastic,
     on each of `meshes` (module docstring).
 
@@ -89,16 +90,23 @@ def plane_strain_study(geometry, body, elastic, history, meshes: Mapping[str, di
     points
         interference levels of the elastic body, evenly spaced to the largest of the
         history; they also drive the meshing of both bodies.
+    kinematics
+        of the inelastic body (`solve_asperity_history`): ``"small"`` (the report's
+        theory) or ``"finite"``; the elastic twin is linear, small strain.
     progress
         called with a message after each solve.
 
     Returns a Dataset in SI on dims ``mesh``, ``body``, ``interference`` (the levels)
     and ``step`` (the viscoplastic history, NaN-padded), with the CPU time of each
     solve, the degrees of freedom of each mesh, the largest nonelastic strain of each
-    mesh and where it was reached, and for a cylinder the Hertz half width.
+    mesh and where it was reached, for a cylinder the Hertz half width, and on dims
+    ``vertex``, ``triangle`` and ``corner`` each mesh with the viscoplastic body's
+    displacement and nonelastic strain at the end of the history
+    (`asperity.fe.inelastic.mesh_fields`, padded to the largest mesh).
     """
     from asperity.fe import solve_asperity, solve_asperity_history
     from asperity.fe.analytic import hertz_line_half_width
+    from asperity.fe.inelastic import END_FIELDS
 
     if geometry.axisymmetric:
         raise ValueError("a plane-strain study needs a plane section (axisymmetric=False)")
@@ -119,7 +127,8 @@ def plane_strain_study(geometry, body, elastic, history, meshes: Mapping[str, di
         e = solve_asperity(geometry, elastic, w, accuracy=preset)
         cpu[i, 0] = time.process_time() - t0
         t0 = time.process_time()
-        v = solve_asperity_history(geometry, body, history, accuracy=preset, mesh_levels=w)
+        v = solve_asperity_history(geometry, body, history, accuracy=preset, mesh_levels=w,
+                                   kinematics=kinematics, end_fields=True)
         cpu[i, 1] = time.process_time() - t0
         runs.append(v)
         grid["force"][i, 0] = e["force"].values
@@ -136,7 +145,8 @@ def plane_strain_study(geometry, body, elastic, history, meshes: Mapping[str, di
                      f"viscoplastic {v.attrs['steps']} steps {cpu[i, 1]:.2f} s, force at "
                      f"{w_max:.4g} m {grid['force'][i, 0, -1]:.6g} / "
                      f"{grid['force'][i, 1, -1]:.6g} N/m, "
-                     f"largest nonelastic strain {float(v['max_inelastic_strain'].max()):.4g}")
+                     f"largest nonelastic strain {float(v['max_inelastic_strain'].max()):.4g}, "
+                     f"{int((v['element_jacobian'] <= 0).sum())} elements inside out at the end")
 
     steps = max(r.sizes["step"] for r in runs)
     per_step = {k: np.stack([_padded(r[k].values, steps) for r in runs])
@@ -192,6 +202,21 @@ def plane_strain_study(geometry, body, elastic, history, meshes: Mapping[str, di
                                                           "history (0: untouched)")),
         },
     )
+    # each mesh and the viscoplastic body on it at the end (Figs. 6.15, 6.16, 6.19-6.21),
+    # padded to the largest mesh: NaN, and -1 for the corners of missing triangles
+    ends = xr.concat([r[list(END_FIELDS)] for r in runs], dim="mesh", join="outer",
+                     fill_value={k: (-1 if k == "triangle_vertices" else np.nan)
+                                 for k in END_FIELDS}, combine_attrs="override")
+    ds = ds.merge(ends, combine_attrs="override")
+    ds["vertices"] = ("mesh", np.array([r.sizes["vertex"] for r in runs]),
+                      attrs("1", "vertices of the mesh (the rest of dim vertex is padding)"))
+    ds["triangles"] = ("mesh", np.array([r.sizes["triangle"] for r in runs]),
+                       attrs("1", "elements of the mesh (the rest of dim triangle is padding)"))
+    ds["inverted_elements"] = ("mesh", np.array([int((r["element_jacobian"] <= 0).sum())
+                                                 for r in runs]),
+                               attrs("1", "elements the viscoplastic body's displacement at the "
+                                          "end turns inside out (det(I + grad u) <= 0: the "
+                                          "small-strain solution past its range)"))
     if geometry.kind == "cylinder":
         ds["hertz_half_width"] = (
             ("mesh", "interference"),
@@ -210,6 +235,7 @@ def plane_strain_study(geometry, body, elastic, history, meshes: Mapping[str, di
         history_times=np.asarray(history.times, float),
         history_interferences=np.asarray(history.interferences, float),
         meshes=", ".join(f"{n}: {dict(meshes[n])}" for n in names),
+        kinematics=kinematics,
         interpolation="viscoplastic history interpolated linearly in interference onto the "
                       "elastic body's levels",
     )

@@ -41,7 +41,7 @@ VERSIONS: dict[str, int] = {
     "uniaxial": 1,
     "accuracy_bodner_partom": 2,
     "sliding": 11,
-    "plane_strain": 1,
+    "plane_strain": 2,
     "accuracy_hertz": 1,
     "accuracy_scenes": 1,
     # the deterministic reference (workflow/rules/reference.smk)
@@ -60,6 +60,7 @@ VERSIONS: dict[str, int] = {
     "uniaxial_figure": 1,
     "sliding_figure": 3,
     "plane_strain_figure": 1,
+    "plane_strain_mesh_figure": 1,
     "reference_figure": 1,
 }
 

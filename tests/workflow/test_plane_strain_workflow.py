@@ -26,6 +26,7 @@ def run(tmp_path_factory):
 def test_scene_targets_are_the_plane_strain_file_and_figure(run):
     out = run / "results" / SCENE
     assert (out / "plane_strain.nc").exists() and (out / "figures" / "plane_strain.png").exists()
+    assert (out / "figures" / "plane_strain_meshes.png").exists()
     assert (out / "logs" / "plane_strain.log").exists()
     assert not (out / "surface.nc").exists()
     assert planned_jobs(snakemake(run, "-n", *CONFIG)) == {}  # nothing left to do
@@ -34,7 +35,7 @@ def test_scene_targets_are_the_plane_strain_file_and_figure(run):
 def test_file_carries_units_scene_and_version(run):
     ds = read_dataset(run / "results" / SCENE / "plane_strain.nc")
     assert missing_attributes(ds) == []
-    assert ds.attrs["scene"] == SCENE and ds.attrs["code_version"] == "plane_strain 1"
+    assert ds.attrs["scene"] == SCENE and ds.attrs["code_version"] == "plane_strain 2"
     config = scene_config(ds)
     assert config["accuracy"] == "draft" and config["plane_strain"]["section"]["shape"] == SCENE
     assert config["material"]["bodner_partom"]["preset"] == "aluminum_6061_t4"

@@ -167,7 +167,11 @@ def scene_targets(name):
     if "sliding" in SCENES[name]:
         return [f"{out}/sliding.nc", f"{out}/figures/sliding.png"]
     if "plane_strain" in SCENES[name]:
-        return [f"{out}/plane_strain.nc", f"{out}/figures/plane_strain.png"]
+        return [
+            f"{out}/plane_strain.nc",
+            f"{out}/figures/plane_strain.png",
+            f"{out}/figures/plane_strain_meshes.png",
+        ]
     targets = [f"{out}/surface.nc", f"{out}/figures/surface.png"]
     if "reference" in SCENES[name]:
         targets += [f"{out}/reference.nc", f"{out}/comparison.nc", f"{out}/figures/reference.png"]

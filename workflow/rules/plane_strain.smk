@@ -46,3 +46,25 @@ rule plane_strain_figure:
         units=scene_part("units"),
     script:
         "../scripts/plane_strain_figure.py"
+
+
+rule plane_strain_mesh_figure:
+    """Figs. 6.15, 6.16, 6.19-6.21: each mesh, and the viscoplastic body on it at the end."""
+    input:
+        plane_strain=f"{RESULTS}/{{scene}}/plane_strain.nc",
+    output:
+        report(
+            f"{RESULTS}/{{scene}}/figures/plane_strain_meshes.png",
+            category="{scene}",
+            caption="../report/plane_strain_meshes.rst",
+            labels={"scene": "{scene}", "figure": "plane-strain meshes"},
+        ),
+    log:
+        f"{RESULTS}/{{scene}}/logs/plane_strain_mesh_figure.log",
+    conda:
+        ENV
+    params:
+        version=code_version("plane_strain_mesh_figure"),
+        units=scene_part("units"),
+    script:
+        "../scripts/plane_strain_mesh_figure.py"

@@ -1,5 +1,5 @@
-"""Figures of the plane-strain asperities (report 6.3.2, Figs. 6.17 and 6.18; 6.3.3, Figs.
-6.21 to 6.23), from plane_strain.nc only (`asperity.plane_strain` writes it).
+"""Figures of the plane-strain asperities (report 6.3.2, Figs. 6.15 to 6.18; 6.3.3, Figs.
+6.19 to 6.23), from plane_strain.nc only (`asperity.plane_strain` writes it).
 
 Files hold SI; the figure shows the interference in the scene's length unit and forces
 per unit length in kN/m (= N/mm).
@@ -12,6 +12,7 @@ import numpy as np
 import xarray as xr
 
 from asperity import units
+from asperity.fe.outputs import SMALL_STRAIN_LIMIT
 
 #: line style of each body, colour of each mesh (in the file's order)
 BODY_STYLE = {"elastic": dict(ls="--"), "viscoplastic": dict(ls="-")}
@@ -84,3 +85,98 @@ def plane_strain_figure(ds: xr.Dataset, length_unit: str = "um") -> plt.Figure:
         ax.grid(alpha=0.3)
     fig.tight_layout()
     return fig
+
+
+def _triangulation(m: xr.Dataset, scale: float, deformed: bool):
+    """The mesh `m` (one ``mesh`` of plane_strain.nc, its padding dropped) as a matplotlib
+    triangulation in the length unit `scale`, undeformed or at the end of the history."""
+    from matplotlib.tri import Triangulation
+
+    nv, ne = int(m["vertices"]), int(m["triangles"])
+    x = m["vertex_r"].values[:nv]
+    z = m["vertex_z"].values[:nv]
+    if deformed:
+        x = x + m["vertex_displacement_r"].values[:nv]
+        z = z + m["vertex_displacement_z"].values[:nv]
+    return Triangulation(x / scale, z / scale, m["triangle_vertices"].values[:ne])
+
+
+def plane_strain_mesh_figure(ds: xr.Dataset, length_unit: str = "um") -> plt.Figure:
+    """Each mesh of the study (rows): (a) the whole section, as Figs. 6.15, 6.16, 6.19 and
+    6.20 draw it; (b) the same mesh near the contact; (c) the viscoplastic body there at
+    the end of the history, displacements at true scale, each element coloured by its
+    nonelastic strain (Fig. 6.21, on a log scale), with the rigid flat; a white line around the elements
+    whose strain is past the small-strain range (`SMALL_STRAIN_LIMIT`, report 7.3), red
+    outlines on the elements the displacement turns inside out."""
+    from matplotlib.collections import LineCollection, PolyCollection
+    from matplotlib.colors import LogNorm
+
+    scale = units.length_scale(length_unit)
+    figs, what = _what(ds)
+    meshes = list(ds["mesh"].values)
+    a = float(ds["contact_half_width"].sel(body="viscoplastic").isel(mesh=-1, interference=-1))
+    half = 2.5 * a / scale
+    w_end = float(ds.attrs["max_interference"]) / scale
+    strain = ds["element_inelastic_strain"]
+    # a log scale over three decades: the strain at the ridge's corners is a hundred times
+    # that of most of its top; below the decades, the lowest colour
+    norm = LogNorm(vmin=1e-3 * float(strain.max()), vmax=float(strain.max()))
+    fig, axes = plt.subplots(len(meshes), 3, figsize=(15.0, 4.4 * len(meshes)), squeeze=False)
+    for row, mesh in zip(axes, meshes):
+        m = ds.sel(mesh=mesh)
+        ax_all, ax_near, ax_def = row
+        tri = _triangulation(m, scale, deformed=False)
+        for ax in (ax_all, ax_near):
+            ax.triplot(tri, color="k", lw=0.3)
+        ax_all.set(title=f"{mesh} mesh: {int(m['vertices'])} vertices, "
+                         f"{int(m['triangles'])} elements, "
+                         f"{int(m['dofs'].sel(body='viscoplastic'))} dofs")
+        ax_near.set(xlim=(0.0, half), ylim=(-0.8 * half, 0.2 * half),
+                    title=f"{mesh} mesh near the contact")
+        ne = int(m["triangles"])
+        deformed = _triangulation(m, scale, deformed=True)
+        ep = m["element_inelastic_strain"].values[:ne]
+        pc = ax_def.tripcolor(deformed, facecolors=np.maximum(ep, norm.vmin), cmap="viridis",
+                              norm=norm, edgecolors="k", lw=0.15)
+        corners = np.stack((deformed.x[deformed.triangles], deformed.y[deformed.triangles]), -1)
+        past = _outline(deformed, ep > SMALL_STRAIN_LIMIT)
+        if len(past):
+            ax_def.add_collection(LineCollection(
+                past, colors="w", lw=1.2,
+                label=f"strain past {SMALL_STRAIN_LIMIT:.0%} inside (small strain, report 7.3)"))
+        inverted = m["element_jacobian"].values[:ne] <= 0
+        if inverted.any():
+            ax_def.add_collection(PolyCollection(
+                corners[inverted], facecolors="none", edgecolors="tab:red", lw=1.0,
+                label=f"{int(inverted.sum())} elements inside out"))
+        ax_def.axhline(-w_end, color="tab:red", lw=1.0, ls="--",
+                       label=f"rigid flat, w = {w_end:.4g} {length_unit}")
+        ax_def.set(xlim=(0.0, half), ylim=(-w_end - 0.8 * half, -w_end + 0.2 * half),
+                   title=f"at the end, true scale (element means up to "
+                         f"{float(m['element_inelastic_strain'].max()):.3g})")
+        ax_def.legend(fontsize=7, loc="lower right")
+        fig.colorbar(pc, ax=ax_def, label="equivalent nonelastic strain [1]")
+        for ax in row:
+            ax.set_aspect("equal")
+            ax.set(xlabel=f"x [{length_unit}]", ylabel=f"z [{length_unit}]")
+    fig.suptitle(f"{what}: the meshes and the deformed body ({_mesh_figs(ds)})")
+    fig.tight_layout()
+    return fig
+
+
+def _outline(tri, inside: np.ndarray) -> np.ndarray:
+    """The boundary of the elements of `tri` flagged `inside`: the segments (k, 2, 2) of
+    their edges that no other flagged element shares."""
+    t = tri.triangles[inside]
+    edges = np.sort(np.concatenate((t[:, [0, 1]], t[:, [1, 2]], t[:, [2, 0]])), axis=1)
+    unique, count = np.unique(edges, axis=0, return_counts=True)
+    e = unique[count == 1]
+    return np.stack((np.stack((tri.x[e[:, 0]], tri.y[e[:, 0]]), -1),
+                     np.stack((tri.x[e[:, 1]], tri.y[e[:, 1]]), -1)), 1)
+
+
+def _mesh_figs(ds: xr.Dataset) -> str:
+    """The report's figures of the meshes and the deformed body of the section."""
+    if ds.attrs.get("shape") == "cylinder":
+        return "Figs. 6.15, 6.16"
+    return "Figs. 6.19-6.21"

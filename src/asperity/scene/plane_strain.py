@@ -14,6 +14,9 @@ from asperity.scene.units import Units, parses
 Config = Mapping[str, Any]
 
 SHAPES = ("cylinder", "truncated_v")
+#: the effects a plane-strain study simulates (`plasticity` required: it compares the
+#: inelastic body with its elastic twin)
+EFFECTS = ("plasticity", "damage", "finite_strain")
 
 
 @dataclass(frozen=True)
@@ -46,6 +49,11 @@ class PlaneStrain:
                              f"got {self.shape!r}")
         if self.shape == "truncated_v" and not self.top_width < self.pitch:
             raise ValueError("plane_strain.section: top_width must be smaller than the pitch")
+        other = [e for e in self.effects if e not in EFFECTS]
+        if other or "plasticity" not in self.effects:
+            raise ValueError(f"effects: a plane_strain scene presses an inelastic body "
+                             f"(`plasticity`, with {EFFECTS[1:]} if asked) and loads it only; "
+                             f"got {list(self.effects)}")
 
     @classmethod
     @parses("plane_strain")
@@ -92,6 +100,12 @@ class PlaneStrain:
     def body(self):
         """The body under the scene's effects (`asperity.scene.materials.build`)."""
         return build(self.material, self.effects)
+
+    @property
+    def kinematics(self) -> str:
+        """The inelastic body's kinematics: ``"finite"`` with the effect ``finite_strain``
+        (`asperity.fe.kinematics`), else ``"small"`` (the report's theory)."""
+        return "finite" if "finite_strain" in self.effects else "small"
 
     def elastic(self):
         """The elastic twin: the material's E and nu, no inelastic mechanism."""

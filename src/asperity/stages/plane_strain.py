@@ -4,6 +4,7 @@ refined mesh (report 6.3.2, Figs. 6.15-6.18; 6.3.3, Figs. 6.19-6.23)."""
 
 from __future__ import annotations
 
+import logging
 from typing import Any, Callable, Mapping
 
 import xarray as xr
@@ -13,6 +14,7 @@ from asperity.plots import plane_strain as plane_strain_plots
 from asperity.scene.plane_strain import PlaneStrain
 
 Config = Mapping[str, Any]
+log = logging.getLogger("asperity")
 
 
 def plane_strain_dataset(scene_name: str, scene: Config, accuracy: str,
@@ -22,7 +24,8 @@ def plane_strain_dataset(scene_name: str, scene: Config, accuracy: str,
     try:
         s = PlaneStrain.from_scene(scene)
         ds = plane_strain_study(s.geometry(), s.body(), s.elastic(), s.history(),
-                                s.presets(accuracy), points=s.points, progress=progress)
+                                s.presets(accuracy), points=s.points, kinematics=s.kinematics,
+                                progress=progress)
     except Exception as err:
         raise RuntimeError(f"scene {scene_name}, plane-strain asperity: {err}") from err
     ds.attrs.update(accuracy=accuracy, shape=s.shape, velocity=s.velocity)
@@ -33,8 +36,21 @@ def plane_strain_dataset(scene_name: str, scene: Config, accuracy: str,
         ds.attrs.update(radius=s.radius, cap_angle=s.cap_angle)
     if s.test_load is not None:
         ds.attrs["test_load"] = s.test_load
+    inverted = {str(m): int(n) for m, n in zip(ds["mesh"].values, ds["inverted_elements"].values)
+                if n > 0}
+    if inverted:
+        message = f"the displacement at the end turns elements inside out (mesh: count {inverted})"
+        if s.kinematics == "small":
+            message += (": the small-strain solution is past its range there (the effect "
+                        "finite_strain solves it in finite strain)")
+        log.warning(message)
+        ds.attrs["warnings"] = message
     return ds
 
 
 def plane_strain_figure(ds: xr.Dataset, units_cfg: Config):
     return plane_strain_plots.plane_strain_figure(ds, units_cfg["length"])
+
+
+def plane_strain_mesh_figure(ds: xr.Dataset, units_cfg: Config):
+    return plane_strain_plots.plane_strain_mesh_figure(ds, units_cfg["length"])
