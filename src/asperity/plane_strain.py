@@ -120,6 +120,7 @@ def plane_strain_study(geometry, body, elastic, history, meshes: Mapping[str, di
     stiffness = np.full((len(names), len(w)), np.nan)
     cpu = np.full((len(names), len(BODIES)), np.nan)
     dofs = np.zeros((len(names), len(BODIES)), dtype=np.int64)
+    inverted = np.zeros(len(names), dtype=np.int64)
     runs = []
     for i, name in enumerate(names):
         preset = dict(meshes[name])
@@ -140,13 +141,14 @@ def plane_strain_study(geometry, body, elastic, history, meshes: Mapping[str, di
         for k, values in _interpolated(v, w).items():
             grid[k][i, 1] = values
         dofs[i] = (int(e["dofs"].values[0]), int(v["dofs"].values[0]))
+        inverted[i] = int((v["element_jacobian"] <= 0).sum())
         if progress is not None:
             progress(f"mesh {name}: {dofs[i, 1]} dofs, elastic {cpu[i, 0]:.2f} s, "
                      f"viscoplastic {v.attrs['steps']} steps {cpu[i, 1]:.2f} s, force at "
                      f"{w_max:.4g} m {grid['force'][i, 0, -1]:.6g} / "
                      f"{grid['force'][i, 1, -1]:.6g} N/m, "
                      f"largest nonelastic strain {float(v['max_inelastic_strain'].max()):.4g}, "
-                     f"{int((v['element_jacobian'] <= 0).sum())} elements inside out at the end")
+                     f"{inverted[i]} elements inside out at the end")
 
     steps = max(r.sizes["step"] for r in runs)
     per_step = {k: np.stack([_padded(r[k].values, steps) for r in runs])
@@ -212,8 +214,7 @@ def plane_strain_study(geometry, body, elastic, history, meshes: Mapping[str, di
                       attrs("1", "vertices of the mesh (the rest of dim vertex is padding)"))
     ds["triangles"] = ("mesh", np.array([r.sizes["triangle"] for r in runs]),
                        attrs("1", "elements of the mesh (the rest of dim triangle is padding)"))
-    ds["inverted_elements"] = ("mesh", np.array([int((r["element_jacobian"] <= 0).sum())
-                                                 for r in runs]),
+    ds["inverted_elements"] = ("mesh", inverted,
                                attrs("1", "elements the viscoplastic body's displacement at the "
                                           "end turns inside out (det(I + grad u) <= 0: the "
                                           "small-strain solution past its range)"))

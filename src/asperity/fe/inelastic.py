@@ -642,8 +642,11 @@ def mesh_fields(disc: Discretization, u: np.ndarray, state) -> xr.Dataset:
     """The mesh of `disc` and the fields of displacement `u` and material `state` on it,
     on dims ``vertex``, ``triangle`` and ``corner`` (`END_FIELDS`): the undeformed
     vertices (r or x, z), the corners of the triangles (the P2 elements'
-    straight-sided skeleton), the displacement at the vertices and the equivalent
-    inelastic strain averaged over each element (by volume: its quadrature weights)."""
+    straight-sided skeleton), the displacement at the vertices, the equivalent inelastic
+    strain averaged over each element (by volume: its quadrature weights), and the
+    smallest det(I + grad u) at the element's quadrature points (times the hoop stretch
+    1 + u_r / r of a body of revolution): at or below zero the displacement turns the
+    element inside out, which a small-strain solution allows far past its range."""
     m = disc.mesh.vertices
     ur, uz = u[disc.basis.nodal_dofs]
     ep = equivalent_strain(state.inelastic_strain)
@@ -776,10 +779,10 @@ def solve_asperity_history(geometry, material, history: History, accuracy="stand
         Kirchhoff stresses), the contact radius that of the deformed surface.
     end_fields
         also return the mesh of the end of the run and its fields there
-        (`END_FIELDS`: the vertices, the triangles, the displacement at the
-        vertices and the equivalent inelastic strain of each element), to
-        draw the mesh and the deformed body (report Figs. 6.15, 6.16, 6.19
-        to 6.21).
+        (`mesh_fields`: the vertices, the triangles, the displacement at the
+        vertices, each element's equivalent inelastic strain and whether the
+        displacement turns it inside out), to draw the mesh and the deformed
+        body (report Figs. 6.15, 6.16, 6.19 to 6.21).
     progress
         optional callable(str), told of every accepted step (time,
         interference, force, Newton iterations, cuts, wall time).

@@ -105,9 +105,10 @@ def plane_strain_mesh_figure(ds: xr.Dataset, length_unit: str = "um") -> plt.Fig
     """Each mesh of the study (rows): (a) the whole section, as Figs. 6.15, 6.16, 6.19 and
     6.20 draw it; (b) the same mesh near the contact; (c) the viscoplastic body there at
     the end of the history, displacements at true scale, each element coloured by its
-    nonelastic strain (Fig. 6.21, on a log scale), with the rigid flat; a white line around the elements
-    whose strain is past the small-strain range (`SMALL_STRAIN_LIMIT`, report 7.3), red
-    outlines on the elements the displacement turns inside out."""
+    nonelastic strain on a log scale (Fig. 6.21), with the rigid flat; a white line
+    around the elements whose strain is past the small-strain range
+    (`SMALL_STRAIN_LIMIT`, report 7.3), red outlines on the elements the displacement
+    turns inside out."""
     from matplotlib.collections import LineCollection, PolyCollection
     from matplotlib.colors import LogNorm
 
