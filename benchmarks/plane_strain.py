@@ -90,7 +90,7 @@ def measure(name: str, preset: str, factor: float = 1.0, finite: bool = False) -
 
 
 def table(rows: list[dict]) -> str:
-    out = ["| scene | preset | dofs coarse / refined | F elastic (kN/m) | F viscoplastic coarse / refined (kN/m) "
+    out = ["| scene | preset | dofs coarse / refined | F elastic, refined (kN/m) | F viscoplastic coarse / refined (kN/m) "
            "| coarse - refined, viscoplastic | viscoplastic / elastic | largest nonelastic strain coarse / refined "
            "| elements inside out coarse / refined | CPU (s) |",
            "|---|---|---|---|---|---|---|---|---|---|"]
