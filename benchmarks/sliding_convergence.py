@@ -51,6 +51,12 @@ with their own --out and results (``-mu<mu>``, ``-k<k>`` added to the names)::
 
     python benchmarks/sliding_convergence.py --coefficient 1 --jobs 2
     python benchmarks/sliding_convergence.py --study --coefficient 1 --until 1.0
+
+``--standard-tip f`` runs the preset ``standard`` with its finest edge (``tip_fraction``)
+f r instead of its own, the rest of the preset unchanged: what a finer `standard` would
+change against `fine` (README, the junction's tables)::
+
+    python benchmarks/sliding_convergence.py --shear-strength 280 --standard-tip 0.21 --jobs 2
 """
 
 from __future__ import annotations
@@ -202,18 +208,22 @@ def sliding(sc: dict, overrides: dict):
 
 
 def worker(name: str, out: Path, until: float | None = None,
-           law: dict | None = None, study: bool = False) -> None:
+           law: dict | None = None, study: bool = False,
+           standard_tip: float | None = None) -> None:
     """Run the scene at preset `name` (with `study`, the `STUDY` run `name`); progress lines to
     out/<name>.log, the dataset to out/<name>.nc (with its CPU time), the contact
     patch of every step to out/<name>.patch.jsonl.  With `until` [m] the run stops
     after the first step that has slid that far (its log is the history); `law`
-    replaces the junction's shear resistance (`shear_law`)."""
+    replaces the junction's shear resistance (`shear_law`); `standard_tip` the
+    ``tip_fraction`` of the preset ``standard`` (an experiment on its finest edge)."""
     from asperity.stages.sliding import sliding_dataset
 
     sc = scene()
     preset, overrides = STUDY[name] if study else (name, {})
     if law is not None:
         overrides = dict(overrides, shear_resistance=law)
+    if standard_tip is not None and name == "standard":
+        overrides = dict(overrides, mesh={"tip_fraction": standard_tip})
     section = study_section(sc["sliding"], overrides)
     _hook_diagnostics(out / f"{slug(name)}.patch.jsonl")
     log = open(out / f"{slug(name)}.log", "w")
@@ -604,12 +614,17 @@ def main(argv=None) -> int:
                        "strength c0 [MPa] instead of mu = 20 (runs in <out>-k<c0>)")
     ap.add_argument("--stalls", action="store_true", help="only report, per run log in --out, "
                     "the longest streak of steps under solid3d.STALL_FRACTION of their cap")
+    ap.add_argument("--standard-tip", type=float, help="the finest edge of the preset standard "
+                    "(tip_fraction, times r) instead of its own: an experiment (runs in "
+                    "<out>-tip<f>)")
     ap.add_argument("--worker", help=argparse.SUPPRESS)
     a = ap.parse_args(argv)
     if a.study and a.until is None:
         a.until = 0.08
     until = None if a.until is None else a.until * 1e-6
     law, flags, tag = shear_law(a.coefficient, a.shear_strength)
+    if a.standard_tip is not None:
+        flags, tag = flags + ["--standard-tip", repr(a.standard_tip)], tag + f"-tip{a.standard_tip:g}"
     if a.out == OUT:
         a.out = OUT.with_name(("sliding-study" if a.study else "sliding") + tag)
     if a.results is None:
@@ -617,7 +632,7 @@ def main(argv=None) -> int:
                                + ".json")
     a.out.mkdir(parents=True, exist_ok=True)
     if a.worker:
-        worker(a.worker, a.out, until, law, a.study)
+        worker(a.worker, a.out, until, law, a.study, a.standard_tip)
         return 0
     if a.stalls:
         for r in stalls(list(STUDY) if a.study else a.presets, a.out, law, a.study):
