@@ -48,6 +48,9 @@ class Kind:
     name: str = ""
     #: whether a sample needs a job of its own (False: a closed form, evaluated by the gather)
     job: bool = True
+    #: whether its jobs take ``asperity.edge_band`` (a mesh refined where the plastic
+    #: contact edge goes: the inelastic kind's)
+    edge_band: bool = False
 
     def check(self, asperity: Asperity, material: Material | None, effects: frozenset[str]) -> None:
         """Raise ValueError, naming the scene's key, where its asperity, material and
@@ -58,7 +61,7 @@ class Kind:
         if "finite_strain" in effects:
             raise ValueError("effect `finite_strain` needs an FE asperity with effect `plasticity` "
                              "(the finite-strain kinematics are the inelastic asperity's)")
-        if asperity.edge_band:
+        if asperity.edge_band and not self.edge_band:
             raise ValueError("asperity.edge_band needs an FE asperity with effect `plasticity` "
                              "(it refines the mesh where the plastic contact edge goes)")
 

@@ -21,7 +21,6 @@ from __future__ import annotations
 
 import math
 import time
-from dataclasses import replace
 
 import numpy as np
 
@@ -61,13 +60,13 @@ def kinematics(effects) -> str:
 
 class Inelastic(FiniteElementKind):
     name = "inelastic"
+    edge_band = True
 
     def check(self, asperity, material, effects):
         if "unloading" in effects and not asperity.shift_invariant:
             raise ValueError("effect `unloading` needs an asperity whose response does not depend "
                              "on its peak height (mapping: representative, sphere or paraboloid)")
-        super().check(replace(asperity, edge_band=False), material,
-                      effects - {"unloading", "finite_strain"})
+        super().check(asperity, material, effects - {"unloading", "finite_strain"})
 
     def scalable(self, asperity, material, effects):
         return self_similar(asperity, material, effects)
