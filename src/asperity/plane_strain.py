@@ -20,7 +20,11 @@ share every node.
 
 The viscoplastic curve is also interpolated (linearly, its steps are at most
 ``max_interference_step`` of the range apart) onto the elastic body's levels, so that
-the two forces are compared at the same interference. For a cylinder the elastic
+the two forces are compared at the same interference. A history that goes back after
+its largest interference (the scene's effect ``unloading``) unloads the viscoplastic
+body until its force is zero: the loading branch is interpolated, every step is kept,
+and the interference where the force returned to zero is the permanent set of the
+asperity (``residual_interference``; the elastic twin has none). For a cylinder the elastic
 contact half width is compared with the plane-strain Hertz solution
 a = 2 sqrt(F' R / (pi E*)), E* = E / (1 - nu^2) (Johnson, Contact Mechanics, 4.3;
 `asperity.fe.analytic.hertz_line_half_width`): the approach of a
@@ -57,10 +61,25 @@ def levels(max_interference: float, points: int) -> np.ndarray:
     return max_interference * np.arange(1, points + 1) / points
 
 
+def _loading(history: xr.Dataset) -> slice:
+    """The steps of the loading branch: up to the first at the largest interference."""
+    return slice(0, int(np.argmax(history["interference"].values)) + 1)
+
+
 def _interpolated(history: xr.Dataset, w: np.ndarray) -> dict[str, np.ndarray]:
-    """The loading history's variables at the interferences `w` (linear in w)."""
-    wi = history["interference"].values
-    return {k: np.interp(w, wi, history[k].values) for k in TRACKED}
+    """The loading branch's variables at the interferences `w` (linear in w)."""
+    loading = history.isel(step=_loading(history))
+    wi = loading["interference"].values
+    return {k: np.interp(w, wi, loading[k].values) for k in TRACKED}
+
+
+def _unloading_stiffness(history: xr.Dataset) -> float:
+    """dF/dw over the first step after the largest interference (NaN if none)."""
+    peak = _loading(history).stop - 1
+    if peak + 1 >= history.sizes["step"]:
+        return float("nan")
+    w, f = history["interference"].values, history["force"].values
+    return float((f[peak] - f[peak + 1]) / (w[peak] - w[peak + 1]))
 
 
 def _padded(values: np.ndarray, n: int) -> np.ndarray:
@@ -97,9 +116,10 @@ def plane_strain_study(geometry, body, elastic, history, meshes: Mapping[str, di
         called with a message after each solve.
 
     Returns a Dataset in SI on dims ``mesh``, ``body``, ``interference`` (the levels)
-    and ``step`` (the viscoplastic history, NaN-padded), with the CPU time of each
-    solve, the degrees of freedom of each mesh, the largest nonelastic strain of each
-    mesh and where it was reached, for a cylinder the Hertz half width, and on dims
+    and ``step`` (the viscoplastic history, NaN-padded; with unloading, both branches),
+    with the CPU time of each solve, the degrees of freedom of each mesh, the largest
+    nonelastic strain of each mesh and where it was reached, for a history that unloads
+    the residual interference and the unloading stiffness of each mesh, for a cylinder the Hertz half width, and on dims
     ``vertex``, ``triangle`` and ``corner`` each mesh with the viscoplastic body's
     displacement and nonelastic strain at the end of the history
     (`asperity.fe.inelastic.mesh_fields`, padded to the largest mesh).
@@ -113,6 +133,7 @@ def plane_strain_study(geometry, body, elastic, history, meshes: Mapping[str, di
     if abs(elastic.E - body.E) > 1e-12 * body.E or abs(elastic.nu - body.nu) > 1e-12:
         raise ValueError("the elastic twin must have the body's E and nu")
     w_max = float(np.max(history.interferences))
+    unloads = float(history.interferences[-1]) < w_max
     w = levels(w_max, points)
     names = list(meshes)
     shape = (len(names), len(BODIES), len(w))
@@ -148,7 +169,9 @@ def plane_strain_study(geometry, body, elastic, history, meshes: Mapping[str, di
                      f"{w_max:.4g} m {grid['force'][i, 0, -1]:.6g} / "
                      f"{grid['force'][i, 1, -1]:.6g} N/m, "
                      f"largest nonelastic strain {float(v['max_inelastic_strain'].max()):.4g}, "
-                     f"{inverted[i]} elements inside out at the end")
+                     + (f"residual interference {v.attrs['residual_interference']:.4g} m, "
+                        if unloads else "")
+                     + f"{inverted[i]} elements inside out at the end")
 
     steps = max(r.sizes["step"] for r in runs)
     per_step = {k: np.stack([_padded(r[k].values, steps) for r in runs])
@@ -182,7 +205,7 @@ def plane_strain_study(geometry, body, elastic, history, meshes: Mapping[str, di
                                                     "history (viscoplastic body)")),
             "largest_inelastic_strain_interference": (
                 ("mesh",), where, attrs("m", "interference where the largest nonelastic strain "
-                                             "was reached")),
+                                             "was reached (loading or unloading)")),
             "viscoplastic_steps": (("mesh",), np.array([r.attrs["steps"] for r in runs]),
                                    attrs("1", "time steps of the viscoplastic history")),
             "step_time": (("mesh", "step"), per_step["time"], attrs("s", "time of the step")),
@@ -218,6 +241,15 @@ def plane_strain_study(geometry, body, elastic, history, meshes: Mapping[str, di
                                attrs("1", "elements the viscoplastic body's displacement at the "
                                           "end turns inside out (det(I + grad u) <= 0: the "
                                           "small-strain solution past its range)"))
+    if unloads:
+        ds["residual_interference"] = (
+            "mesh", np.array([r.attrs["residual_interference"] for r in runs]),
+            attrs("m", "interference where the viscoplastic body's force returned to zero on "
+                       "unloading: its permanent set (NaN: it never did)"))
+        ds["unloading_stiffness"] = (
+            "mesh", np.array([_unloading_stiffness(r) for r in runs]),
+            attrs("N/m^2", "slope of the viscoplastic body's force per length over the first "
+                           "unloading step"))
     if geometry.kind == "cylinder":
         ds["hertz_half_width"] = (
             ("mesh", "interference"),
@@ -237,7 +269,8 @@ def plane_strain_study(geometry, body, elastic, history, meshes: Mapping[str, di
         history_interferences=np.asarray(history.interferences, float),
         meshes=", ".join(f"{n}: {dict(meshes[n])}" for n in names),
         kinematics=kinematics,
-        interpolation="viscoplastic history interpolated linearly in interference onto the "
-                      "elastic body's levels",
+        unloading=int(unloads),
+        interpolation="viscoplastic loading branch interpolated linearly in interference onto "
+                      "the elastic body's levels",
     )
     return ds

@@ -41,7 +41,7 @@ VERSIONS: dict[str, int] = {
     "uniaxial": 1,
     "accuracy_bodner_partom": 2,
     "sliding": 11,
-    "plane_strain": 2,
+    "plane_strain": 3,
     "accuracy_hertz": 1,
     "accuracy_scenes": 1,
     # the deterministic reference (workflow/rules/reference.smk)

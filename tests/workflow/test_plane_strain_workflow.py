@@ -35,7 +35,7 @@ def test_scene_targets_are_the_plane_strain_file_and_figure(run):
 def test_file_carries_units_scene_and_version(run):
     ds = read_dataset(run / "results" / SCENE / "plane_strain.nc")
     assert missing_attributes(ds) == []
-    assert ds.attrs["scene"] == SCENE and ds.attrs["code_version"] == "plane_strain 2"
+    assert ds.attrs["scene"] == SCENE and ds.attrs["code_version"] == "plane_strain 3"
     config = scene_config(ds)
     assert config["accuracy"] == "draft" and config["plane_strain"]["section"]["shape"] == SCENE
     assert config["material"]["bodner_partom"]["preset"] == "aluminum_6061_t4"

@@ -30,9 +30,11 @@ def _what(ds: xr.Dataset) -> tuple[str, str]:
 def plane_strain_figure(ds: xr.Dataset, length_unit: str = "um") -> plt.Figure:
     """(a) force per length against interference, elastic (dashed) and viscoplastic
     (solid) on each mesh, with the experiment's load per asperity if the scene gives
-    it; (b) the largest nonelastic strain against interference; (c) for a cylinder the
-    contact half width against force beside the plane-strain Hertz solution, for the
-    ridge the viscoplastic force over the elastic one."""
+    it, and where the history unloads the viscoplastic body's unloading (dotted) to its
+    permanent set (the residual interference, a marker); (b) the largest nonelastic
+    strain against interference; (c) for a cylinder the contact half width against
+    force beside the plane-strain Hertz solution, for the ridge the viscoplastic force
+    over the elastic one."""
     scale = units.length_scale(length_unit)
     figs, what = _what(ds)
     fig, (ax_f, ax_e, ax_c) = plt.subplots(1, 3, figsize=(15.0, 4.6))
@@ -46,6 +48,13 @@ def plane_strain_figure(ds: xr.Dataset, length_unit: str = "um") -> plt.Figure:
                       color=colour, label=f"{body}, {mesh} mesh ({dofs} dofs)",
                       **BODY_STYLE.get(str(body), {}))
         wi = m["step_interference"].values / scale
+        if "residual_interference" in ds:
+            peak = int(np.nanargmax(wi))
+            residual = float(m["residual_interference"]) / scale
+            ax_f.plot(wi[peak:], KN * m["step_force"].values[peak:], color=colour, ls=":",
+                      label=f"viscoplastic unloading, {mesh} mesh: permanent set "
+                            f"{residual:.3g} {length_unit}")
+            ax_f.plot([residual], [0.0], color=colour, marker="o", ms=4)
         ax_e.plot(wi, m["step_inelastic_strain"].values, color=colour,
                   label=f"{mesh} mesh: largest {float(m['largest_inelastic_strain']):.3g}")
         if "hertz_half_width" in ds:
@@ -104,8 +113,9 @@ def _triangulation(m: xr.Dataset, scale: float, deformed: bool):
 def plane_strain_mesh_figure(ds: xr.Dataset, length_unit: str = "um") -> plt.Figure:
     """Each mesh of the study (rows): (a) the whole section, as Figs. 6.15, 6.16, 6.19 and
     6.20 draw it; (b) the same mesh near the contact; (c) the viscoplastic body there at
-    the end of the history, displacements at true scale, each element coloured by its
-    nonelastic strain on a log scale (Fig. 6.21), with the rigid flat; a white line
+    the end of the history (at the largest interference, or unloaded to zero force),
+    displacements at true scale, each element coloured by its nonelastic strain on a
+    log scale (Fig. 6.21), with the rigid flat; a white line
     around the elements whose strain is past the small-strain range
     (`SMALL_STRAIN_LIMIT`, report 7.3), red outlines on the elements the displacement
     turns inside out."""
@@ -117,7 +127,6 @@ def plane_strain_mesh_figure(ds: xr.Dataset, length_unit: str = "um") -> plt.Fig
     meshes = list(ds["mesh"].values)
     a = float(ds["contact_half_width"].sel(body="viscoplastic").isel(mesh=-1, interference=-1))
     half = 2.5 * a / scale
-    w_end = float(ds.attrs["max_interference"]) / scale
     strain = ds["element_inelastic_strain"]
     # a log scale over three decades: the strain at the ridge's corners is a hundred times
     # that of most of its top; below the decades, the lowest colour
@@ -135,6 +144,8 @@ def plane_strain_mesh_figure(ds: xr.Dataset, length_unit: str = "um") -> plt.Fig
         ax_near.set(xlim=(0.0, half), ylim=(-0.8 * half, 0.2 * half),
                     title=f"{mesh} mesh near the contact")
         ne = int(m["triangles"])
+        steps = m["step_interference"].values
+        w_end = float(steps[np.isfinite(steps)][-1]) / scale
         deformed = _triangulation(m, scale, deformed=True)
         ep = m["element_inelastic_strain"].values[:ne]
         pc = ax_def.tripcolor(deformed, facecolors=np.maximum(ep, norm.vmin), cmap="viridis",
@@ -153,7 +164,8 @@ def plane_strain_mesh_figure(ds: xr.Dataset, length_unit: str = "um") -> plt.Fig
         ax_def.axhline(-w_end, color="tab:red", lw=1.0, ls="--",
                        label=f"rigid flat, w = {w_end:.4g} {length_unit}")
         ax_def.set(xlim=(0.0, half), ylim=(-w_end - 0.8 * half, -w_end + 0.2 * half),
-                   title=f"at the end, true scale (element means up to "
+                   title=f"{'unloaded' if ds.attrs.get('unloading') else 'at the end'}, true "
+                         f"scale (element means up to "
                          f"{float(m['element_inelastic_strain'].max()):.3g})")
         ax_def.legend(fontsize=7, loc="lower right")
         fig.colorbar(pc, ax=ax_def, label="equivalent nonelastic strain [1]")

@@ -15,8 +15,8 @@ Config = Mapping[str, Any]
 
 SHAPES = ("cylinder", "truncated_v")
 #: the effects a plane-strain study simulates (`plasticity` required: it compares the
-#: inelastic body with its elastic twin)
-EFFECTS = ("plasticity", "damage", "finite_strain")
+#: inelastic body with its elastic twin; `unloading` takes the flat back after the load)
+EFFECTS = ("plasticity", "damage", "finite_strain", "unloading")
 
 
 @dataclass(frozen=True)
@@ -52,7 +52,7 @@ class PlaneStrain:
         other = [e for e in self.effects if e not in EFFECTS]
         if other or "plasticity" not in self.effects:
             raise ValueError(f"effects: a plane_strain scene presses an inelastic body "
-                             f"(`plasticity`, with {EFFECTS[1:]} if asked) and loads it only; "
+                             f"(`plasticity`, with {EFFECTS[1:]} if asked); "
                              f"got {list(self.effects)}")
 
     @classmethod
@@ -111,10 +111,20 @@ class PlaneStrain:
         """The elastic twin: the material's E and nu, no inelastic mechanism."""
         return build(self.material, ())
 
+    @property
+    def unloading(self) -> bool:
+        """Whether the flat goes back after the load (effect ``unloading``)."""
+        return "unloading" in self.effects
+
     def history(self):
-        """Loading at ``velocity`` from first touch to ``max_interference``."""
+        """Loading at ``velocity`` from first touch to ``max_interference``; with the
+        effect ``unloading`` the flat then goes back at the same speed (towards zero
+        interference: the run stops where the force has returned to zero,
+        `asperity.fe.solve_asperity_history`)."""
         from asperity.fe.inelastic import History
 
+        if self.unloading:
+            return History.load_unload(self.max_interference, self.velocity)
         return History.loading(self.max_interference, self.velocity)
 
     def presets(self, accuracy: str) -> dict[str, dict]:

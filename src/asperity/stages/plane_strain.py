@@ -36,6 +36,14 @@ def plane_strain_dataset(scene_name: str, scene: Config, accuracy: str,
         ds.attrs.update(radius=s.radius, cap_angle=s.cap_angle)
     if s.test_load is not None:
         ds.attrs["test_load"] = s.test_load
+    warnings = []
+    if s.unloading and ds["residual_interference"].isnull().any():
+        never = ds.isel(mesh=ds["residual_interference"].isnull().values)
+        strain = {str(m): float(e) for m, e in zip(never["mesh"].values,
+                                                   never["largest_inelastic_strain"].values)}
+        warnings.append(f"the unloading force reached zero only with the flat back at first "
+                        f"touch: no permanent set resolved (mesh: largest nonelastic strain "
+                        f"{strain})")
     inverted = {str(m): int(n) for m, n in zip(ds["mesh"].values, ds["inverted_elements"].values)
                 if n > 0}
     if inverted:
@@ -43,8 +51,11 @@ def plane_strain_dataset(scene_name: str, scene: Config, accuracy: str,
         if s.kinematics == "small":
             message += (": the small-strain solution is past its range there (the effect "
                         "finite_strain solves it in finite strain)")
+        warnings.append(message)
+    for message in warnings:
         log.warning(message)
-        ds.attrs["warnings"] = message
+    if warnings:
+        ds.attrs["warnings"] = "; ".join(warnings)
     return ds
 
 
