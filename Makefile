@@ -61,9 +61,9 @@ time-adhesion: $(STAMP)
 
 # Numbers and CPU time of the plane-strain scenes (aluminum_cylinder, truncated_v) at
 # draft, standard and fine, at draft with the dimension the report does not give doubled,
-# and with finite strain; writes benchmarks/results/plane-strain.json.
+# with finite strain and with unloading; writes benchmarks/results/plane-strain.json.
 time-plane-strain: $(STAMP)
-	$(BIN)/python benchmarks/plane_strain.py --sensitivity --finite-strain
+	$(BIN)/python benchmarks/plane_strain.py --sensitivity --finite-strain --unloading
 
 # The deterministic_reference scene at draft: its wall time and each route's, and the
 # routes' errors against the boundary-element solution; writes

@@ -10,11 +10,18 @@ width from plane-strain Hertz, and the CPU time (`time.process_time`) of the sol
 With ``--sensitivity`` it also runs, at draft, each scene with the dimension the report
 does not give doubled (the cylinder's radius, the ridge's flat top), the rest unchanged;
 with ``--finite-strain``, each scene at each preset with the effect ``finite_strain``
-added (the report's theory, and the scenes', is small strain). Each row also counts the
-elements the viscoplastic body's displacement turns inside out at the end.
+added (the report's theory, and the scenes', is small strain); with ``--unloading``, each
+scene at each preset with the effect ``unloading``, and a second table: on each mesh the
+permanent set (residual interference), the elastic recovery w_max - w_r against F_max / k
+and the unloading stiffness (the first unloading step's slope) against k, with k the
+elastic twin's stiffness at the largest interference, and the viscoplastic contact half
+width at the top of the loading against the twin's; the ridge's run with unloading at
+standard is drawn to docs/figures/truncated_v_plane_strain_unloading.png (the stage's
+figure). Each row also counts the elements the viscoplastic body's displacement turns
+inside out at the end.
 Writes benchmarks/results/plane-strain.json. Nothing is asserted.
 
-    python benchmarks/plane_strain.py --sensitivity --finite-strain   # the README's table
+    python benchmarks/plane_strain.py --sensitivity --finite-strain --unloading   # the README's tables
     python benchmarks/plane_strain.py --presets draft standard
 """
 
@@ -33,10 +40,14 @@ from snakemake.utils import validate
 
 REPO = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(REPO))
-from asperity.stages.plane_strain import plane_strain_dataset  # noqa: E402
+from asperity.io.figures import save_figure  # noqa: E402
+from asperity.stages.plane_strain import plane_strain_dataset, plane_strain_figure  # noqa: E402
 
 SCENES = ("aluminum_cylinder", "truncated_v")
 RESULTS = Path(__file__).with_name("results")
+#: the run with unloading drawn for the README, and where
+UNLOADING_FIGURE = ("truncated_v", "standard",
+                    REPO / "docs" / "figures" / "truncated_v_plane_strain_unloading.png")
 
 
 def filled(name: str) -> dict:
@@ -51,11 +62,12 @@ def filled(name: str) -> dict:
 UNKNOWN = {"aluminum_cylinder": "radius", "truncated_v": "top_width"}
 
 
-def measure(name: str, preset: str, factor: float = 1.0, finite: bool = False) -> dict:
+def measure(name: str, preset: str, factor: float = 1.0, finite: bool = False,
+            unloading: bool = False) -> dict:
     scene = filled(name)
     scene["plane_strain"]["section"][UNKNOWN[name]] *= factor
-    if finite:
-        scene["effects"] = [*scene["effects"], "finite_strain"]
+    scene["effects"] = [*scene["effects"], *(["finite_strain"] if finite else []),
+                        *(["unloading"] if unloading else [])]
     t0 = time.process_time()
     ds = plane_strain_dataset(name, scene, preset)
     total = time.process_time() - t0
@@ -81,12 +93,49 @@ def measure(name: str, preset: str, factor: float = 1.0, finite: bool = False) -
         cpu_solves_s=float(ds["cpu_time"].sum()),
         cpu_stage_s=total,
     )
+    if unloading:
+        row["unloading"] = {m: unloaded(ds.sel(mesh=m)) for m in ds["mesh"].values}
+        if (name, preset) == UNLOADING_FIGURE[:2]:
+            save_figure(plane_strain_figure(ds, scene["units"]), UNLOADING_FIGURE[2], dpi=110)
+            print(f"written {UNLOADING_FIGURE[2]}", flush=True)
     if "hertz_half_width" in ds:
         a = ds["contact_half_width"].sel(body="elastic")
         dev = np.abs(a / ds["hertz_half_width"] - 1)
         row["hertz_half_width_deviation_percent"] = {m: 100 * float(dev.sel(mesh=m).max())
                                                      for m in ds["mesh"].values}
     return row
+
+
+def unloaded(d) -> dict:
+    """The unloading of one mesh of a study with the effect ``unloading`` (module
+    docstring)."""
+    w, f = d["step_interference"].values, d["step_force"].values
+    peak = int(np.nanargmax(w))
+    residual = float(d["residual_interference"])
+    k = float(d["elastic_stiffness"][-1])
+    a = d["contact_half_width"].isel(interference=-1)
+    return dict(max_force_kN_per_m=1e-3 * float(f[peak]), residual_interference_um=1e6 * residual,
+                recovery_um=1e6 * (w[peak] - residual),
+                recovery_over_force_by_elastic_stiffness=(w[peak] - residual) * k / float(f[peak]),
+                unloading_over_elastic_stiffness=float(d["unloading_stiffness"]) / k,
+                loaded_over_elastic_half_width=float(a.sel(body="viscoplastic") / a.sel(body="elastic")),
+                steps=int(np.sum(np.isfinite(w))) - 1)
+
+
+def unloading_table(rows: list[dict]) -> str:
+    out = ["| scene | preset | F_max coarse / refined (kN/m) | permanent set coarse / refined (um) "
+           "| recovery x k / F_max | unloading stiffness / k | loaded / elastic half width | steps |",
+           "|---|---|---|---|---|---|---|---|"]
+    for r in rows:
+        c, f = r["unloading"]["coarse"], r["unloading"]["refined"]
+        both = (lambda key, fmt: f"{c[key]:{fmt}} / {f[key]:{fmt}}")
+        out.append(
+            f"| `{r['scene']}` | {r['preset']} | {both('max_force_kN_per_m', '.1f')} "
+            f"| {both('residual_interference_um', '.3f')} "
+            f"| {both('recovery_over_force_by_elastic_stiffness', '.3f')} "
+            f"| {both('unloading_over_elastic_stiffness', '.4f')} "
+            f"| {both('loaded_over_elastic_half_width', '.3f')} | {both('steps', 'd')} |")
+    return "\n".join(out)
 
 
 def table(rows: list[dict]) -> str:
@@ -99,6 +148,8 @@ def table(rows: list[dict]) -> str:
         doubled = next((f", {k[:-7]} x {v:g}" for k, v in r.items() if k.endswith("_factor")), "")
         if r["kinematics"] == "finite":
             doubled += ", finite strain"
+        if "unloading" in r:
+            doubled += ", unloading"
         n = r["inverted_elements"]
         out.append(
             f"| `{r['scene']}`{doubled} | {r['preset']} | {r['dofs']['coarse']} / {r['dofs']['refined']} "
@@ -118,6 +169,8 @@ def main(argv=None):
                         help="also each scene at draft with its unknown dimension doubled")
     parser.add_argument("--finite-strain", action="store_true",
                         help="also each scene at each preset with the effect finite_strain")
+    parser.add_argument("--unloading", action="store_true",
+                        help="also each scene at each preset with the effect unloading")
     args = parser.parse_args(argv)
     rows = []
     for preset in args.presets:
@@ -133,9 +186,18 @@ def main(argv=None):
             for name in args.scenes:
                 rows.append(measure(name, preset, finite=True))
                 print(json.dumps(rows[-1]), flush=True)
+    if args.unloading:
+        for preset in args.presets:
+            for name in args.scenes:
+                rows.append(measure(name, preset, unloading=True))
+                print(json.dumps(rows[-1]), flush=True)
     RESULTS.mkdir(exist_ok=True)
     (RESULTS / "plane-strain.json").write_text(json.dumps(rows, indent=1) + "\n")
     print(table(rows))
+    unloads = [r for r in rows if "unloading" in r]
+    if unloads:
+        print()
+        print(unloading_table(unloads))
 
 
 if __name__ == "__main__":
