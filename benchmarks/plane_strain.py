@@ -95,7 +95,7 @@ def measure(name: str, preset: str, factor: float = 1.0, finite: bool = False,
     )
     if unloading:
         row["unloading"] = {m: unloaded(ds.sel(mesh=m)) for m in ds["mesh"].values}
-        if (name, preset) == UNLOADING_FIGURE[:2]:
+        if (name, preset) == UNLOADING_FIGURE[:2] and factor == 1 and not finite:
             save_figure(plane_strain_figure(ds, scene["units"]), UNLOADING_FIGURE[2], dpi=110)
             print(f"written {UNLOADING_FIGURE[2]}", flush=True)
     if "hertz_half_width" in ds:
