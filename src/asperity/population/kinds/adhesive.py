@@ -30,8 +30,14 @@ What changes against an asperity without adhesion:
   on (height, curvature, interference) by `interpolate_adhesive` (jumps kept
   as jumps); force is negative where the asperity attracts, contact area 0
   where it does not touch; ``in_contact`` is 1 where the contact area is
-  positive; ``extrapolated`` flags grid points beyond the job's deepest
-  level (the last tangent), as `asperity.population.gather.gather`.  Per curvature:
+  positive; ``elastic`` is 1 where it touches and the FE job's ``elastic``
+  flag holds (von Mises below the yield stress everywhere), the flag of the
+  nearer record of the branch (its interpolation at 1/2), and
+  ``small_strain`` where it touches and the largest strain magnitude,
+  interpolated, is below 8 % (report 7.3, Fig. 7.10: adhesion raises the
+  stresses of a contact, so the share of elastic asperities is judged by the
+  FE stresses, not by F/A); ``extrapolated`` flags grid points beyond the
+  job's deepest level (the last tangent), as `asperity.population.gather.gather`.  Per curvature:
   pull-off force, Tabor parameter, jump interferences, the DMT and JKR
   pull-off forces 2 pi R W_c and 3/2 pi R W_c, and the computed paths
   (Fig. 7.6) on (curvature, step).
@@ -117,6 +123,11 @@ GATHERED = {
     "contact_area": ("m^2", "real contact area (0 where the asperity does not touch)"),
     "contact_radius": ("m", "contact radius (0 where the asperity does not touch)"),
     "in_contact": ("1", "1 where the asperity touches the flat (contact area > 0)"),
+    "elastic": ("1", "1 where the asperity touches the flat and is still elastic: von Mises "
+                     "stress below the yield stress everywhere (the FE job's flag; report 7.3, "
+                     "Fig. 7.10)"),
+    "small_strain": ("1", "1 where the asperity touches the flat and every strain magnitude is "
+                          "below 8 % (report 7.3)"),
 }
 #: per curvature, as `asperity.fe.adhesive.stack_runs` gives them
 PER_CURVATURE = ("pull_off_force", "pull_off_interference", "tabor_parameter",
@@ -129,24 +140,29 @@ PATH = {"interference": "path_interference", "force": "path_force",
 def gather(plan: xr.Dataset, samples: Mapping[str, xr.Dataset]) -> xr.Dataset:
     """Adhesive samples onto (branch, height, curvature, interference) (module docstring)."""
     from asperity.fe.adhesive import interpolate_adhesive, stack_runs
-    from asperity.population.gather import fe_cost, samples_by_key
+    from asperity.population.gather import SMALL_STRAIN_LIMIT, fe_cost, samples_by_key
 
     by_key = samples_by_key(plan, samples)
     heights, curvatures = plan["height"].values, plan["curvature"].values
     grid = plan["interference"].values
     pk, keys = plan["sample_curvature"].values, plan["key"].values
     runs = [by_key[str(keys[np.flatnonzero(pk == k)[0]])] for k in curvatures]
-    names = ("force", "contact_area", "contact_radius")
+    names = ("force", "contact_area", "contact_radius", "elastic", "strain")
     shape = (len(BRANCHES), curvatures.size, grid.size)
     tables = {name: np.empty(shape) for name in names}
     beyond = np.empty(shape, bool)
     for j, ds in enumerate(runs):  # one FE job per curvature, each vectorized over the grid
+        strain = "max_principal_strain" if "max_principal_strain" in ds else "max_equivalent_strain"
+        ds = ds.assign(strain=ds[strain])
         for b, branch in enumerate(BRANCHES):
             c = interpolate_adhesive(ds, grid, branch, names)
             for name in names:
                 tables[name][b, j] = c[name]
             beyond[b, j] = c["extrapolated"]
-    tables["in_contact"] = (tables["contact_area"] > 0).astype(float)
+    touching = tables["contact_area"] > 0
+    tables["in_contact"] = touching.astype(float)
+    tables["elastic"] = (touching & (tables["elastic"] >= 0.5)).astype(float)
+    tables["small_strain"] = (touching & (tables.pop("strain") < SMALL_STRAIN_LIMIT)).astype(float)
     bad = [n for n, v in tables.items() if not np.isfinite(v).all()]
     if bad:
         raise ValueError(f"adhesive gather: NaN in {', '.join(bad)} (a sample does not cover "
