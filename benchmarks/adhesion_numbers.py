@@ -8,14 +8,18 @@ Reads a results tree made by the pipeline (default ``results/``), e.g. after
 (which makes the twin, smooth_aluminum_elastic, too), and prints:
 
 - per curvature sample: tip radius, Tabor parameter, pull-off against JKR's
-  3/2 pi R W_c and against 2 pi R W_c, jump-in and jump-off interference;
+  3/2 pi R W_c and against 2 pi R W_c, jump-in and jump-off interference, and from its
+  FE job (``samples/<key>.nc``) the least and the largest von Mises stress while in
+  contact against the yield stress, and the largest strain while in contact;
 - the FE cost: jobs and CPU seconds (``asperities.nc``);
 - the share of the peaks above 1 and 2 sigma whose curvature lies outside the scene's
   samples (Nayak's joint density of the surface's statistics, on a fine grid): the
   homogenization gives them the response of the nearest sample;
 - the interface: the largest attraction before contact on approach, the pull-off
   pressure on retraction, the pressure at 1 sigma with and without adhesion;
-- friction: mu at 1 sigma and at the lightest positive load, the twin's range.
+- friction: mu at 1 sigma and at the lightest positive load, the twin's range;
+- the share of contacting asperities still elastic (Fig. 7.10) on each branch and the
+  twin's, and the separations where the interface is valid.
 
 With a second tree (``--against DIR``, e.g. ``results/smooth_aluminum_adhesion@standard``
 made by ``snakemake ... results/smooth_aluminum_adhesion@standard/interface.nc``), also
@@ -44,8 +48,21 @@ SCENE, TWIN = "smooth_aluminum_adhesion", "smooth_aluminum_elastic"
 OUT = Path(__file__).with_name("results") / "adhesion-scene.json"
 
 
+def in_contact(sample: xr.Dataset) -> dict:
+    """The least and largest von Mises stress [MPa] and the largest strain of a job's
+    steps in contact."""
+    touching = sample["contact_area"].values > 0
+    vm = sample["max_von_mises"].values[touching]
+    return dict(von_mises_in_contact_MPa=[float(vm.min() / 1e6), float(vm.max() / 1e6)],
+                largest_strain_in_contact=float(sample["max_equivalent_strain"].values[touching].max()))
+
+
 def scene_numbers(folder: Path) -> dict:
     asp = read_dataset(folder / "asperities.nc")
+    plan = read_dataset(folder / "plan.nc")
+    keys = {float(k): str(plan["key"].values[np.flatnonzero(plan["sample_curvature"].values == k)[0]])
+            for k in asp["curvature"].values}
+    samples = folder.parent / "samples"
     interface = read_dataset(folder / "interface.nc")
     surface = read_dataset(folder / "surface.nc")
     friction = read_dataset(folder / "friction.nc")
@@ -53,7 +70,8 @@ def scene_numbers(folder: Path) -> dict:
     # pull_off_force_dmt is 2 pi R W_c
     tips = [dict(tip_radius_um=float(1e6 / k), tabor_parameter=float(mu),
                  pull_off_over_jkr=float(p / jkr), pull_off_over_2_pi_R_W=float(p / dmt),
-                 jump_in_interference_nm=float(wi * 1e9), jump_off_interference_nm=float(wo * 1e9))
+                 jump_in_interference_nm=float(wi * 1e9), jump_off_interference_nm=float(wo * 1e9),
+                 **in_contact(read_dataset(samples / f"{keys[float(k)]}.nc")))
             for k, mu, p, jkr, dmt, wi, wo in zip(
                 asp["curvature"].values, asp["tabor_parameter"].values, pull,
                 asp["pull_off_force_jkr"].values, asp["pull_off_force_dmt"].values,
@@ -73,6 +91,14 @@ def scene_numbers(folder: Path) -> dict:
         mu_at_1_sigma=float(np.interp(s, sep, mu)),
         mu_at_lightest_positive_load=float(mu[lightest]),
         lightest_positive_load_Pa=float(p[lightest]),
+        elastic_fraction_range={b: [float(x.min()), float(x.max())] for b, x in (
+            (b, interface["elastic_fraction"].sel(branch=b).where(
+                interface["contact_count"].sel(branch=b) > 0, drop=True))
+            for b in interface["branch"].values)},
+        valid_separations_over_sigma={b: (interface["separation"].where(
+            interface["valid"].sel(branch=b), drop=True).values[[0, -1]] / s).tolist()
+            for b in interface["branch"].values},
+        yield_stress_MPa=json.loads(str(plan["spec"].values[0]))["material"]["yield_stress"] / 1e6,
     )
 
 
@@ -100,7 +126,9 @@ def twin_numbers(folder: Path) -> dict:
     friction = read_dataset(folder / "friction.nc")
     s = height_scale(read_dataset(folder / "surface.nc"))
     return dict(pressure_at_1_sigma_Pa=float(interface["nominal_pressure"].interp(separation=s)),
-                mu_range=[float(np.nanmin(friction["mu"])), float(np.nanmax(friction["mu"]))])
+                mu_range=[float(np.nanmin(friction["mu"])), float(np.nanmax(friction["mu"]))],
+                elastic_fraction_range=[float(interface["elastic_fraction"].min()),
+                                        float(interface["elastic_fraction"].max())])
 
 
 def agreement(a: Path, b: Path) -> dict:
