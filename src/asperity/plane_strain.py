@@ -24,8 +24,8 @@ the two forces are compared at the same interference. A history that goes back a
 its largest interference (the scene's effect ``unloading``) unloads the viscoplastic
 body until its force is zero: the loading branch is interpolated, every step is kept,
 and the interference where the force returned to zero is the permanent set of the
-asperity (``residual_interference``; the elastic twin has none). For a cylinder the elastic
-contact half width is compared with the plane-strain Hertz solution
+asperity (``residual_interference``; the elastic twin has none). For a cylinder the
+elastic contact half width is compared with the plane-strain Hertz solution
 a = 2 sqrt(F' R / (pi E*)), E* = E / (1 - nu^2) (Johnson, Contact Mechanics, 4.3;
 `asperity.fe.analytic.hertz_line_half_width`): the approach of a
 plane-strain contact depends logarithmically on the size of the body, the width at a
@@ -119,10 +119,10 @@ def plane_strain_study(geometry, body, elastic, history, meshes: Mapping[str, di
     and ``step`` (the viscoplastic history, NaN-padded; with unloading, both branches),
     with the CPU time of each solve, the degrees of freedom of each mesh, the largest
     nonelastic strain of each mesh and where it was reached, for a history that unloads
-    the residual interference and the unloading stiffness of each mesh, for a cylinder the Hertz half width, and on dims
-    ``vertex``, ``triangle`` and ``corner`` each mesh with the viscoplastic body's
-    displacement and nonelastic strain at the end of the history
-    (`asperity.fe.inelastic.mesh_fields`, padded to the largest mesh).
+    the residual interference and the unloading stiffness of each mesh, for a cylinder
+    the Hertz half width, and on dims ``vertex``, ``triangle`` and ``corner`` each mesh
+    with the viscoplastic body's displacement and nonelastic strain at the end of the
+    history (`asperity.fe.inelastic.mesh_fields`, padded to the largest mesh).
     """
     from asperity.fe import solve_asperity, solve_asperity_history
     from asperity.fe.analytic import hertz_line_half_width

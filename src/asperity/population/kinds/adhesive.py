@@ -37,8 +37,8 @@ What changes against an asperity without adhesion:
   interpolated, is below 8 % (report 7.3, Fig. 7.10: adhesion raises the
   stresses of a contact, so the share of elastic asperities is judged by the
   FE stresses, not by F/A); ``extrapolated`` flags grid points beyond the
-  job's deepest level (the last tangent), as `asperity.population.gather.gather`.  Per curvature:
-  pull-off force, Tabor parameter, jump interferences, the DMT and JKR
+  job's deepest level (the last tangent), as `asperity.population.gather.gather`.
+  Per curvature: pull-off force, Tabor parameter, jump interferences, the DMT and JKR
   pull-off forces 2 pi R W_c and 3/2 pi R W_c, and the computed paths
   (Fig. 7.6) on (curvature, step).
 - **Interface** (`Adhesive.interface`): the same integrator as every scene
