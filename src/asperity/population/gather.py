@@ -83,6 +83,12 @@ def _first_violation(w: np.ndarray, ok: np.ndarray) -> float:
     return float(w[0]) if i == 0 else 0.5 * float(w[i - 1] + w[i])
 
 
+def strain_magnitude(ds: xr.Dataset) -> xr.DataArray:
+    """The strain of an FE sample that small-strain theory is judged by (report 7.3): its
+    largest principal strain where the job records it, else its equivalent strain."""
+    return ds["max_principal_strain"] if "max_principal_strain" in ds else ds["max_equivalent_strain"]
+
+
 def loading_branch(ds: xr.Dataset) -> dict[str, np.ndarray]:
     """The loading curve of an FE sample: steps with w > 0 and F > 0, w increasing.
 
@@ -101,7 +107,7 @@ def loading_branch(ds: xr.Dataset) -> dict[str, np.ndarray]:
     idx = idx[np.concatenate([[True], np.diff(w[idx]) > 0])] if idx.size else idx
     if idx.size < 2:
         raise ValueError(f"sample {ds.attrs.get('key', '?')}: fewer than two loading steps in contact")
-    strain = ds["max_principal_strain"] if "max_principal_strain" in ds else ds["max_equivalent_strain"]
+    strain = strain_magnitude(ds)
     wi = w[idx]
     return {
         "interference": wi,

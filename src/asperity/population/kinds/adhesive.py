@@ -140,7 +140,8 @@ PATH = {"interference": "path_interference", "force": "path_force",
 def gather(plan: xr.Dataset, samples: Mapping[str, xr.Dataset]) -> xr.Dataset:
     """Adhesive samples onto (branch, height, curvature, interference) (module docstring)."""
     from asperity.fe.adhesive import interpolate_adhesive, stack_runs
-    from asperity.population.gather import SMALL_STRAIN_LIMIT, fe_cost, samples_by_key
+    from asperity.population.gather import (SMALL_STRAIN_LIMIT, fe_cost, samples_by_key,
+                                            strain_magnitude)
 
     by_key = samples_by_key(plan, samples)
     heights, curvatures = plan["height"].values, plan["curvature"].values
@@ -152,8 +153,7 @@ def gather(plan: xr.Dataset, samples: Mapping[str, xr.Dataset]) -> xr.Dataset:
     tables = {name: np.empty(shape) for name in names}
     beyond = np.empty(shape, bool)
     for j, ds in enumerate(runs):  # one FE job per curvature, each vectorized over the grid
-        strain = "max_principal_strain" if "max_principal_strain" in ds else "max_equivalent_strain"
-        ds = ds.assign(strain=ds[strain])
+        ds = ds.assign(strain=strain_magnitude(ds))
         for b, branch in enumerate(BRANCHES):
             c = interpolate_adhesive(ds, grid, branch, names)
             for name in names:
