@@ -140,7 +140,7 @@ def test_finite_strain_is_refused_without_plasticity(kind, effects):
         KINDS[kind].check(asperity(model="fe", geometry="sphere"), material,
                           frozenset(effects | {"finite_strain"}))
     # with plasticity it is accepted, and it reaches the job as its kinematics
-    from asperity.population.kinds.inelastic import kinematics
+    from asperity.scene import kinematics
     steel = Material("j2", youngs_modulus=2e11, poisson=0.3, yield_stress=4e8)
     KINDS["inelastic"].check(asperity(model="fe", geometry="sphere"), steel,
                              frozenset({"plasticity", "finite_strain"}))

@@ -8,7 +8,8 @@ read a scene's dictionaries:
 
 - `units`: `Units` (the scene's length and pressure units);
 - `materials`: `Material` from the ``material`` section, and `build`, the one place a
-  material becomes the `asperity.fe` body (elastic, J2, Bodner-Partom; 3.2);
+  material becomes the `asperity.fe` body (elastic, J2, Bodner-Partom; 3.2), with
+  `kinematics`, the body's small or finite strain;
 - `population`: `Population`, `Asperity`, `Adhesion` and `effects` (2.4, 8.2, 3.16);
 - `interface`: `Homogenization` (2.5), `Friction` (9.1), `Laws` (section 10);
 - `uniaxial`: `UniaxialTest`, one material-point test (5, 6.3.1, 8.2.1);
@@ -19,7 +20,7 @@ The `surface` section is read by `asperity.stages.surface`.
 """
 
 from asperity.scene.interface import Friction, Homogenization, Laws
-from asperity.scene.materials import Material, build
+from asperity.scene.materials import Material, build, kinematics
 from asperity.scene.plane_strain import PlaneStrain
 from asperity.scene.population import Adhesion, Asperity, Population, effects
 from asperity.scene.sliding import Sliding
@@ -27,4 +28,5 @@ from asperity.scene.uniaxial import UniaxialTest
 from asperity.scene.units import Units, length_factor
 
 __all__ = ["Adhesion", "Asperity", "Friction", "Homogenization", "Laws", "Material", "PlaneStrain",
-           "Population", "Sliding", "UniaxialTest", "Units", "build", "effects", "length_factor"]
+           "Population", "Sliding", "UniaxialTest", "Units", "build", "effects", "kinematics",
+           "length_factor"]

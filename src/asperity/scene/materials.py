@@ -168,6 +168,12 @@ class Material:
         return "plasticity" not in set(effects) or self.model in ("elastic", "j2")
 
 
+def kinematics(effects: Iterable[str]) -> str:
+    """The kinematics of an inelastic body under `effects`: ``"finite"`` with the effect
+    ``finite_strain`` (`asperity.fe.kinematics`), else ``"small"`` (the report's theory)."""
+    return "finite" if "finite_strain" in set(effects) else "small"
+
+
 def build(material: Material, effects: Iterable[str] = ()):
     """The `asperity.fe` body of `material` under `effects` (module docstring):
     `LinearElastic`, `J2Plasticity` or `BodnerPartom`."""

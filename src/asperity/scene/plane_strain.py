@@ -8,7 +8,7 @@ import math
 from dataclasses import dataclass
 from typing import Any, Mapping
 
-from asperity.scene.materials import Material, build
+from asperity.scene.materials import Material, build, kinematics
 from asperity.scene.units import Units, parses
 
 Config = Mapping[str, Any]
@@ -103,9 +103,8 @@ class PlaneStrain:
 
     @property
     def kinematics(self) -> str:
-        """The inelastic body's kinematics: ``"finite"`` with the effect ``finite_strain``
-        (`asperity.fe.kinematics`), else ``"small"`` (the report's theory)."""
-        return "finite" if "finite_strain" in self.effects else "small"
+        """The inelastic body's kinematics under the scene's effects (`kinematics`)."""
+        return kinematics(self.effects)
 
     def elastic(self):
         """The elastic twin: the material's E and nu, no inelastic mechanism."""

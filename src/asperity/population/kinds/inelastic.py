@@ -27,7 +27,7 @@ import numpy as np
 from asperity.population.geometry import job_range, sample_geometry, self_similar, spec_geometry
 from asperity.population.geometry import unloading_levels
 from asperity.population.kinds.base import FiniteElementKind
-from asperity.scene import Material, build
+from asperity.scene import Material, build, kinematics
 
 #: the first step of an inelastic history, as a fraction of the job's largest interference
 FIRST_STEP = 1e-4
@@ -51,11 +51,6 @@ def edge_band_accuracy(preset: str) -> dict:
     from asperity.fe.presets import EDGE_SIZE
 
     return {"base": preset, "edge_size": EDGE_SIZE[preset]}
-
-
-def kinematics(effects) -> str:
-    """The FE job's kinematics: finite strain with the effect ``finite_strain``."""
-    return "finite" if "finite_strain" in effects else "small"
 
 
 class Inelastic(FiniteElementKind):
