@@ -156,6 +156,29 @@ def test_the_optical_map_holds_points_its_instrument_did_not_mark():
     assert np.nanmedian(z) == pytest.approx(79.16e-6, rel=1e-3)
 
 
+def test_the_optical_maps_islands_are_its_unmarked_points(surface_topography):
+    """frt-1.frt's points the instrument did not mark are islands (`surface.islands`): the
+    500 zeros of the first row (rows 2 and 3 undefined) and 15 specks inside undefined
+    areas, among them all 8 points above 200 um. Dropped (the scene default), the rms after
+    tilt removal is SurfaceTopography's detrended Sq of the map with those points masked
+    (1e-10), 0.710 um instead of 4.40 um, and the kurtosis falls from 488 to 22."""
+    m = read_measurement(DATA / "frt-1.frt", "map")
+    cut = S.islands(m.defined)
+    assert np.count_nonzero(cut) == 515 and cut[0][m.defined[0]].all()
+    assert np.all(cut[m.defined & (np.nan_to_num(m.heights) > 200e-6)])
+    assert np.count_nonzero(cut[1:]) == 15
+    kept = m.defined & ~cut
+    cfg = {"map": {"file": "frt-1.frt"}, "form": "tilt",
+           "undefined": {"max_share": 0.5, "islands": "drop"}}
+    ds = stage.surface_from_data(m.heights, m.spacing, cfg, {"length": "um"}, defined=m.defined)
+    assert int(ds["island_points"]) == 515
+    topo = surface_topography.Topography(np.ma.masked_array(m.heights.T, ~kept.T),
+                                         (500 * m.dx, 500 * m.dy), periodic=False)
+    assert float(ds["rms_height"]) == pytest.approx(topo.detrend("height").Sq(), rel=1e-10)
+    assert float(ds["rms_height"]) == pytest.approx(7.0999e-7, rel=1e-4)
+    assert (float(ds["skewness"]), float(ds["kurtosis"])) == pytest.approx((-0.22386, 22.454), rel=1e-4)
+
+
 def test_a_unit_or_spacing_in_the_scene_overrides_the_file_and_says_so():
     """di-3.di states nm: a scene that says um takes the same numbers in um (heights and
     positions 1000 times larger, to round-off 1e-15), a spacing in the scene replaces the

@@ -214,3 +214,103 @@ def test_the_scene_limits_the_share_of_undefined_points_and_can_fill_them():
                                {"length": "um"}, defined=defined)
     assert int(filled["filled_points"]) == 20 * 64 and int(filled["points_defined"]) == 64 * 64
     assert filled.attrs["undefined_fill"] == "harmonic" and "psd_note" not in filled.attrs
+
+
+def _islands_brute_force(defined):
+    """Regions by flood fill over the four (map) or two (profile) neighbours; a region is
+    kept when one of its points has every neighbour of its 3 x 3 square (or pair) inside
+    the record and defined."""
+    d = np.atleast_2d(defined)
+    ny, nx = d.shape
+    step = [(0, 1), (0, -1)] if np.ndim(defined) == 1 else [(1, 0), (-1, 0), (0, 1), (0, -1)]
+    di = (0,) if np.ndim(defined) == 1 else (-1, 0, 1)
+    out = np.zeros(d.shape, bool)
+    seen = np.zeros(d.shape, bool)
+    for i0 in range(ny):
+        for j0 in range(nx):
+            if not d[i0, j0] or seen[i0, j0]:
+                continue
+            region, stack = [], [(i0, j0)]
+            seen[i0, j0] = True
+            while stack:
+                i, j = stack.pop()
+                region.append((i, j))
+                for a, b in step:
+                    p, q = i + a, j + b
+                    if 0 <= p < ny and 0 <= q < nx and d[p, q] and not seen[p, q]:
+                        seen[p, q] = True
+                        stack.append((p, q))
+            interior = any(all(0 <= i + a < ny and 0 <= j + b < nx and d[i + a, j + b]
+                               for a in di for b in (-1, 0, 1)) for i, j in region)
+            if not interior:
+                for i, j in region:
+                    out[i, j] = True
+    return out.reshape(np.shape(defined))
+
+
+def test_islands_are_the_regions_without_an_interior_point():
+    """Against a flood fill on random masks (maps with 40-70 % defined, where islands of
+    every shape occur, and profiles), and by hand: a speck, a 2 x 2 block and a line one
+    point wide are islands; a 3 x 3 block is kept whole; a speck touching a region only at
+    a corner is apart from it."""
+    rng = np.random.default_rng(11)
+    for p in (0.4, 0.55, 0.7):
+        defined = rng.random((37, 29)) < p
+        np.testing.assert_array_equal(S.islands(defined), _islands_brute_force(defined))
+        line = rng.random(400) < p
+        np.testing.assert_array_equal(S.islands(line), _islands_brute_force(line))
+    m = np.zeros((12, 14), bool)
+    m[1, 1] = True                      # speck
+    m[1:3, 4:6] = True                  # 2 x 2
+    m[5, 1:13] = True                   # one point wide
+    m[8:11, 8:11] = True                # 3 x 3: one interior point
+    m[7, 7] = True                      # a corner away from the 3 x 3
+    expected = m.copy()
+    expected[8:11, 8:11] = False
+    np.testing.assert_array_equal(S.islands(m), expected)
+    run = np.array([1, 0, 1, 1, 0, 1, 1, 1, 0, 0, 1, 1, 1, 1], bool)
+    np.testing.assert_array_equal(S.islands(run), [1, 0, 1, 1, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0])
+    assert not S.islands(np.ones((5, 5), bool)).any()
+
+
+def test_the_scene_drops_islands_before_the_form_fit():
+    """A map with an undefined band holding specks 100 times its rms high and a one-point
+    line of zeros: with surface.undefined.islands: drop every statistic equals that of the
+    map with those points marked undefined by hand (1e-12), and the count is recorded; kept,
+    they dominate the rms (about 4 times). A map that is all islands is an error naming the key."""
+    from asperity.stages.surface import surface_from_data
+
+    z = gaussian_map(64, seed=6) * 1e-6
+    rms = float(np.std(z))
+    defined = np.ones(z.shape, bool)
+    defined[20:40] = False
+    specks = [(25, 10), (25, 40), (33, 22), (36, 50)]
+    for i, j in specks:
+        defined[i, j] = True
+        z[i, j] = 100 * rms * (1 if j % 2 else -1)
+    defined[30, 5:60] = True
+    z[30, 5:60] = 0.0
+    cfg = {"map": {"file": "m.npy"}, "form": "tilt", "undefined": {"max_share": 0.5}}
+    units = {"length": "um"}
+    dropped = surface_from_data(np.where(defined, z, np.nan), (1e-6, 1e-6),
+                                {**cfg, "undefined": {"max_share": 0.5, "islands": "drop"}}, units,
+                                defined=defined)
+    by_hand = defined.copy()
+    by_hand[20:40] = False
+    direct = surface_from_data(np.where(by_hand, z, np.nan), (1e-6, 1e-6), cfg, units, defined=by_hand)
+    assert int(dropped["island_points"]) == len(specks) + 55 and int(direct["island_points"]) == 0
+    assert dropped.attrs["undefined_islands"] == "drop"
+    assert float(dropped["undefined_share"]) == pytest.approx(1 - defined.mean(), rel=1e-12)
+    for name in ("rms_height", "sigma", "sigma_slope", "sigma_curvature", "skewness", "kurtosis",
+                 "peak_density"):
+        assert float(dropped[name]) == pytest.approx(float(direct[name]), rel=1e-12), name
+    np.testing.assert_array_equal(dropped["height"].values, direct["height"].values)
+    kept = surface_from_data(np.where(defined, z, np.nan), (1e-6, 1e-6), cfg, units, defined=defined)
+    # four specks of 100 rms among about 2 700 points add sqrt(4e4 / 2700) = 3.8 rms
+    assert float(kept["rms_height"]) > 3.5 * float(direct["rms_height"])
+    specks_only = np.zeros(z.shape, bool)
+    specks_only[::2, ::2] = True
+    with pytest.raises(ValueError, match=r"every one lies in an island \(key surface.undefined.islands"):
+        surface_from_data(np.where(specks_only, z, np.nan), (1e-6, 1e-6),
+                          {**cfg, "undefined": {"max_share": 0.9, "islands": "drop"}}, units,
+                          defined=specks_only)

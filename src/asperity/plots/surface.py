@@ -202,7 +202,8 @@ def map_figure(surface: xr.Dataset, length_unit: str = "m", bins: tuple[int, int
     lines = [f"axes: {surface.attrs.get('axes', '')}",
              f"form removed: {surface.attrs.get('form_removed', '')}",
              f"filter: {surface.attrs.get('filter', '')}",
-             f"undefined: {100 * share:.2f} %, filled: {int(surface['filled_points'])}",
+             f"undefined: {100 * share:.2f} %, filled: {int(surface['filled_points'])}, "
+             f"islands dropped: {int(surface['island_points'])}",
              f"sigma {float(surface['sigma']) / scale:.4g} {length_unit}, "
              f"slope x/y {float(surface['sigma_slope_x']):.3g} / {float(surface['sigma_slope_y']):.3g}",
              f"Gaussian: {surface.attrs.get('gaussian', '')}"]

@@ -6,7 +6,7 @@ Williamson's Gaussian heights) and, for measured data, how it is prepared:
 
     form:        none | mean | tilt | polynomial (with polynomial_degree)
     filter:      {lambda_c: ..., lambda_s: ...}   ISO 16610-21 / -61 Gaussian, scene length unit
-    undefined:   {max_share: 0.5, fill: none | harmonic}
+    undefined:   {max_share: 0.5, fill: none | harmonic, islands: drop | keep}
     spectrum:    {window: hann | blackman | none, periodic: false}  (periodic: no window)
     estimator:   sampling | counting | spectral   (which estimate feeds the population)
 
@@ -16,7 +16,7 @@ file's numbers, where the file does not state it, or to override it),
 channel).  The defaults are those of ``config/schema.yaml``, filled in when
 the scene is validated; a section built without them (a library call) asks
 for nothing: no form removal, no filter, no fill, no limit on undefined
-points, a Hann window, the sampling estimator.
+points, islands of defined points kept, a Hann window, the sampling estimator.
 """
 
 from __future__ import annotations
@@ -29,6 +29,9 @@ from asperity import units
 Config = Mapping[str, Any]
 
 SOURCES = ("profile", "profiles", "map", "statistics", "gaussian_heights")
+#: what becomes of the defined points in regions without an interior point
+#: (`asperity.surface.islands`): dropped (marked undefined) or kept
+ISLANDS = ("drop", "keep")
 
 
 @dataclass(frozen=True)
@@ -44,6 +47,7 @@ class SurfaceScene:
     lambda_s: float | None = None
     max_undefined_share: float = 1.0
     fill: str = "none"
+    islands: str = "keep"
     window: str = "hann"
     periodic: bool = False
     estimator: str = "sampling"
@@ -72,6 +76,11 @@ class SurfaceScene:
             kwargs["max_undefined_share"] = float(undefined["max_share"])
         if "fill" in undefined:
             kwargs["fill"] = undefined["fill"]
+        if "islands" in undefined:
+            if undefined["islands"] not in ISLANDS:
+                raise ValueError(f"key surface.undefined.islands must be one of {', '.join(ISLANDS)}; "
+                                 f"got {undefined['islands']!r}")
+            kwargs["islands"] = undefined["islands"]
         if "window" in spectrum:
             kwargs["window"] = spectrum["window"]
         if "periodic" in spectrum:

@@ -5,8 +5,12 @@ A measured profile or map is prepared as ISO 16610 prescribes before any
 statistic is taken (report 2.3.1 assumes a stationary profile about its
 mean line):
 
-1. undefined points: their share is checked against the scene's limit, and
-   optionally filled (harmonic in-fill);
+1. undefined points: their share is checked against the scene's limit; islands
+   of defined points (regions without an interior point: specks and one-point
+   lines the instrument left inside areas it could not measure,
+   `asperity.surface.islands`) are marked undefined (``surface.undefined.islands``,
+   ``drop`` in a scene); then the undefined points are optionally filled
+   (harmonic in-fill);
 2. form removal (least-squares mean, tilt or polynomial);
 3. the Gaussian filter (lambda_c, lambda_s), and the run-in and run-out of
    lambda_c / 2 dropped;
@@ -163,10 +167,11 @@ class Prepared:
     raw: np.ndarray  # heights as read (m), NaN where undefined
     form: np.ndarray  # the removed polynomial plus the lambda_c mean line (m)
     roughness: np.ndarray  # what the statistics see, NaN where undefined or outside the region
-    defined: np.ndarray  # of the raw heights
+    defined: np.ndarray  # the points the statistics may use: defined, and no island
     region: tuple[slice, ...]  # the evaluation region (index slices, rows first for maps)
-    undefined_share: float
+    undefined_share: float  # of the file
     filled: int  # points filled by harmonic in-fill
+    islands: int  # defined points dropped as islands (`asperity.surface.islands`)
     spacing: Any  # dx or (dx, dy)
 
     @property
@@ -201,6 +206,21 @@ def prepare(heights, spacing, scene: SurfaceScene, defined=None) -> Prepared:
         )
     z[~mask] = np.nan
     raw = z.copy()
+    dropped = 0
+    if scene.islands == "drop":
+        cut = surface.islands(mask)
+        dropped = int(np.count_nonzero(cut))
+        if dropped == np.count_nonzero(mask):
+            raise ValueError(
+                f"no defined point of the {'profile' if z.ndim == 1 else 'map'} has all its neighbours "
+                f"defined: every one lies in an island (key surface.undefined.islands = drop); set it "
+                "to keep to use them"
+            )
+        if dropped:
+            mask = mask & ~cut
+            z[cut] = np.nan
+            log.info("dropped %d defined points in regions without an interior point (islands; "
+                     "surface.undefined.islands: keep uses them)", dropped)
     filled = 0
     if scene.fill == "harmonic" and share > 0:
         z = surface.harmonic_fill(np.where(mask, z, 0.0), mask)
@@ -213,7 +233,7 @@ def prepare(heights, spacing, scene: SurfaceScene, defined=None) -> Prepared:
     outside = np.ones(rough.shape, dtype=bool)
     outside[region] = False
     rough[outside] = np.nan
-    return Prepared(raw, form + waviness, rough, mask, region, share, filled, spacing)
+    return Prepared(raw, form + waviness, rough, mask, region, share, filled, dropped, spacing)
 
 
 def prepared_roughness(heights, spacing, surface_cfg: Config, units_cfg: Config, defined=None) -> np.ndarray:
@@ -303,12 +323,16 @@ def _removal(prep: Prepared, scene: SurfaceScene) -> dict:
         "undefined_share": _scalar(prep.undefined_share, "1",
                                    "share of the points of the file that are undefined"),
         "filled_points": _scalar(np.int64(prep.filled), "1", "undefined points filled by harmonic in-fill"),
+        "island_points": _scalar(np.int64(prep.islands), "1",
+                                 "defined points dropped as islands: in regions (edge-connected) "
+                                 "without a point whose neighbours are all defined"),
     }
 
 
 def _removal_attrs(scene: SurfaceScene, prep: Prepared) -> dict:
     return {"form_removed": scene.form_text, "filter": scene.filter_text,
             "undefined_fill": scene.fill if prep.filled else "none",
+            "undefined_islands": scene.islands,
             "evaluation_region": ", ".join(f"{sl.start}:{sl.stop}" for sl in prep.region)}
 
 

@@ -10,6 +10,14 @@ takes the defined heights around them as boundary values
 (:func:`harmonic_fill`, as SurfaceTopography's
 ``interpolate_undefined_data("harmonic")`` does).
 
+Instruments also leave defined points where they are not to be trusted: specks
+standing alone in an undefined area (a stray reflection) or a line of a fixed
+value next to undefined ones (``frt-1.frt``'s first row: 500 zeros).  They
+carry no slope or peak (no stencil about them is defined) but their heights
+enter the form fit, the height distribution and the in-fill.  :func:`islands`
+finds them: the edge-connected regions of defined points that hold no
+interior point.
+
 A ``defined`` mask is a boolean array of the heights' shape, True where the
 height was measured.
 """
@@ -24,6 +32,7 @@ __all__ = [
     "runs",
     "longest_run",
     "complete_neighbourhood",
+    "islands",
     "harmonic_fill",
 ]
 
@@ -101,6 +110,34 @@ def complete_neighbourhood(defined: np.ndarray, half_width: int) -> np.ndarray:
     for _ in range(int(half_width)):  # a few erosions, each vectorized over the map
         out = _erode(out)
     return out
+
+
+def islands(defined: np.ndarray) -> np.ndarray:
+    """True at the defined points of the regions of defined points that hold no
+    interior point: no point whose neighbours (on a map the 3 x 3 square about it,
+    on a profile the points either side) are all defined and inside the record.
+
+    Regions are edge-connected on a map (four neighbours; points that touch only
+    at a corner are apart) and runs of consecutive points on a profile.  A region
+    without an interior point is a speck, a pair of points or a line one point
+    wide: nothing in it has a defined stencil (a slope, a curvature, a peak), and
+    on an optical map it is what the instrument left inside an area it could not
+    measure.  A region with one interior point is kept whole (its edge points
+    too), so the measured surface loses nothing but such islands.
+    """
+    from scipy import ndimage
+
+    d = np.asarray(defined, dtype=bool)
+    if d.ndim == 1:
+        interior = np.zeros(d.shape, dtype=bool)
+        interior[1:-1] = d[:-2] & d[1:-1] & d[2:]
+    elif d.ndim == 2:
+        interior = _erode(d)
+    else:
+        raise ValueError(f"a defined mask of a profile or map is 1-D or 2-D; got shape {d.shape}")
+    labels, _ = ndimage.label(d)  # the default structure: edge-connected
+    kept = np.unique(labels[interior])
+    return d & ~np.isin(labels, kept)
 
 
 def harmonic_fill(z, defined, periodic: bool = False) -> np.ndarray:
