@@ -1,5 +1,6 @@
-"""The `deterministic_reference` scene: its wall time and each route's, side by side, and
-the statistical routes' error against the boundary-element solution (`make time-reference`).
+"""The `deterministic_reference` scene (or another scene with a reference, ``--scene``: the
+measured map of `afm_reference`): its wall time and each route's, side by side, and the
+statistical routes' error against the boundary-element solution (`make time-reference`).
 
 Each measurement runs in its own fresh copy of the workflow (benchmarks.workflow_copy),
 Snakemake's start-up included, with
@@ -17,9 +18,11 @@ compare CPU times.
 The whole-scene run's comparison.nc gives the table of each route's error against the
 elastic boundary-element solution and the range of separations where it holds.
 
-Writes benchmarks/results/reference-<preset>.json and prints markdown tables.
+Writes benchmarks/results/reference-<preset>.json (reference-<scene>-<preset>.json for
+another scene) and prints markdown tables.
 
     python benchmarks/reference_cost.py --accuracy draft
+    python benchmarks/reference_cost.py --scene afm_reference --accuracy draft
 """
 
 from __future__ import annotations
@@ -41,10 +44,10 @@ from benchmarks.workflow_copy import REPO, copy_workflow  # noqa: E402
 SCENE = "deterministic_reference"
 
 
-def command(preset: str, cores: int, target: str | None) -> list[str]:
+def command(scene: str, preset: str, cores: int, target: str | None) -> list[str]:
     # the target before --config, which takes every argument after it
     return ["snakemake", "--cores", str(cores), *([target] if target else []), "--config",
-            f"scenes=[{SCENE}]", f"accuracy={preset}", "studies=False"]
+            f"scenes=[{scene}]", f"accuracy={preset}", "studies=False"]
 
 
 def _read(path: Path):
@@ -53,10 +56,10 @@ def _read(path: Path):
     return read_dataset(path)
 
 
-def comparison_rows(results: Path) -> list[dict]:
+def comparison_rows(results: Path, scene: str = SCENE) -> list[dict]:
     """Per route: errors against the elastic BEM at a few separations, and where it holds."""
-    ref = _read(results / SCENE / "reference.nc")
-    cmp_ = _read(results / SCENE / "comparison.nc")
+    ref = _read(results / scene / "reference.nc")
+    cmp_ = _read(results / scene / "comparison.nc")
     sigma = float(ref.attrs["sigma"])
     rows = []
     for route in cmp_["route"].values:
@@ -80,30 +83,30 @@ def comparison_rows(results: Path) -> list[dict]:
     return rows, extra
 
 
-def measure(preset: str, cores: int, timeout: float | None) -> dict:
-    scene = yaml.safe_load((REPO / "config" / "scenes" / f"{SCENE}.yaml").read_text())
-    routes = list(scene["routes"])
-    targets = {"whole scene": None, "boundary elements": f"results/{SCENE}/reference.nc"}
-    targets |= {f"route {r}": f"results/{SCENE}+{r}/interface.nc" for r in routes}
+def measure(scene: str, preset: str, cores: int, timeout: float | None) -> dict:
+    definition = yaml.safe_load((REPO / "config" / "scenes" / f"{scene}.yaml").read_text())
+    routes = list(definition["routes"])
+    targets = {"whole scene": None, "boundary elements": f"results/{scene}/reference.nc"}
+    targets |= {f"route {r}": f"results/{scene}+{r}/interface.nc" for r in routes}
     runs, comparison, extra = [], None, None
     for label, target in targets.items():
         with tempfile.TemporaryDirectory(prefix="reference-") as tmp:
             workdir = copy_workflow(Path(tmp))
-            record = run_snakemake(workdir, command(preset, cores, target), timeout)
+            record = run_snakemake(workdir, command(scene, preset, cores, target), timeout)
             record["what"] = label
             results = workdir / "results"
             if record["status"] == "ok":
                 if target is None:
-                    comparison, extra = comparison_rows(results)
+                    comparison, extra = comparison_rows(results, scene)
                 if label == "boundary elements" or target is None:
-                    ref = _read(results / SCENE / "reference.nc")
+                    ref = _read(results / scene / "reference.nc")
                     record["bem_cpu_time_s"] = float(ref["cpu_time"].sum())
                 if label.startswith("route"):
-                    interface = _read(results / f"{SCENE}+{label.split()[1]}" / "interface.nc")
+                    interface = _read(results / f"{scene}+{label.split()[1]}" / "interface.nc")
                     record["fe_cpu_time_s"] = float(interface.attrs.get("fe_cpu_time", 0.0))
             runs.append(record)
             print(f"{label}: {record['wall_time_s']} s ({record['status']})", flush=True)
-    return {"scene": SCENE, "accuracy": preset, "cores": cores, "machine": platform.platform(),
+    return {"scene": scene, "accuracy": preset, "cores": cores, "machine": platform.platform(),
             "runs": runs, "comparison": comparison, "comparison_extra": extra}
 
 
@@ -140,13 +143,15 @@ def markdown(result: dict) -> str:
 
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--scene", default=SCENE, help="a scene with a reference and routes")
     ap.add_argument("--accuracy", default="draft", choices=("draft", "standard", "fine"))
     ap.add_argument("--cores", type=int, default=2)
     ap.add_argument("--timeout", type=float, default=1800.0)
     args = ap.parse_args(argv)
-    result = measure(args.accuracy, args.cores, args.timeout)
+    result = measure(args.scene, args.accuracy, args.cores, args.timeout)
     OUT.mkdir(parents=True, exist_ok=True)
-    path = OUT / f"reference-{args.accuracy}.json"
+    stem = "reference" if args.scene == SCENE else f"reference-{args.scene}"
+    path = OUT / f"{stem}-{args.accuracy}.json"
     path.write_text(json.dumps(result, indent=1) + "\n")
     print(markdown(result))
     print(f"written {path.relative_to(REPO)}")
