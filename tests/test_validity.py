@@ -224,6 +224,24 @@ def test_large_strains_fail_small_strain_jobs_only():
     assert not validity.plasticity_of(steel, {"finite_strain"}).finite_strain
 
 
+def test_the_warning_says_what_each_failing_limit_means_and_what_to_change():
+    """Each limit that fails is explained once, in the order it first fails, with the scene
+    key that addresses it; the contact area and interaction share one explanation."""
+    ds = _branches(["loading", "unloading"], np.array([False, False, True, True, True]))
+    ds = ds.sel(branch="loading", drop=True)
+    ds["small_strain_fraction"] = ("separation", [1.0, 1.0, 1.0, 0.6, 0.6], {"units": "1", "long_name": "s"})
+    steel = Material("bodner_partom", youngs_modulus=2.09e11, poisson=0.3, preset="sae_1020")
+    out = validity.assess(ds, validity.plasticity_of(steel, {"plasticity"}, True), (SIGMA_P, 1 / CURVATURE),
+                          validity.Limits(**LIMITS))
+    text = out.attrs["validity_warning"]
+    means = text.split(". What it means: ")[1]
+    assert means.startswith("contact_area_ratio: the contacts are no longer independent asperities")
+    assert means.count("no longer independent") == 1
+    assert "; large_strain_fraction: strains of 8 % or more in small-strain FE jobs: add the effect " \
+           "finite_strain" in means
+    assert validity.REMEDIES.keys() == set(validity.INDICATORS) | {"plasticity_index"}
+
+
 def test_limits_are_shares():
     with pytest.raises(ValueError, match="validity.contact_area_ratio"):
         validity.Limits(**{**LIMITS, "contact_area_ratio": 1.5})

@@ -32,10 +32,10 @@ VERSIONS: dict[str, int] = {
     # homogenize (workflow/rules/homogenize.smk)
     "expectation": 1,
     "unloading": 1,
-    "interface": 1,
+    "interface": 2,
     "verification": 1,
     # friction (workflow/rules/friction.smk)
-    "friction": 1,
+    "friction": 2,
     "laws": 1,
     # uniaxial, sliding, plane strain, accuracy
     "uniaxial": 1,

@@ -81,6 +81,23 @@ FIRST_YIELD_P0 = 1.6
 #: the strain rate at which a rate-dependent body's saturated flow stress gives its hardness [1/s]
 REFERENCE_STRAIN_RATE = 1e-3
 
+#: what a failing limit means and what the scene can change, appended to the warning
+_INDEPENDENT = ("the contacts are no longer independent asperities (2.5): the boundary-element "
+                "reference of the map (a scene's reference section) measures how far the route is")
+REMEDIES = {
+    "extrapolated_load_fraction": (
+        "asperities pressed beyond their FE job's range (asperity.max_height_fraction of a hill, "
+        "max_radius_fraction of a sphere) carry that load, continued in a straight line; with the "
+        "representative mapping, asperity.mapping: coupled presses a hill by at most its amplitude (2.5.1)"),
+    "yielded_fraction": ("elastic asperities beyond first yield: asperity.model: fe with "
+                         "effects: [plasticity]"),
+    "large_strain_fraction": "strains of 8 % or more in small-strain FE jobs: add the effect finite_strain",
+    "contact_area_ratio": _INDEPENDENT,
+    "interaction": _INDEPENDENT,
+    "plasticity_index": ("Greenwood and Williamson's plasticity index: plastic at the lightest loads "
+                         "(asperity.model: fe with effects: [plasticity])"),
+}
+
 #: table variables this module adds before homogenizing, and what `assess` turns them into
 EXTRAPOLATED_FORCE = "extrapolated_force"
 YIELDED = "yielded"
@@ -447,10 +464,19 @@ def _runs(h: np.ndarray, ok: np.ndarray) -> list[tuple[float, float]]:
 
 def warn_invalid(ds: xr.Dataset, what: str) -> str:
     """Log a warning naming the separations of `ds` (with ``valid``, ``validity``)
-    outside the model's validity and why; returns the text ('' if all valid)."""
+    outside the model's validity and why, and for each failing limit what it means
+    and what the scene can change (`REMEDIES`); returns the text ('' if all valid)."""
     if bool(np.all(ds["valid"].values | ~np.isfinite(ds["nominal_pressure"].values))):
         return ""
     text = f"{what} outside the model's validity: " + " | ".join(
         line for line in valid_ranges(ds) if ": every separation" not in line)
+    kinds = dict.fromkeys(str(why).split(" ")[0] for why in np.ravel(ds["validity"].values) if why)
+    hints: dict[str, list[str]] = {}  # one hint, the limits it explains
+    for kind in kinds:
+        if kind in REMEDIES:
+            hints.setdefault(REMEDIES[kind], []).append(kind)
+    if hints:
+        text += ". What it means: " + "; ".join(f"{', '.join(names)}: {hint}"
+                                                for hint, names in hints.items())
     log.warning("%s", text)
     return text
