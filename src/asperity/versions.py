@@ -46,7 +46,7 @@ VERSIONS: dict[str, int] = {
     "accuracy_scenes": 1,
     # the deterministic reference (workflow/rules/reference.smk)
     "reference": 1,
-    "reference_comparison": 1,
+    "reference_comparison": 2,
     # figures (workflow/rules/figures.smk and the figures of the rules above)
     "surface_figure": 1,
     "expectation_figure": 1,

@@ -104,3 +104,26 @@ def test_comparison_errors_and_range():
     assert float(part["holds_pressure_high"]) == pytest.approx(p[0])
     assert np.allclose(part["contact_count_ratio"], 2.0)
     assert np.allclose(out["plastic_departure"], -0.5)
+
+
+def test_no_route_holds_where_the_boundary_elements_do_not_resolve_the_contact(caplog):
+    """Where the elastic solve's patches hold fewer than MIN_CELLS_PER_PATCH cells, the
+    comparison marks the separation unresolved, a route equal to the reference does not
+    hold there (it holds everywhere else), and the warning names those separations."""
+    h = np.linspace(1e-6, 3e-6, 9)
+    p = 1e8 * np.exp(-3 * h / 1e-6)
+    a = 2.0 * p / 1e10
+    n = np.full(h.size, 1e9)
+    ref = _reference(h, p, a, n)
+    cells = np.full(h.size, 40.0)
+    cells[-3:] = [9.0, 4.0, 1.5]  # the lightest loads: a few cells per patch
+    ref["cells_per_patch"] = (("limit", "separation"), cells[None, :])
+    with caplog.at_level("WARNING", logger="asperity"):
+        out = stage.comparison_dataset(ref, {"same": _interface(h, p, a, n)}, agreement=0.25)
+    np.testing.assert_array_equal(out["reference_resolved"].values, cells >= stage.MIN_CELLS_PER_PATCH)
+    np.testing.assert_array_equal(out["holds"].sel(route="same").values, cells >= stage.MIN_CELLS_PER_PATCH)
+    assert float(out.sel(route="same")["holds_to"]) == h[-4]
+    assert np.allclose(out.sel(route="same")["pressure_error"], 0)  # the errors are still computed
+    expected = (f"the boundary elements do not resolve the contact at 3 of 9 separations "
+                f"({h[-3]:.4g} .. {h[-1]:.4g} m): 1.5 to 9 cells per contact patch")
+    assert expected in out.attrs["warning"] and expected in caplog.text

@@ -40,6 +40,12 @@ Config = Mapping[str, Any]
 
 #: `<scene>+<route>`: the scene of one statistical route of a reference scene
 ROUTE_SEPARATOR = "+"
+#: fewest contacting cells per contact patch (mean, elastic solve) at which the boundary
+#: elements count as resolving the contact: a patch of 10 cells has a radius of 1.8 grid
+#: steps, where the Hertz force error on the grid, 0.15 (dx / a)^2 (asperity.references.
+#: boundary_element, measured for a = 4 to 16 steps), would be 5 %; below it the reference
+#: is no reference, and no route is said to hold there
+MIN_CELLS_PER_PATCH = 10.0
 #: what a route's scene takes from the route; the rest is the reference scene's
 ROUTE_PARTS = ("population", "asperity", "homogenization", "effects")
 
@@ -185,10 +191,13 @@ def comparison_dataset(reference: xr.Dataset, interfaces: Mapping[str, xr.Datase
     separation; the contact area error A_route / A_BEM - 1 at the same nominal
     pressure (the route's A(p) interpolated in log-log at the BEM's p); the ratio of
     contact counts (asperities in contact against contact patches).  A route holds
-    where both errors are within `agreement`; ``holds_from``/``holds_to`` give the
-    longest such range of separations, with the BEM's pressures there.  With a
-    hardness, ``plastic_departure`` is p_hardness / p_elastic - 1: where it is large,
-    an elastic route describes a surface that has yielded.
+    where both errors are within `agreement` and the boundary elements resolve the
+    contact (``reference_resolved``: at least `MIN_CELLS_PER_PATCH` cells per patch,
+    elastic solve; a warning names the separations where they do not);
+    ``holds_from``/``holds_to`` give the longest such range of separations, with the
+    BEM's pressures there.  With a hardness, ``plastic_departure`` is
+    p_hardness / p_elastic - 1: where it is large, an elastic route describes a
+    surface that has yielded.
     """
     el = reference.sel(limit="elastic")
     h = reference["separation"].values
@@ -213,7 +222,11 @@ def comparison_dataset(reference: xr.Dataset, interfaces: Mapping[str, xr.Datase
             vals["area_error"][i] = np.where(a_ref > 0, a_at_p / a_ref - 1, np.nan)
             vals["contact_count_ratio"][i] = np.where(el["contact_count"].values > 0,
                                                       n / el["contact_count"].values, np.nan)
-    holds = (np.abs(vals["pressure_error"]) <= agreement) & (np.abs(vals["area_error"]) <= agreement)
+    cells = el["cells_per_patch"].values if "cells_per_patch" in el else np.full(h.size, np.inf)
+    with np.errstate(invalid="ignore"):
+        resolved = ~(cells < MIN_CELLS_PER_PATCH)  # NaN (no contact) is not judged
+    holds = ((np.abs(vals["pressure_error"]) <= agreement) & (np.abs(vals["area_error"]) <= agreement)
+             & resolved[None, :])
     meta = {
         "nominal_pressure": ("Pa", "nominal pressure of the statistical route"),
         "contact_area_ratio": ("1", "real contact area ratio of the statistical route"),
@@ -231,8 +244,12 @@ def comparison_dataset(reference: xr.Dataset, interfaces: Mapping[str, xr.Datase
     )
     out["reference_pressure"] = ("separation", p_ref, attrs("Pa", "nominal pressure, elastic boundary elements"))
     out["reference_area_ratio"] = ("separation", a_ref, attrs("1", "real contact area ratio, elastic boundary elements"))
+    out["reference_resolved"] = ("separation", resolved, attrs(
+        "1", f"the elastic boundary elements resolve the contact: at least {MIN_CELLS_PER_PATCH:g} "
+             "contacting cells per contact patch"))
     out["holds"] = (("route", "separation"), holds, attrs(
-        "1", f"pressure and area errors both within {agreement:g}"))
+        "1", f"pressure and area errors both within {agreement:g}, where the boundary elements "
+             "resolve the contact"))
     ranges = {k: np.full(len(names), np.nan) for k in ("holds_from", "holds_to", "holds_pressure_low",
                                                         "holds_pressure_high")}
     for i in range(len(names)):
@@ -255,10 +272,21 @@ def comparison_dataset(reference: xr.Dataset, interfaces: Mapping[str, xr.Datase
                 "1", "boundary-element pressure with the hardness over the elastic one, minus 1"))
     out.attrs.update({"agreement": agreement, "hardness": reference.attrs.get("hardness", np.nan),
                       "boundary": reference.attrs.get("boundary", "")})
+    warnings = []
     if reference.attrs.get("boundary") == "free":
         log.warning("free boundary: the map is a finite patch, whose sink-in the statistical routes "
                     "(an infinite interface) do not have; compare mean gaps with care")
-        out.attrs["warning"] = "free boundary: finite patch against infinite-interface routes"
+        warnings.append("free boundary: finite patch against infinite-interface routes")
+    if not resolved.all():
+        low = h[~resolved]
+        text = (f"the boundary elements do not resolve the contact at {low.size} of {h.size} separations "
+                f"({low.min():.4g} .. {low.max():.4g} m): {np.nanmin(cells[~resolved]):.2g} to "
+                f"{np.nanmax(cells[~resolved]):.2g} cells per contact patch, fewer than "
+                f"{MIN_CELLS_PER_PATCH:g}; no route holds there. A finer map (smaller spacing) resolves them")
+        log.warning("%s", text)
+        warnings.append(text)
+    if warnings:
+        out.attrs["warning"] = "; ".join(warnings)
     for i, name in enumerate(names):
         log.info("route %s: holds (within %g) from separation %.4g to %.4g m", name, agreement,
                  ranges["holds_from"][i], ranges["holds_to"][i])
