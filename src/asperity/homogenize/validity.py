@@ -442,14 +442,17 @@ def valid_ranges(ds: xr.Dataset) -> list[str]:
         reasons = {}
         for hk, why, good, d in zip(h, one["validity"].values, ok, defined):
             if d and not good:
-                kind = "unloading from a failing state" if str(why).startswith("unloads") else \
-                    str(why).split(" ")[0]
-                reasons.setdefault(kind, []).append((hk, str(why)))
+                reasons.setdefault(_kind(why), []).append((hk, str(why)))
         for kind, items in reasons.items():
             text += (f"; {kind} fails at {_count(len(items))} ({items[0][0]:.4g} .. "
                      f"{items[-1][0]:.4g} m), e.g. {items[0][1]}")
         lines.append(text)
     return lines
+
+
+def _kind(why) -> str:
+    """The limit a `validity` reason names (its first word), or the unloading's inherited failure."""
+    return "unloading from a failing state" if str(why).startswith("unloads") else str(why).split(" ")[0]
 
 
 def _count(n) -> str:
@@ -470,7 +473,7 @@ def warn_invalid(ds: xr.Dataset, what: str) -> str:
         return ""
     text = f"{what} outside the model's validity: " + " | ".join(
         line for line in valid_ranges(ds) if ": every separation" not in line)
-    kinds = dict.fromkeys(str(why).split(" ")[0] for why in np.ravel(ds["validity"].values) if why)
+    kinds = dict.fromkeys(_kind(why) for why in np.ravel(ds["validity"].values) if why)
     hints: dict[str, list[str]] = {}  # one hint, the limits it explains
     for kind in kinds:
         if kind in REMEDIES:
