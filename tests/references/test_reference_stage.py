@@ -62,7 +62,8 @@ def _reference(h, p, a, count, hardness_p=None):
     limits = ["elastic"] + (["hardness"] if hardness_p is not None else [])
     data = {"nominal_pressure": np.array([p] + ([hardness_p] if hardness_p is not None else [])),
             "contact_area_ratio": np.array([a] * len(limits)),
-            "contact_count": np.array([count] * len(limits))}
+            "contact_count": np.array([count] * len(limits)),
+            "cells_per_patch": np.full((len(limits), len(h)), 100.0)}  # resolved
     return xr.Dataset({k: (("limit", "separation"), v) for k, v in data.items()},
                       coords={"limit": limits, "separation": h},
                       attrs={"boundary": "periodic", "hardness": 1.0})
@@ -117,7 +118,7 @@ def test_no_route_holds_where_the_boundary_elements_do_not_resolve_the_contact(c
     ref = _reference(h, p, a, n)
     cells = np.full(h.size, 40.0)
     cells[-3:] = [9.0, 4.0, 1.5]  # the lightest loads: a few cells per patch
-    ref["cells_per_patch"] = (("limit", "separation"), cells[None, :])
+    ref["cells_per_patch"].values[0] = cells
     with caplog.at_level("WARNING", logger="asperity"):
         out = stage.comparison_dataset(ref, {"same": _interface(h, p, a, n)}, agreement=0.25)
     np.testing.assert_array_equal(out["reference_resolved"].values, cells >= stage.MIN_CELLS_PER_PATCH)

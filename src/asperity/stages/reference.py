@@ -222,7 +222,7 @@ def comparison_dataset(reference: xr.Dataset, interfaces: Mapping[str, xr.Datase
             vals["area_error"][i] = np.where(a_ref > 0, a_at_p / a_ref - 1, np.nan)
             vals["contact_count_ratio"][i] = np.where(el["contact_count"].values > 0,
                                                       n / el["contact_count"].values, np.nan)
-    cells = el["cells_per_patch"].values if "cells_per_patch" in el else np.full(h.size, np.inf)
+    cells = el["cells_per_patch"].values
     with np.errstate(invalid="ignore"):
         resolved = ~(cells < MIN_CELLS_PER_PATCH)  # NaN (no contact) is not judged
     holds = ((np.abs(vals["pressure_error"]) <= agreement) & (np.abs(vals["area_error"]) <= agreement)
