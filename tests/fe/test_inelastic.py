@@ -325,3 +325,28 @@ def test_tangent_is_consistent_with_the_residual(plastic_point):
     fd = (Rp - Rm)[free] / (2 * h)
     Jd = J @ d[free]
     assert np.linalg.norm(fd - Jd) <= 1e-5 * np.linalg.norm(Jd)
+
+
+# --- the step control reads Newton's iterations to PACE_TOLERANCE -------------------
+def _j2_sphere_steps(tolerance):
+    """The J2 sphere of benchmarks/remesh.py (E / Y = 400, perfectly plastic) at draft,
+    pressed to 50 times its critical interference."""
+    y = E / 400
+    w_c = (math.pi * 1.6 * y / (2 * E_STAR)) ** 2
+    return solve_asperity_history(Paraboloid(1.0), J2Plasticity(E, NU, y),
+                                  History.loading(50 * w_c, 1.0),
+                                  accuracy=dict(base="draft", tolerance=tolerance))
+
+
+def test_a_tighter_newton_tolerance_does_not_shorten_the_steps(monkeypatch):
+    import asperity.fe.inelastic as inelastic
+
+    loose, tight = _j2_sphere_steps(1e-8), _j2_sphere_steps(1e-10)
+    # the tighter tolerance costs iterations ...
+    assert int(tight.newton_iterations.sum()) > int(loose.newton_iterations.sum())
+    # ... but not steps: the same steps, the forces within the looser tolerance
+    np.testing.assert_array_equal(tight.time_step.values, loose.time_step.values)
+    np.testing.assert_allclose(tight.force.values[1:], loose.force.values[1:], rtol=1e-7)
+    # counted to its own tolerance (the rule before), the tighter run takes other steps
+    monkeypatch.setattr(inelastic, "PACE_TOLERANCE", 0.0)
+    assert _j2_sphere_steps(1e-10).attrs["steps"] != loose.attrs["steps"]

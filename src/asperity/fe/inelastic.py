@@ -175,6 +175,11 @@ SAFETY, MAX_GROWTH, MIN_FACTOR, REJECT = 0.9, 2.0, 0.2, 2.0
 #: Newton's say on the next time step: no growth after more than 4
 #: iterations, a shrink by 0.7 after 10 or more
 PACE = Pace(fast=4, growth=MAX_GROWTH, slow=10, shrink=0.7)
+#: the iterations that `PACE` counts are those to a residual of this x the
+#: contact forces (or to the step's own tolerance, if looser): a tighter Newton
+#: tolerance (the 'fine' preset's 1e-10) polishes a converged step and says
+#: nothing of whether the step was too long, so it does not keep the steps short
+PACE_TOLERANCE = 1e-8
 #: default time tolerance when the accuracy preset has none
 TIME_TOLERANCE = 0.1
 #: Newton tolerance of a rate-dependent material: this x time_tolerance where
@@ -433,7 +438,9 @@ class InelasticModel:
         return d
 
     def solve_step(self, u0, w, state, dt, reference: float = 0.0):
-        """Newton from u0 for the step ending at interference w; returns (u, out, its).
+        """Newton from u0 for the step ending at interference w; returns (u, out,
+        its, paced): paced the iterations to ``PACE_TOLERANCE`` (or to the
+        tolerance, if looser), the count the step control reads (`PACE`).
 
         Converged when ||R|| <= tolerance x the norm of the nodal contact
         forces: those of the current iterate, or, if larger, up to twice
@@ -442,8 +449,9 @@ class InelasticModel:
         penalty) does not inflate the scale; or at the round-off level of
         the internal forces.
         """
-        return nonlinear.newton(_Step(self, w, state, dt, reference), u0, self.tolerance,
-                                self.max_iterations, LINE_SEARCH)
+        step = _Step(self, w, state, dt, reference, max(self.tolerance, PACE_TOLERANCE))
+        u, out, its = nonlinear.newton(step, u0, self.tolerance, self.max_iterations, LINE_SEARCH)
+        return u, out, its, its if step.paced is None else step.paced
 
     # --- outputs -------------------------------------------------------------
     def point_position(self, index) -> tuple:
@@ -490,9 +498,16 @@ class InelasticModel:
 class _Step(Problem):
     """Equilibrium at the end of a step (`InelasticModel.solve_step`)."""
 
-    def __init__(self, model: InelasticModel, w, state, dt, reference: float):
+    def __init__(self, model: InelasticModel, w, state, dt, reference: float,
+                 pace_tolerance: float):
         self.model, self.w, self.state, self.dt = model, w, state, dt
         self.force_scale = nonlinear.ContactScale(reference)
+        self.pace_tolerance = pace_tolerance
+        self.paced = None  # the first iteration with ||R|| <= pace_tolerance x scale
+
+    def monitor(self, iteration, rn, scale, out):
+        if self.paced is None and rn <= self.pace_tolerance * scale:
+            self.paced = iteration
 
     def evaluate(self, u):
         R, out = self.model.evaluate(u, self.w, self.state, self.dt)
@@ -934,8 +949,10 @@ def solve_asperity_history(geometry, material, history: History, accuracy="stand
                 else:
                     start, h_m = state, h
                 try:
-                    u_new, out, its = model.solve_step(u0, w_new, start, h_m, f_ref)
+                    u_new, out, its, paced = model.solve_step(u0, w_new, start, h_m, f_ref)
                     iterations += its
+                    # what the step control reads: this try to PACE_TOLERANCE
+                    paced = iterations - its + paced
                     new = out["state"]
                     if order == 2 and hasattr(new, "time"):
                         new.time = state.time + h
@@ -1026,7 +1043,7 @@ def solve_asperity_history(geometry, material, history: History, accuracy="stand
         else:
             fac = min(MAX_GROWTH, max(MIN_FACTOR,
                                       SAFETY * (time_tolerance / err) ** (1.0 / (order + 1))))
-        dt = PACE.factor(iterations, cuts.count, fac) * h
+        dt = PACE.factor(paced, cuts.count, fac) * h
         v = history.velocity(t)
         if v > 0:
             dt = min(dt, dw_max / v)
