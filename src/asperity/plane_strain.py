@@ -105,7 +105,8 @@ def plane_strain_study(geometry, body, elastic, history, meshes: Mapping[str, di
         `asperity.fe.History`: the loading of the flat (interference against time).
     meshes
         mesh name -> accuracy preset (a dict `asperity.fe.presets.resolve` takes for
-        "elastic").
+        "elastic"); both bodies are meshed by it, so that they share the mesh, refined
+        to the elastic solutions as the report's (6.3.2).
     points
         interference levels of the elastic body, evenly spaced to the largest of the
         history; they also drive the meshing of both bodies.
@@ -127,6 +128,7 @@ def plane_strain_study(geometry, body, elastic, history, meshes: Mapping[str, di
     from asperity.fe import solve_asperity, solve_asperity_history
     from asperity.fe.analytic import hertz_line_half_width
     from asperity.fe.inelastic import END_FIELDS
+    from asperity.fe.presets import resolve
 
     if geometry.axisymmetric:
         raise ValueError("a plane-strain study needs a plane section (axisymmetric=False)")
@@ -144,7 +146,7 @@ def plane_strain_study(geometry, body, elastic, history, meshes: Mapping[str, di
     inverted = np.zeros(len(names), dtype=np.int64)
     runs = []
     for i, name in enumerate(names):
-        preset = dict(meshes[name])
+        preset = resolve("elastic", meshes[name])
         t0 = time.process_time()
         e = solve_asperity(geometry, elastic, w, accuracy=preset)
         cpu[i, 0] = time.process_time() - t0

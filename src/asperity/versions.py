@@ -26,7 +26,7 @@ VERSIONS: dict[str, int] = {
     "plan": 2,
     "sample:hertz": 1,
     "sample:elastic": 1,
-    "sample:inelastic": 2,
+    "sample:inelastic": 3,
     "sample:adhesive": 6,
     "asperities": 2,
     # homogenize (workflow/rules/homogenize.smk)

@@ -74,8 +74,7 @@ def test_history_load_unload():
         History((0.0, 0.0), (0.0, 1.0))
 
 
-@pytest.mark.parametrize("extra", [dict(edge_size=0.0), dict(edge_size=1.5),
-                                   dict(edge_size=0.02, remesh=True)])
+@pytest.mark.parametrize("extra", [dict(edge_size=0.0), dict(edge_size=1.5)])
 def test_rejects_an_edge_band_it_cannot_build(extra):
     with pytest.raises(ValueError, match="edge_size"):
         solve_asperity_history(Paraboloid(1.0), J2Plasticity(E, NU, 30.0),

@@ -2,7 +2,8 @@
 
 import pytest
 
-from asperity.fe.presets import ACCURACY, ADHESIVE_ACCURACY, KINDS, SLIDING_ACCURACY, resolve
+from asperity.fe.presets import (ACCURACY, ADHESIVE_ACCURACY, EDGE_SIZE, INELASTIC_ACCURACY,
+                                 KINDS, SLIDING_ACCURACY, resolve)
 
 
 @pytest.mark.parametrize("kind", KINDS)
@@ -16,7 +17,16 @@ def test_a_preset_and_its_resolved_dict_resolve_alike(kind, name):
 
 
 def test_the_tables_of_each_kind():
-    assert resolve("elastic", "fine") == ACCURACY["fine"] == resolve("inelastic", "fine")
+    assert resolve("elastic", "fine") == ACCURACY["fine"]
+    # the inelastic histories: the elastic presets, but fine's one mesh adapted to the
+    # elastic solutions only as far as standard's (sweeps and target error) and refined
+    # where the plastic edge goes
+    for name in ("draft", "standard"):
+        assert resolve("inelastic", name) == ACCURACY[name]
+    adapt = {k: ACCURACY["standard"][k] for k in ("sweeps", "target_error")}
+    assert resolve("inelastic", "fine") == {**ACCURACY["fine"], **adapt,
+                                            "edge_size": EDGE_SIZE["fine"]}
+    assert all(set(p) <= set(ACCURACY[p["base"]]) | {"base"} for p in INELASTIC_ACCURACY.values())
     assert resolve("sliding", "draft") == SLIDING_ACCURACY["draft"]
     # the adhesive keys on top of the elastic preset of the same name
     adh = resolve("adhesive", "draft")

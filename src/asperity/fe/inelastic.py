@@ -728,7 +728,7 @@ def solve_asperity_history(geometry, material, history: History, accuracy="stand
         time [s]; the body is stress free at its start (w <= 0: first
         touch at w = 0).
     accuracy
-        preset name or dict (`presets.ACCURACY`); sets the mesh (with
+        preset name or dict (`presets.INELASTIC_ACCURACY`); sets the mesh (with
         ``remesh`` on: rebuilt as the contact moves, `remesh`; off: adapted
         once, to elastic solutions at ``mesh_levels``), the Newton
         tolerance and iteration limit, and the default ``time_tolerance``.
@@ -764,8 +764,9 @@ def solve_asperity_history(geometry, material, history: History, accuracy="stand
         first mesh is the one for the elastic contact at the smallest level.
         The elastic contact edge at the largest level lies inside a plastic
         one (a sphere: sqrt(R w) against up to sqrt(2 R w)): the preset key
-        ``edge_size`` refines the band of radii the plastic edge sweeps
-        (`remesh.edge_band`; README, "Meshes that follow the contact").
+        ``edge_size`` (set at 'fine') refines the band of radii the plastic
+        edge sweeps (`remesh.edge_band`; README, "Meshes that follow the
+        contact"); with ``remesh`` on it is not read.
     stop_at_zero_force
         on unloading, stop once the force vanishes (falls below
         ``ZERO_FORCE`` x the largest force; the crossing is
@@ -852,11 +853,9 @@ def solve_asperity_history(geometry, material, history: History, accuracy="stand
     if tolerance is None and rate_dependent and math.isfinite(time_tolerance):
         tolerance = max(preset["tolerance"], NEWTON_FRACTION * time_tolerance)
     remesh = bool(preset["remesh"])
-    edge_size = preset["edge_size"]
+    # the band of the one mesh; with remesh on the meshes follow the contact edge
+    edge_size = None if remesh else preset["edge_size"]
     if edge_size is not None:
-        if remesh:
-            raise ValueError("accuracy key edge_size refines the one mesh of remesh off; "
-                             "with remesh on the meshes follow the contact edge")
         if not 0 < float(edge_size) < 1:
             raise ValueError(f"accuracy key edge_size must be None or between 0 and 1 "
                              f"(times the intersection radius), got {edge_size!r}")

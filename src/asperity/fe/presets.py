@@ -78,13 +78,15 @@ edge_size
     element of the top surface / r_g over the radii the plastic contact edge
     sweeps, ``remesh.EDGE_BAND`` x r_g (r_g the geometric intersection
     radius at the largest interference), refined on top of the elastic
-    adaptation, which resolves the elastic edges only.  None in every preset:
-    on the J2 sphere of `make time-remesh`, 0.02 at standard and 0.0125 at
-    fine put standard's contact area within 0.9 % of fine's from a tenth of
-    the largest interference on (3.8 % on the default meshes), for 1.7 times
-    standard's CPU; but the viscoplastic hill takes 2.5 times as long with it
-    (README "Meshes that follow the contact").  `EDGE_SIZE` holds the size of
-    each preset, which a scene's ``asperity: {edge_band: true}`` sets.
+    adaptation, which resolves the elastic edges only.  Not read with
+    ``remesh`` on (the meshes then follow the edge).  None at draft and
+    standard, `EDGE_SIZE` at fine (`INELASTIC_ACCURACY`): on the J2 sphere of
+    `make time-remesh`, 0.02 at standard puts standard's contact area within
+    1 % of fine's from a tenth of the largest interference on (3 % on the
+    default mesh), for 1.7 times standard's CPU; but the viscoplastic hill
+    takes 2.5 times as long with it (README "Meshes that follow the
+    contact").  `EDGE_SIZE` holds the size of each preset, which a scene's
+    ``asperity: {edge_band: true}`` sets.
 
 Adhesive presets (`ADHESIVE_ACCURACY`, `adhesive.solve_asperity_adhesive`)
 add to the elastic preset of the same name: the mesh of the adhesive band
@@ -196,8 +198,26 @@ ADHESIVE_ACCURACY: dict[str, dict] = {
 
 #: ``edge_size`` at each preset where a scene asks for the band the plastic contact edge
 #: sweeps (``asperity: {edge_band: true}``; `benchmarks/remesh.py --edge-band` measures
-#: these): standard's within 1 % of fine's in contact area on the J2 sphere
+#: these): standard's within 1 % of fine's in contact area on the J2 sphere.  'fine'
+#: has its band in every inelastic history (`INELASTIC_ACCURACY`)
 EDGE_SIZE = {"draft": 0.04, "standard": 0.02, "fine": 0.0125}
+
+#: inelastic histories (`inelastic.solve_asperity_history`) on top of the preset of the
+#: same name (`base`).  'fine', the reference, is meshed for a plastic contact: its one
+#: mesh is adapted to the elastic solutions of the history's levels only as far as
+#: 'standard''s is (``sweeps``, ``target_error``), on its own finer rings, and refined
+#: where the plastic contact edge goes (``edge_size``).  The elastic adaptation resolves
+#: elastic contact edges, inside the plastic ones; fine's sweeps beyond standard's spent
+#: most of its dofs at the small contacts of the first levels.  This mesh is closer to
+#: the finest runs of `make time-remesh` than fine's before (7 elastic sweeps to 0.002,
+#: no band), for less CPU (README, "Meshes that follow the contact")
+INELASTIC_ACCURACY: dict[str, dict] = {
+    "draft": dict(base="draft"),
+    "standard": dict(base="standard"),
+    "fine": dict(base="fine", sweeps=ACCURACY["standard"]["sweeps"],
+                 target_error=ACCURACY["standard"]["target_error"],
+                 edge_size=EDGE_SIZE["fine"]),
+}
 
 
 #: accuracy presets of the sliding model: mesh sizes relative to the
@@ -227,21 +247,21 @@ SLIDING_ACCURACY: dict[str, dict] = {
 }
 
 
-#: the tables of each kind of model: the inelastic histories mesh and solve with
-#: the elastic tables (and read ``time_tolerance`` from them); the adhesive
-#: presets add their keys to the elastic preset of the same name
+#: the tables of each kind of model: the inelastic and the adhesive presets change
+#: or add keys to the elastic preset of the same name (the inelastic histories read
+#: ``time_tolerance`` and their meshing keys from the elastic tables)
 KINDS = ("elastic", "inelastic", "adhesive", "sliding")
 
 
 def preset(kind: str, name: str) -> dict:
     """The preset `name` of a kind of model (`KINDS`), a new dict."""
-    table = {"elastic": ACCURACY, "inelastic": ACCURACY, "adhesive": ADHESIVE_ACCURACY,
-             "sliding": SLIDING_ACCURACY}.get(kind)
+    table = {"elastic": ACCURACY, "inelastic": INELASTIC_ACCURACY,
+             "adhesive": ADHESIVE_ACCURACY, "sliding": SLIDING_ACCURACY}.get(kind)
     if table is None:
         raise ValueError(f"unknown kind of model {kind!r}; known: {', '.join(KINDS)}")
     if name not in table:
         raise ValueError(f"unknown accuracy {name!r}; known: {', '.join(table)}")
-    if kind == "adhesive":
+    if kind in ("inelastic", "adhesive"):
         extra = dict(table[name])
         return {**ACCURACY[extra.pop("base")], **extra}
     return dict(table[name])
