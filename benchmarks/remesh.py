@@ -18,9 +18,11 @@ Writes benchmarks/results/remesh.json (merged with what is already there, so
 that the presets can be run separately: fine takes minutes) and, from what it holds,
 docs/figures/remesh_contact_area.png (``--cases`` with no case: the summary and the figure
 only).  The summary compares every recorded run (`compare`): standard with fine on the
-same kind of mesh (``against_fine``), each kind of mesh with the preset's default fixed
-one (``against_fixed``, with the CPU ratio and steps), and each run with fine on its
-default mesh (``against_fine_fixed``); and gives each run's ``contact_area_scatter``::
+same kind of mesh (``against_fine``; fine's fixed mesh has the band, so it is the
+reference of standard's fixed mesh with and without it), each kind of mesh with the
+preset's default fixed one (``against_fixed``, with the CPU ratio and steps), each run
+with fine on its default mesh (``against_fine_fixed``) and with the finest run
+(``against_finest``); and gives each run's ``contact_area_scatter``::
 
     python benchmarks/remesh.py --cases j2_sphere --presets standard fine --remesh on off
     python benchmarks/remesh.py --cases viscoplastic_hill --presets standard --remesh on off
@@ -29,10 +31,21 @@ default mesh (``against_fine_fixed``); and gives each run's ``contact_area_scatt
 goes (the preset key ``edge_size``, `asperity.fe.remesh.edge_band`; ``presets.EDGE_SIZE``
 per preset; runs recorded as <case>/<preset>/fixed-edge): the elastic contact edge at
 w_max lies well inside the plastic one (a sphere: sqrt(R w) against nearly sqrt(2 R w)),
-so the elastic adaptation leaves the plastic edge's path coarse::
+so the elastic adaptation leaves the plastic edge's path coarse.  Fine's one mesh has
+the band in every inelastic history (`presets.INELASTIC_ACCURACY`)::
 
     python benchmarks/remesh.py --cases j2_sphere viscoplastic_hill --presets standard --remesh off --edge-band
-    python benchmarks/remesh.py --cases j2_sphere --presets fine --remesh off --edge-band
+
+``--presets finest`` runs the reference of the summary (``FINEST``: fine's rings adapted
+as far as the elastic 'fine' preset goes, 7 sweeps to 0.002, and a band of 0.008 r_g;
+recorded as <case>/finest/fixed)::
+
+    python benchmarks/remesh.py --presets finest --remesh off
+
+The records <case>/fine_before/... are the runs of the fine preset before it had the
+band (its one mesh adapted by 7 elastic sweeps to 0.002, 37 k dofs on the sphere; the
+``-edge`` ones with ``edge_size`` 0.0125 on top), kept from the measurements before
+(README, "Meshes that follow the contact"): they are compared, not run again.
 """
 
 from __future__ import annotations
@@ -51,7 +64,7 @@ from asperity.fe import J2Plasticity, Sphere
 from asperity.fe.bodner_partom import BodnerPartom
 from asperity.fe.geometry import CosineHill
 from asperity.fe.inelastic import History, solve_asperity_history
-from asperity.fe.presets import EDGE_SIZE
+from asperity.fe.presets import ACCURACY, EDGE_SIZE
 
 OUT = Path(__file__).with_name("results") / "remesh.json"
 FIGURE = Path(__file__).resolve().parents[1] / "docs" / "figures" / "remesh_contact_area.png"
@@ -79,8 +92,17 @@ def viscoplastic_hill(accuracy):
 CASES = {"j2_sphere": j2_sphere, "viscoplastic_hill": viscoplastic_hill}
 
 
+#: the reference of the runs (``--presets finest``): fine's rings adapted to the elastic
+#: solutions as far as the elastic 'fine' preset goes, and a band finer than fine's
+FINEST = dict(base="fine", sweeps=ACCURACY["fine"]["sweeps"],
+              target_error=ACCURACY["fine"]["target_error"], edge_size=0.008)
+
+
 def run(case: str, preset: str, remesh: bool, edge: bool = False) -> dict:
-    accuracy = dict(base=preset, remesh=remesh)
+    if preset == "finest":
+        accuracy = dict(FINEST)
+    else:
+        accuracy = dict(base=preset, remesh=remesh)
     if edge:
         accuracy["edge_size"] = EDGE_SIZE[preset]
     t0 = time.process_time()
@@ -112,7 +134,8 @@ def compare(coarse: dict, fine: dict) -> dict:
     """Relative differences of `coarse` from `fine`: at the top of the loading, and
     the largest at equal interference over its second half (``_largest``), from a
     tenth to a half of it (``_largest_early``) and below a tenth (``_largest_start``;
-    `fine` interpolated at `coarse`'s interferences)."""
+    `fine` interpolated at `coarse`'s interferences as a power of w between its steps,
+    `power_interp`)."""
     w = np.asarray(coarse["interference"])
     ranges = {"_largest": w >= 0.5 * w[-1], "_largest_early": (w >= 0.1 * w[-1]) & (w < 0.5 * w[-1]),
               "_largest_start": (w > 0) & (w < 0.1 * w[-1])}
@@ -120,16 +143,32 @@ def compare(coarse: dict, fine: dict) -> dict:
     for name in ("force", "contact_area"):
         out[name + "_at_top"] = coarse[name + "_at_top"] / fine[name + "_at_top"] - 1
         for suffix, part in ranges.items():
-            ref = np.interp(w[part], fine["interference"], fine[name])
+            ref = power_interp(w[part], fine["interference"], fine[name])
             out[name + suffix] = float(np.max(np.abs(np.asarray(coarse[name])[part] / ref - 1)))
     return out
 
 
+def power_interp(x, xp, fp):
+    """fp(xp) at x > 0, linear in (ln x, ln f) between the points of positive xp and fp,
+    and below the first of them the power law of the first two: a force or an area that
+    grows like a power of the interference is interpolated without the error of a chord
+    (from 0 to fine's first step in contact, a chord is 41 % above a force growing like
+    w^1.5 at half the step)."""
+    xp, fp = np.asarray(xp, float), np.asarray(fp, float)
+    keep = (xp > 0) & (fp > 0)
+    lx, lf = np.log(xp[keep]), np.log(fp[keep])
+    t = np.log(np.asarray(x, float))
+    out = np.interp(t, lx, lf)
+    below = t < lx[0]
+    out[below] = lf[0] + (t[below] - lx[0]) * (lf[1] - lf[0]) / (lx[1] - lx[0])
+    return np.exp(out)
+
+
 def figure(runs: dict, path: Path = FIGURE) -> bool:
     """Left, the J2 sphere's contact area over the geometric one, against w / w_c, of
-    the meshes recorded at both presets; then, for each case, standard's contact area
-    over fine's on the same kind of mesh (interpolated at standard's interferences).
-    False if no case has both presets."""
+    standard's meshes, fine's and the finest run; then, for each case, standard's contact
+    area on each kind of mesh over fine's (fine's fixed mesh has the band; interpolated at
+    standard's interferences).  False if no case has both presets."""
     import matplotlib
 
     matplotlib.use("Agg")
@@ -137,10 +176,10 @@ def figure(runs: dict, path: Path = FIGURE) -> bool:
 
     from asperity.io.figures import save_figure
 
-    # the band's curves first: below half the largest interference they lie under the
-    # default mesh's (the band refines only beyond it)
-    kinds = {"fixed-edge": "edge band", "fixed": "default fixed mesh", "remesh": "remeshing"}
-    pairs = {(case, k): (runs.get(f"{case}/standard/{k}"), runs.get(f"{case}/fine/{k}"))
+    # the band's curves last, on top: it is the mesh that agrees with fine
+    kinds = {"fixed": "default fixed mesh", "remesh": "remeshing", "fixed-edge": "edge band"}
+    pairs = {(case, k): (runs.get(f"{case}/standard/{k}"),
+                         runs.get(f"{case}/fine/{'fixed' if k == 'fixed-edge' else k}"))
              for case in CASES for k in kinds}
     pairs = {ck: v for ck, v in pairs.items() if v[0] and v[1]}
     if not pairs:
@@ -150,19 +189,27 @@ def figure(runs: dict, path: Path = FIGURE) -> bool:
     titles = {"j2_sphere": ("J2 sphere", "interference / critical interference w_c"),
               "viscoplastic_hill": ("viscoplastic hill (loading)",
                                     "interference / largest interference")}
+
+    def area_ratio(run):
+        wr = np.asarray(run["interference"][1:])
+        return wr / W_C, np.asarray(run["contact_area"][1:]) / (np.pi * (2 * wr - wr**2))
+
     for (case, kind), (standard, fine) in pairs.items():
         colour = f"C{list(kinds).index(kind)}"
         w = np.asarray(standard["interference"][1:])
         scale = W_C if case == "j2_sphere" else w[-1]
         if case == "j2_sphere":
-            for run, style, preset in ((standard, "o-", "standard"), (fine, "-", "fine")):
-                wr = np.asarray(run["interference"][1:])
-                area = np.asarray(run["contact_area"][1:]) / (np.pi * (2 * wr - wr**2))
-                left.plot(wr / W_C, area, style, color=colour, ms=2.5, lw=1,
-                          label=f"{preset}, {kinds[kind]}")
-        ref = np.interp(w, fine["interference"][1:], fine["contact_area"][1:])
+            left.plot(*area_ratio(standard), "o-", color=colour, ms=2.5, lw=1,
+                      label=f"standard, {kinds[kind]}")
+        ref = power_interp(w, fine["interference"][1:], fine["contact_area"][1:])
         panels[case].plot(w / scale, 100 * (np.asarray(standard["contact_area"][1:]) / ref - 1),
-                          "o-", color=colour, ms=2.5, lw=1, label=kinds[kind])
+                          "o-", color=colour, ms=2.5, lw=1, label=f"standard, {kinds[kind]}")
+    for key, style, colour, label in (("fine/fixed", "-", "k", "fine (with the band)"),
+                                      ("fine/remesh", ":", "k", "fine, remeshing"),
+                                      ("finest/fixed", "--", "0.5", "finest")):
+        run = runs.get(f"j2_sphere/{key}")
+        if run:
+            left.plot(*area_ratio(run), style, color=colour, lw=1, label=label)
     left.set(xscale="log", xlabel="interference / critical interference w_c",
              ylabel="contact area / geometric area pi (2 R w - w^2)",
              title="J2 sphere, E/Y = 400: contact area")
@@ -173,7 +220,7 @@ def figure(runs: dict, path: Path = FIGURE) -> bool:
         half = 25 if case == "j2_sphere" else 0.5
         ax.axvline(half, color="0.6", lw=0.8, ls=":", label="second half of the loading")
         ax.set(xscale="log", xlabel=xlabel, ylabel="standard / fine - 1 [%]", ylim=(-6, 6),
-               title=f"{title}: standard against fine on the same kind of mesh")
+               title=f"{title}: standard's contact area against fine's")
         ax.title.set_fontsize(9)
         ax.legend(fontsize=7)
     fig.tight_layout()
@@ -192,7 +239,9 @@ def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--cases", nargs="*", default=list(CASES), choices=list(CASES),
                     help="none: only the summary of what benchmarks/results/remesh.json holds")
-    ap.add_argument("--presets", nargs="+", default=["standard", "fine"])
+    ap.add_argument("--presets", nargs="+", default=["standard", "fine"],
+                    choices=["draft", "standard", "fine", "finest"],
+                    help="finest: the reference of the summary (FINEST; --remesh off)")
     ap.add_argument("--remesh", nargs="+", default=["on"], choices=["on", "off"],
                     help="remeshing on, off (the fixed mesh) or both")
     ap.add_argument("--edge-band", action="store_true",
@@ -201,6 +250,10 @@ def main(argv=None):
     args = ap.parse_args(argv)
     if args.edge_band and "on" in args.remesh:
         ap.error("--edge-band refines the fixed mesh: give --remesh off")
+    if args.edge_band and {"fine", "finest"} & set(args.presets):
+        ap.error("fine's and finest's one mesh have their band already")
+    if "finest" in args.presets and "on" in args.remesh:
+        ap.error("finest is a fixed mesh: give --remesh off")
     suffix = "-edge" if args.edge_band else ""
     for case in args.cases:
         for preset in args.presets:
@@ -215,11 +268,12 @@ def main(argv=None):
                 OUT.write_text(json.dumps(record, indent=1))
     record = _read()
     runs = record["runs"]
-    summary = dict(against_fine={}, against_fixed={}, against_fine_fixed={})
+    summary = dict(against_fine={}, against_fixed={}, against_fine_fixed={},
+                   against_finest={})
     for key, r in sorted(runs.items()):
         case, preset, mode = key.split("/")
-        # standard against fine on the same kind of mesh
-        fine = runs.get(f"{case}/fine/{mode}")
+        # standard against fine on the same kind of mesh (fine's fixed mesh has the band)
+        fine = runs.get(f"{case}/fine/{'fixed' if mode == 'fixed-edge' else mode}")
         if preset == "standard" and fine:
             summary["against_fine"][f"{case}/{mode}"] = dict(
                 cpu_fine_over_standard=fine["cpu_seconds"] / r["cpu_seconds"], **compare(r, fine))
@@ -233,6 +287,9 @@ def main(argv=None):
         reference = runs.get(f"{case}/fine/fixed")
         if reference and key != f"{case}/fine/fixed":
             summary["against_fine_fixed"][key] = compare(r, reference)
+        finest = runs.get(f"{case}/finest/fixed")
+        if finest and key != f"{case}/finest/fixed":
+            summary["against_finest"][key] = compare(r, finest)
     summary["contact_area_scatter"] = {
         key: area_scatter(r["interference"], r["contact_area"]) for key, r in sorted(runs.items())}
     record["summary"] = summary
