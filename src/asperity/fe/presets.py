@@ -83,7 +83,7 @@ edge_size
     standard, `EDGE_SIZE` at fine (`INELASTIC_ACCURACY`): on the J2 sphere of
     `make time-remesh`, 0.02 at standard puts standard's contact area within
     1 % of fine's from a tenth of the largest interference on (3 % on the
-    default mesh), for 1.7 times standard's CPU; but the viscoplastic hill
+    default mesh), for about twice standard's CPU; but the viscoplastic hill
     takes 2.5 times as long with it (README "Meshes that follow the
     contact").  `EDGE_SIZE` holds the size of each preset, which a scene's
     ``asperity: {edge_band: true}`` sets.
