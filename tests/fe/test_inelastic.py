@@ -328,8 +328,9 @@ def test_tangent_is_consistent_with_the_residual(plastic_point):
 
 # --- the step control reads Newton's iterations to PACE_TOLERANCE -------------------
 def _j2_sphere_steps(tolerance):
-    """The J2 sphere of benchmarks/remesh.py (E / Y = 400, perfectly plastic) at draft,
-    pressed to 50 times its critical interference."""
+    """The J2 body of benchmarks/remesh.py (E / Y = 400, perfectly plastic; here a
+    paraboloid of its tip radius) at draft, pressed to 50 times its critical
+    interference."""
     y = E / 400
     w_c = (math.pi * 1.6 * y / (2 * E_STAR)) ** 2
     return solve_asperity_history(Paraboloid(1.0), J2Plasticity(E, NU, y),

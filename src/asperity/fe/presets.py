@@ -205,7 +205,7 @@ EDGE_SIZE = {"draft": 0.04, "standard": 0.02, "fine": 0.0125}
 #: inelastic histories (`inelastic.solve_asperity_history`) on top of the preset of the
 #: same name (`base`).  'fine', the reference, is meshed for a plastic contact: its one
 #: mesh is adapted to the elastic solutions of the history's levels only as far as
-#: 'standard''s is (``sweeps``, ``target_error``), on its own finer rings, and refined
+#: standard's is (``sweeps``, ``target_error``), on its own finer rings, and refined
 #: where the plastic contact edge goes (``edge_size``).  The elastic adaptation resolves
 #: elastic contact edges, inside the plastic ones; fine's sweeps beyond standard's spent
 #: most of its dofs at the small contacts of the first levels.  This mesh is closer to
