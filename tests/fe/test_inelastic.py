@@ -213,9 +213,13 @@ def test_too_large_first_step_is_cut_and_recorded():
                                 initial_time_step=1000 * default_dt, progress=lines.append)
     cuts = ds.step_cuts.values
     assert cuts[1] >= 5
-    # one progress line per accepted step, with its interference, force and cuts
+    # one progress line per accepted step, with its time of the history's, its
+    # interference, force and cuts
     assert len(lines) == ds.attrs["steps"]
     for k, line in enumerate(lines, start=1):
+        t, end = re.search(r"t = (\S+) of (\S+) s,", line).groups()
+        assert float(t) == pytest.approx(float(ds.time[k]), rel=1e-5)
+        assert float(end) == pytest.approx(hist.end, rel=1e-5)
         w, f, c = re.search(r"w = (\S+) m, force (\S+) N, \d+ Newton iterations, (\d+) cuts",
                             line).groups()
         assert float(w) == pytest.approx(float(ds.interference[k]), rel=1e-5, abs=1e-12)

@@ -800,7 +800,7 @@ def solve_asperity_history(geometry, material, history: History, accuracy="stand
         displacement turns it inside out), to draw the mesh and the deformed
         body (report Figs. 6.15, 6.16, 6.19 to 6.21).
     progress
-        optional callable(str), told of every accepted step (time,
+        optional callable(str), told of every accepted step (time and the history's end,
         interference, force, Newton iterations, cuts, wall time).
 
     Returns an `xarray.Dataset` on dim ``step`` (variables `OUTPUTS`,
@@ -1033,7 +1033,7 @@ def solve_asperity_history(geometry, material, history: History, accuracy="stand
                time_step=h, integration_order=order, time_error=err,
                wall_time=time.perf_counter() - step_start, dofs=model.dofs)
         if progress is not None:
-            progress(f"step {n} ({branch}): t = {t:.6g} s, w = {w:.6g} m, force "
+            progress(f"step {n} ({branch}): t = {t:.6g} of {t_end:.6g} s, w = {w:.6g} m, force "
                      f"{rec['force']:.6g} N, {iterations} Newton iterations, {cuts.count} cuts, "
                      f"{rows[-1]['wall_time']:.3g} s")
         # next time step: the error controller, limited by Newton and the caps

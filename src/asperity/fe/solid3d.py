@@ -1322,7 +1322,7 @@ def solve_sliding(geometry, material, motion: FlatMotion, friction: FrictionLaw,
                 snap[k] = (t, _snapshot(model, u, state),
                            _largest_deformation(model, u, w, state, a_ref))
         s_c = rec["critical_shear_factor"]
-        say(f"step {n}: t = {t:.6g} s, w = {w:.4g} m, delta = {delta:.4g} m, "
+        say(f"step {n}: t = {t:.6g} of {motion.end:.6g} s, w = {w:.4g} m, delta = {delta:.4g} m, "
             f"F_N = {rec['normal_force']:.4g} N, F_T = {rec['tangential_force']:.4g} N, "
             f"A = {rec['contact_area']:.4g} m^2, "
             f"{iterations} Newton iterations, {cuts.count} cuts"
