@@ -948,10 +948,11 @@ def solve_asperity_history(geometry, material, history: History, accuracy="stand
                 else:
                     start, h_m = state, h
                 try:
-                    u_new, out, its, paced = model.solve_step(u0, w_new, start, h_m, f_ref)
+                    u_new, out, its, to_pace = model.solve_step(u0, w_new, start, h_m, f_ref)
                     iterations += its
-                    # what the step control reads: this try to PACE_TOLERANCE
-                    paced = iterations - its + paced
+                    # what the step control reads: the tries before in full, this one
+                    # to PACE_TOLERANCE
+                    paced = iterations - its + to_pace
                     new = out["state"]
                     if order == 2 and hasattr(new, "time"):
                         new.time = state.time + h
