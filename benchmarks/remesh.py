@@ -36,6 +36,13 @@ the band in every inelastic history (`presets.INELASTIC_ACCURACY`)::
 
     python benchmarks/remesh.py --cases j2_sphere viscoplastic_hill --presets standard --remesh off --edge-band
 
+``--interference-step FRACTION`` caps the steps at that fraction of the largest
+interference instead of 0.025 (``max_interference_step``; recorded as
+<case>/<preset>/<mesh>-dw<FRACTION>), which tells the error of the steps from that of
+the mesh::
+
+    python benchmarks/remesh.py --cases j2_sphere --presets standard --remesh off --interference-step 0.005
+
 ``--presets finest`` runs the reference of the summary (``FINEST``: fine's rings adapted
 as far as the elastic 'fine' preset goes, 7 sweeps to 0.002, and a band of 0.008 r_g;
 recorded as <case>/finest/fixed)::
@@ -75,18 +82,19 @@ W_C = (math.pi * 1.6 * Y / (2 * E / (1 - NU**2))) ** 2
 
 
 
-def j2_sphere(accuracy):
+def j2_sphere(accuracy, **options):
     w_max = 50 * W_C
     return solve_asperity_history(Sphere(1.0), J2Plasticity(E, NU, Y),
-                                  History.loading(w_max, 1.0), accuracy=accuracy)
+                                  History.loading(w_max, 1.0), accuracy=accuracy, **options)
 
 
-def viscoplastic_hill(accuracy):
+def viscoplastic_hill(accuracy, **options):
     ratio = np.pi / (np.sqrt(2.0) * 0.160)
     hill = CosineHill.from_aspect(ratio, 2.0 * np.pi**2 / (ratio**2 * 0.042e6))
     w_max = 0.1 * hill.height
     return solve_asperity_history(hill, BodnerPartom.sae_1020(),
-                                  History.load_unload(w_max, 0.25e-6), accuracy=accuracy)
+                                  History.load_unload(w_max, 0.25e-6), accuracy=accuracy,
+                                  **options)
 
 
 CASES = {"j2_sphere": j2_sphere, "viscoplastic_hill": viscoplastic_hill}
@@ -98,7 +106,8 @@ FINEST = dict(base="fine", sweeps=ACCURACY["fine"]["sweeps"],
               target_error=ACCURACY["fine"]["target_error"], edge_size=0.008)
 
 
-def run(case: str, preset: str, remesh: bool, edge: bool = False) -> dict:
+def run(case: str, preset: str, remesh: bool, edge: bool = False,
+        interference_step: float | None = None) -> dict:
     if preset == "finest":
         accuracy = dict(FINEST)
     else:
@@ -106,7 +115,8 @@ def run(case: str, preset: str, remesh: bool, edge: bool = False) -> dict:
     if edge:
         accuracy["edge_size"] = EDGE_SIZE[preset]
     t0 = time.process_time()
-    ds = CASES[case](accuracy)
+    options = {} if interference_step is None else dict(max_interference_step=interference_step)
+    ds = CASES[case](accuracy, **options)
     cpu = time.process_time() - t0
     k = int(np.argmax(ds.interference.values))
     return dict(
@@ -247,6 +257,10 @@ def main(argv=None):
     ap.add_argument("--edge-band", action="store_true",
                     help="the fixed mesh refined where the plastic edge goes (edge_size "
                     f"{EDGE_SIZE}; runs recorded as <case>/<preset>/fixed-edge)")
+    ap.add_argument("--interference-step", type=float, metavar="FRACTION",
+                    help="the largest step as a fraction of the largest interference "
+                    "(max_interference_step; default 0.025), to tell the error of the steps "
+                    "from that of the mesh; runs recorded as <case>/<preset>/<mesh>-dw<FRACTION>")
     args = ap.parse_args(argv)
     if args.edge_band and "on" in args.remesh:
         ap.error("--edge-band refines the fixed mesh: give --remesh off")
@@ -254,12 +268,13 @@ def main(argv=None):
         ap.error("fine's and finest's one mesh have their band already")
     if "finest" in args.presets and "on" in args.remesh:
         ap.error("finest is a fixed mesh: give --remesh off")
-    suffix = "-edge" if args.edge_band else ""
+    suffix = ("-edge" if args.edge_band else "") + (
+        "" if args.interference_step is None else f"-dw{args.interference_step:g}")
     for case in args.cases:
         for preset in args.presets:
             for remesh in [m == "on" for m in args.remesh]:
                 key = f"{case}/{preset}/{'remesh' if remesh else 'fixed'}{suffix}"
-                r = run(case, preset, remesh, args.edge_band)
+                r = run(case, preset, remesh, args.edge_band, args.interference_step)
                 record = _read()  # other presets may run at the same time
                 record["runs"][key] = r
                 print(f"{key:<36s} {r['cpu_seconds']:8.1f} s CPU  {r['steps']:4d} steps  "
