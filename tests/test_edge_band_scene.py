@@ -8,6 +8,7 @@ import math
 
 import pytest
 
+from asperity.fe.contact import EDGE_FROM_PRESSURES
 from asperity.fe.presets import EDGE_SIZE
 from asperity.population import samples as population
 from asperity.population.kinds import KINDS, Planning
@@ -63,6 +64,14 @@ def test_a_job_with_the_band_runs_on_the_refined_mesh_and_says_so():
     assert band.attrs["accuracy_overrides"] == "edge_size=0.04"
     assert "accuracy_overrides" not in plain.attrs
     assert int(band["dofs"].max()) > 1.2 * int(plain["dofs"].max())
+    # the mesh and the edge locator as they were: the band and its size, the pressures
+    assert band.attrs["mesh_strategy"].startswith(plain.attrs["mesh_strategy"])
+    assert band.attrs["mesh_strategy"].endswith(
+        ", then refined along the surface where the plastic contact edge goes (0.25 to 1.1 "
+        "times the intersection radius at the largest interference, to 0.04 of it)")
+    assert "refined along" not in plain.attrs["mesh_strategy"]
+    assert band.attrs["contact_edge_method"] == plain.attrs["contact_edge_method"] \
+        == EDGE_FROM_PRESSURES
 
 
 def test_a_scene_without_the_key_validates_as_before():

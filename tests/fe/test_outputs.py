@@ -4,6 +4,7 @@ import numpy as np
 import pytest
 
 from asperity.fe import CosineHill, Cylinder, LinearElastic, solve_asperity
+from asperity.fe.contact import EDGE_FROM_GAPS
 from asperity.fe.outputs import VARIABLES
 
 from .conftest import HERTZ_W
@@ -35,6 +36,7 @@ def test_every_variable_has_units_and_long_name(hertz_standard):
     for key in ("geometry", "material", "accuracy", "contact", "penalty_factor",
                 "normal_stiffness_method", "contact_edge_method"):
         assert key in ds.attrs
+    assert ds.attrs["contact_edge_method"] == EDGE_FROM_GAPS
 
 
 def test_plane_strain_units_are_per_length():

@@ -68,6 +68,11 @@ SMOOTHING = 1e-3
 #: Legendre with GAUSS_POINTS points).  See `ContactZone`.
 FACET_RULE = "nodal"
 GAUSS_POINTS = 6
+#: how each edge locator places the contact edge (the datasets' ``contact_edge_method``)
+EDGE_FROM_GAPS = "gap (3/2 power fit) between last node in contact and first out"
+EDGE_FROM_PRESSURES = ("between last node in contact and first out, from the pressures "
+                       "inside and the gaps outside (elastic and inelastic edge models, each "
+                       "weighted by the other's disagreement)")
 
 
 def _lagrange_quadratic(xi: np.ndarray):

@@ -156,7 +156,8 @@ import xarray as xr
 
 from . import nonlinear
 from .assembly import Discretization, OrderedLU
-from .contact import PENALTY_FACTOR, C1Penalty, ContactZone, contact_edge_pressure
+from .contact import (EDGE_FROM_PRESSURES, PENALTY_FACTOR, C1Penalty, ContactZone,
+                      contact_edge_pressure)
 from .errors import ContactZoneError, RuptureError, StepFailed
 from .kinematics import KINEMATICS, SmallStrain, kinematics_for
 from .material import LinearElastic, equivalent_strain, von_mises
@@ -164,7 +165,7 @@ from .nonlinear import (Pace, Problem, ResidualSearch, StepCuts, check_local_upd
                         strain_limited)
 from .outputs import INELASTIC_THRESHOLD, SMALL_STRAIN_LIMIT, dataset
 from .presets import resolve
-from .remesh import ContactMeshes, Transfer, edge_band
+from .remesh import EDGE_BAND, ContactMeshes, Transfer, edge_band
 from .solve import adapted_model, check_levels, run_attrs
 
 #: on unloading, a force below this fraction of the largest force counts as zero
@@ -843,8 +844,8 @@ def solve_asperity_history(geometry, material, history: History, accuracy="stand
     if not hasattr(material, "update"):
         raise TypeError("material must have initial_state/update (an inelastic material)")
 
-    # --- mesh: adapted once to the elastic solution at the largest w, or
-    # (preset key ``remesh``) rebuilt as the contact moves ----------------------
+    # --- mesh: adapted once to the elastic solutions at mesh_levels (with the
+    # band of ``edge_size``), or (preset key ``remesh``) rebuilt as the contact moves
     if mesh_levels is None:
         mesh_levels = np.geomspace(MESH_RANGE * w_max, w_max, MESH_LEVELS)
     mesh_levels = check_levels(geometry, mesh_levels)
@@ -875,6 +876,15 @@ def solve_asperity_history(geometry, material, history: History, accuracy="stand
     model = InelasticModel(disc, geometry, material, preset, r_cand, factor, tolerance,
                            kinematics)
     t_mesh = time.perf_counter() - t_start
+    if remesh:
+        strategy = "rebuilt around the contact edge and the plastic zone as they move (remesh)"
+    else:
+        strategy = (f"fixed, adapted once to the elastic solutions at {mesh_levels.size} "
+                    f"interferences from {mesh_levels.min():.6g} to {mesh_levels.max():.6g} m")
+        if edge_size is not None:
+            strategy += (f", then refined along the surface where the plastic contact edge "
+                         f"goes ({EDGE_BAND[0]:g} to {EDGE_BAND[1]:g} times the intersection "
+                         f"radius at the largest interference, to {float(edge_size):g} of it)")
 
     # --- time stepping ---------------------------------------------------------
     t_end = history.end
@@ -1120,10 +1130,6 @@ def solve_asperity_history(geometry, material, history: History, accuracy="stand
                      rupture_interference=rupture["interference"],
                      rupture_position=rupture["position"], rupture_depth=rupture["depth"])
     ds = dataset(rec, geometry, material, accuracy, preset, "time step index", {
-        **run_attrs("penalty", factor,
-                    "rebuilt around the contact edge and the plastic zone as they move (remesh)"
-                    if remesh else
-                    "fixed, adapted once to the elastic solution at the largest interference"),
-        **extra})
+        **run_attrs("penalty", factor, strategy, EDGE_FROM_PRESSURES), **extra})
     return xr.merge([ds, mesh_fields(model.disc, u, state)], combine_attrs="override") \
         if end_fields else ds

@@ -35,7 +35,7 @@ import xarray as xr
 from .adapt import StressRecovery, mark, relative_indicator
 from . import analytic
 from .assembly import CondensedStiffness, Discretization
-from .contact import PENALTY_FACTOR, C1Penalty, ContactZone, contact_edge
+from .contact import EDGE_FROM_GAPS, PENALTY_FACTOR, C1Penalty, ContactZone, contact_edge
 from .errors import ContactZoneError
 from .geometry import Profile
 from .material import equivalent_strain, von_mises
@@ -272,14 +272,16 @@ def _records(model: Model, states, ev) -> dict[str, np.ndarray]:
     )
 
 
-def run_attrs(contact: str, penalty_factor: float, strategy: str) -> dict:
+def run_attrs(contact: str, penalty_factor: float, strategy: str,
+              edge_method: str = EDGE_FROM_GAPS) -> dict:
     """The attributes of an axisymmetric or plane-strain run (elastic or
-    inelastic) beside those of `outputs.dataset`."""
+    inelastic) beside those of `outputs.dataset`: `edge_method` says how the
+    contact edge was located (`contact.EDGE_FROM_GAPS`, `contact.EDGE_FROM_PRESSURES`)."""
     return dict(
         contact=contact,
         penalty_factor=float(penalty_factor),
         mesh_strategy=strategy,
-        contact_edge_method="gap (3/2 power fit) between last node in contact and first out",
+        contact_edge_method=edge_method,
     )
 
 
