@@ -13,7 +13,8 @@ otherwise idle).  For each job and mesh it records the history and:
 * ``kink_force``, ``kink_area``: how much the curve bumps from step to step, the
   largest |y_i / y*_i - 1| over the steps, y*_i the value at w_i on the straight line
   in (ln w, ln y) through the steps before and after (0 for a power law), over
-  w >= ``--from`` x the job's largest interference;
+  w >= ``--from`` x the job's largest interference (`asperity.population.gather.largest_kink`,
+  which the gathered asperities.nc reports for every scene);
 * the band's difference from the plain mesh at equal interference
   (`benchmarks.remesh.compare`: at the top, the largest over the second half, from a
   tenth to a half and below a tenth of the loading).
@@ -43,6 +44,8 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1]))  # run as a script:
 from benchmarks.remesh import compare  # noqa: E402
 from benchmarks.workflow_copy import SNAKEMAKE, copy_workflow  # noqa: E402
 
+from asperity.population.gather import KINK_FROM, kinks, largest_kink  # noqa: E402
+
 RESULTS = Path(__file__).with_name("results")
 FIGURES = Path(__file__).resolve().parents[1] / "docs" / "figures"
 
@@ -62,20 +65,6 @@ def plan_jobs(scene: str, preset: str) -> list[tuple[str, dict]]:
         for key, spec in zip(plan["key"].values, plan["spec"].values):
             specs.setdefault(str(key), json.loads(str(spec)))
     return sorted(specs.items())
-
-
-def kinks(w, y) -> np.ndarray:
-    """y_i / y*_i - 1 at the inner steps, y*_i on the line in (ln w, ln y) through the
-    steps before and after (0 for a power law)."""
-    x, z = np.log(np.asarray(w)), np.log(np.asarray(y))
-    line = z[:-2] + (z[2:] - z[:-2]) * (x[1:-1] - x[:-2]) / (x[2:] - x[:-2])
-    return np.expm1(z[1:-1] - line)
-
-
-def kink(w, y, start: float) -> float:
-    """The largest of `kinks` over w >= `start` x the largest interference."""
-    use = np.asarray(w)[1:-1] >= start * np.max(w)
-    return float(np.max(np.abs(kinks(w, y)[use])))
 
 
 def solve(spec: dict, key: str) -> dict:
@@ -100,8 +89,8 @@ def summary(jobs: dict, start: float) -> dict:
     for key, runs in jobs.items():
         row = {}
         for mesh, r in runs.items():
-            row[f"{mesh}_kink_force"] = kink(r["interference"], r["force"], start)
-            row[f"{mesh}_kink_area"] = kink(r["interference"], r["contact_area"], start)
+            row[f"{mesh}_kink_force"] = largest_kink(r["interference"], r["force"], start)
+            row[f"{mesh}_kink_area"] = largest_kink(r["interference"], r["contact_area"], start)
             row[f"{mesh}_cpu_seconds"] = r["cpu_seconds"]
         row["band_against_plain"] = compare(runs["band"], runs["plain"])
         out[key] = row
@@ -143,7 +132,7 @@ def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--scene", default="steel_glass_bead")
     ap.add_argument("--accuracy", default="standard")
-    ap.add_argument("--from", dest="start", type=float, default=0.1,
+    ap.add_argument("--from", dest="start", type=float, default=KINK_FROM,
                     help="compare from this fraction of each job's largest interference")
     ap.add_argument("--figure-only", action="store_true", help="redraw from the results file")
     args = ap.parse_args(argv)

@@ -75,6 +75,57 @@ def test_gather_reproduces_a_power_law_between_and_below_levels():
         np.testing.assert_array_equal(gathered[name].values, np.broadcast_to(expected, gathered[name].shape))
 
 
+def test_kinks_vanish_along_a_power_law_and_measure_a_bump():
+    """`largest_kink`: the value over the log-log line through its neighbours, less 1. Along
+    a power law it is round-off on any spacing; a point bumped by 3 % (where the contact
+    edge of a job crosses a coarser element) reads 3 %, once it lies past KINK_FROM of the
+    largest interference."""
+    w = np.sort(np.random.default_rng(3).uniform(1e-9, 1e-6, 40))
+    y = 3.0 * w**1.5
+    assert gathering.largest_kink(w, y, start=0.0) < 1e-12
+    late, early = np.flatnonzero(w >= 0.5e-6)[1], np.flatnonzero(w < 0.05e-6)[1]
+    bumped = y.copy()
+    bumped[late] *= 1.03
+    assert gathering.largest_kink(w, bumped) == pytest.approx(0.03, rel=1e-9)
+    bumped = y.copy()
+    bumped[early] *= 1.03
+    assert gathering.largest_kink(w, bumped) < 1e-12  # before a tenth of the range
+    assert gathering.largest_kink(w, bumped, start=0.0) == pytest.approx(0.03, rel=1e-9)
+
+
+def test_the_gather_reports_how_much_its_jobs_curves_kink(caplog):
+    """asperities.nc carries the largest kink of the FE jobs' force and area from a tenth
+    of their range on, and the log says it with what refines it (for elastic jobs a finer
+    preset: the edge band is for plastic contact edges)."""
+    grid = interference_grid(1e-6, 121)
+    plan = make_plan([0.0, 1e-6], [1e5, 2e5], grid, model="fe", job_spec=BY_CURVATURE,
+                     shift_invariant=True, analytic=False)
+    keys = dict(zip(plan["sample_curvature"].values, plan["key"].values))
+    levels = np.geomspace(grid[5], 0.5e-6, 40)
+    samples = {k: _fake_sample(k, c, levels) for c, k in keys.items()}
+    smooth = gathering.gather(plan, samples)
+    assert smooth.attrs["max_kink_force"] < 1e-12  # Hertz: power laws
+    assert smooth.attrs["max_kink_contact_area"] < 1e-12
+    assert smooth.attrs["kink_from"] == gathering.KINK_FROM
+    key = plan["key"].values[0]
+    area = samples[key]["contact_area"].values.copy()
+    area[35] *= 1.03  # levels[35] is at 0.34 of the job's range
+    samples[key] = samples[key].assign(contact_area=("step", area))
+    with caplog.at_level("INFO", logger="asperity"):
+        bumped = gathering.gather(plan, samples)
+    assert bumped.attrs["max_kink_contact_area"] == pytest.approx(0.03, rel=1e-9)
+    assert bumped.attrs["max_kink_force"] < 1e-12
+    assert ("kink from step to step by up to 0.0 % in force and 3.0 % in contact area (from "
+            "0.1 of each job's largest interference on); a finer accuracy preset") in caplog.text
+    # inelastic jobs (histories: a time step) without the band are told of the band
+    histories = {k: ds.assign(time_step=("step", np.ones(levels.size))) for k, ds in samples.items()}
+    caplog.clear()
+    with caplog.at_level("INFO", logger="asperity"):
+        gathering.gather(plan, histories)
+    assert "asperity: {edge_band: true} refines the mesh where the plastic contact edge goes" \
+        in caplog.text
+
+
 def test_gather_names_missing_samples():
     grid = interference_grid(1e-6, 20)
     plan = make_plan([0.0], [1e5, 2e5], grid, model="fe", job_spec=BY_CURVATURE,

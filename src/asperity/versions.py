@@ -28,7 +28,7 @@ VERSIONS: dict[str, int] = {
     "sample:elastic": 1,
     "sample:inelastic": 3,
     "sample:adhesive": 6,
-    "asperities": 2,
+    "asperities": 3,
     # homogenize (workflow/rules/homogenize.smk)
     "expectation": 1,
     "unloading": 1,
@@ -52,7 +52,7 @@ VERSIONS: dict[str, int] = {
     "expectation_figure": 1,
     "interface_figure": 1,
     "adhesion_figure": 1,
-    "asperities_figure": 1,
+    "asperities_figure": 2,
     "verification_figure": 1,
     "unloading_figure": 1,
     "friction_figure": 1,

@@ -200,6 +200,11 @@ def asperities_figure(asperities: xr.Dataset, others: dict[str, xr.Dataset] | No
     axes[0].set(xlabel=f"interference [{length_unit}]", ylabel="force [N]",
                 title="single asperities (x: beyond the FE range)")
     axes[1].set(xlabel=f"interference [{length_unit}]", ylabel=f"contact area [{length_unit}^2]")
+    if "max_kink_contact_area" in asperities.attrs:  # FE jobs (asperity.population.gather)
+        axes[1].set_title(
+            f"FE curves kink by up to {100 * asperities.attrs['max_kink_force']:.1f} % (force), "
+            f"{100 * asperities.attrs['max_kink_contact_area']:.1f} % (area) from step to step",
+            fontsize=9)
     return finish(fig, axes, fontsize=7)
 
 
