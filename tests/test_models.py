@@ -75,6 +75,35 @@ def test_gather_reproduces_a_power_law_between_and_below_levels():
         np.testing.assert_array_equal(gathered[name].values, np.broadcast_to(expected, gathered[name].shape))
 
 
+def test_below_its_first_level_an_asperity_touches_as_hertz():
+    """An inelastic job's first levels sit on the apex's elements: two equal areas, whose
+    power law was flat (2000 times Hertz's area at the smallest interference of
+    smooth_aluminum). Below its first level the gather follows Hertz's first touch
+    through it (area ~ w, force ~ w^1.5, radius and stiffness ~ w^0.5), exactly."""
+    grid = interference_grid(1e-6, 121)
+    plan = make_plan([0.0, 1e-6], [1e5, 2e5], grid, model="fe", job_spec=BY_CURVATURE,
+                     shift_invariant=True, analytic=False)
+    keys = dict(zip(plan["sample_curvature"].values, plan["key"].values))
+    levels = np.geomspace(grid[40], 0.5e-6, 30)  # the first level well inside the grid
+    samples = {}
+    for c, k in keys.items():
+        ds = _fake_sample(k, c, levels)
+        area, force = ds["contact_area"].values.copy(), ds["force"].values.copy()
+        area[0] = area[1]  # the apex's elements: the same area at the first two levels
+        force[0] = 0.9 * force[1] * (levels[0] / levels[1]) ** 1.5
+        samples[k] = ds.assign(contact_area=("step", area), force=("step", force))
+    gathered = gathering.gather(plan, samples)
+    below = (grid > 0) & (grid < levels[0])
+    for c, k in keys.items():
+        one = gathered.sel(curvature=c).isel(height=0)
+        first = samples[k].isel(step=0)
+        for name, p in (("contact_area", 1.0), ("force", 1.5), ("contact_radius", 0.5),
+                        ("stiffness", 0.5)):
+            expected = float(first[name if name != "stiffness" else "normal_stiffness"]) \
+                * (grid[below] / levels[0]) ** p
+            np.testing.assert_allclose(one[name].values[below], expected, rtol=1e-12)
+
+
 def test_kinks_vanish_along_a_power_law_and_measure_a_bump():
     """`largest_kink`: the value over the log-log line through its neighbours, less 1. Along
     a power law it is round-off on any spacing; a point bumped by 3 % (where the contact

@@ -28,7 +28,7 @@ VERSIONS: dict[str, int] = {
     "sample:elastic": 1,
     "sample:inelastic": 3,
     "sample:adhesive": 6,
-    "asperities": 3,
+    "asperities": 4,
     # homogenize (workflow/rules/homogenize.smk)
     "expectation": 1,
     "unloading": 1,

@@ -3,9 +3,9 @@
 An FE job computes a geometric sequence of levels up to the largest interference
 its geometry admits (`asperity.population.geometry.max_interference`). The gather
 interpolates each sample onto the plan's (height, curvature, interference) grid in
-log-log space (monotone cubic), continues below the first level with the local power
-law and above the last with the median slope of its last steps, and flags the latter
-as ``extrapolated``; samples of a self-similar family are scaled from their job's
+log-log space (monotone cubic), continues below the first level with Hertz's power laws
+of first touch (`FIRST_TOUCH`; the local power law for a plane-strain job) and above the
+last with the median slope of its last steps, and flags the latter as ``extrapolated``; samples of a self-similar family are scaled from their job's
 asperity, and the computed unloading paths are kept for the blend of 8.3.
 
 The gathered file also says how smooth the FE curves are (`curve_kinks`): a job's force
@@ -45,13 +45,13 @@ def tail_slope(levels: np.ndarray, values: np.ndarray) -> float:
 
 
 def _loglog(levels: np.ndarray, values: np.ndarray, targets: np.ndarray,
-            derivative: bool = False):
+            derivative: bool = False, first_touch: float | None = None):
     """Interpolate positive increasing `values` at `levels` to `targets` (>= 0).
 
-    Monotone cubic in (log w, log X) inside the levels; the power law of
-    the first two levels below (X -> 0 as w -> 0); above, a straight line
-    with the `tail_slope` of the last levels.
-    Returns the values and a flag of the targets beyond the last level
+    Monotone cubic in (log w, log X) inside the levels; below, the power law
+    w^`first_touch` through the first level, or without it that of the first two
+    levels (X -> 0 as w -> 0); above, a straight line with the `tail_slope` of the
+    last levels.  Returns the values and a flag of the targets beyond the last level
     (and, with `derivative`, dX/dw at the targets as a third item).
     """
     from scipy.interpolate import PchipInterpolator  # here: an import most stages never need
@@ -64,7 +64,7 @@ def _loglog(levels: np.ndarray, values: np.ndarray, targets: np.ndarray,
     out[inside] = np.exp(spline(np.log(targets[inside])))
     slope_out[inside] = out[inside] / targets[inside] * spline(np.log(targets[inside]), 1)
     below = (targets > 0) & (targets < levels[0])
-    p = (lx[1] - lx[0]) / (lw[1] - lw[0])
+    p = (lx[1] - lx[0]) / (lw[1] - lw[0]) if first_touch is None else first_touch
     out[below] = values[0] * (targets[below] / levels[0]) ** p
     slope_out[below] = p * out[below] / targets[below]
     above = targets > levels[-1]
@@ -135,6 +135,12 @@ def loading_branch(ds: xr.Dataset) -> dict[str, np.ndarray]:
 #: how each gathered variable scales with the length scale lambda of a self-similar family
 SCALING_POWER = {"force": 2, "contact_area": 2, "contact_radius": 1, "stiffness": 1,
                  "elastic": 0, "small_strain": 0}
+#: below its first level an axisymmetric asperity's curves follow Hertz's first touch (a
+#: smooth tip touches elastically): X ~ w^p.  The first levels of an inelastic job are
+#: pressed on a mesh adapted for contacts from a hundredth of its range on, so their
+#: areas are those of the apex's elements (the first two can be equal, and their power
+#: law flat: 2000 times Hertz's area at the smallest interference of `smooth_aluminum`)
+FIRST_TOUCH = {"force": 1.5, "contact_area": 1.0, "contact_radius": 0.5, "stiffness": 0.5}
 
 
 def _curves(ds: xr.Dataset, grid: np.ndarray, scale: float = 1.0) -> dict[str, np.ndarray]:
@@ -147,10 +153,15 @@ def _curves(ds: xr.Dataset, grid: np.ndarray, scale: float = 1.0) -> dict[str, n
     lb["w_inelastic"] *= scale
     lb["w_large_strain"] *= scale
     out = {}
-    out["force"], beyond, slope = _loglog(w, lb["force"], grid, derivative=True)
-    out["contact_area"], _ = _loglog(w, lb["contact_area"], grid)
-    out["contact_radius"], _ = _loglog(w, lb["contact_radius"], grid)
-    out["stiffness"] = slope if lb["stiffness"] is None else _loglog(w, lb["stiffness"], grid)[0]
+    hertz = FIRST_TOUCH if ds.attrs.get("symmetry", "axisymmetric") == "axisymmetric" else {}
+    out["force"], beyond, slope = _loglog(w, lb["force"], grid, derivative=True,
+                                          first_touch=hertz.get("force"))
+    out["contact_area"], _ = _loglog(w, lb["contact_area"], grid,
+                                     first_touch=hertz.get("contact_area"))
+    out["contact_radius"], _ = _loglog(w, lb["contact_radius"], grid,
+                                       first_touch=hertz.get("contact_radius"))
+    out["stiffness"] = slope if lb["stiffness"] is None else _loglog(
+        w, lb["stiffness"], grid, first_touch=hertz.get("stiffness"))[0]
     touching = grid > 0
     out["elastic"] = (touching & (grid < lb["w_inelastic"])).astype(float)
     out["small_strain"] = (touching & (grid < lb["w_large_strain"])).astype(float)
