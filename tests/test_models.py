@@ -147,7 +147,8 @@ def test_the_gather_reports_how_much_its_jobs_curves_kink(caplog):
     assert ("kink from step to step by up to 0.0 % in force and 3.0 % in contact area (from "
             "0.1 of each job's largest interference on); a finer accuracy preset") in caplog.text
     # inelastic jobs (histories: a time step) without the band are told of the band
-    histories = {k: ds.assign(time_step=("step", np.ones(levels.size))) for k, ds in samples.items()}
+    histories = {k: ds.assign(time_step=("step", np.ones(levels.size)))
+                 for k, ds in samples.items()}
     caplog.clear()
     with caplog.at_level("INFO", logger="asperity"):
         gathering.gather(plan, histories)
