@@ -120,6 +120,11 @@ def test_kinks_vanish_along_a_power_law_and_measure_a_bump():
     bumped[early] *= 1.03
     assert gathering.largest_kink(w, bumped) < 1e-12  # before a tenth of the range
     assert gathering.largest_kink(w, bumped, start=0.0) == pytest.approx(0.03, rel=1e-9)
+    # a zero area at first touch makes its neighbour's kink undefined: left out
+    bumped = y.copy()
+    bumped[late] *= 1.03
+    bumped[0] = 0.0
+    assert gathering.largest_kink(w, bumped, start=0.0) == pytest.approx(0.03, rel=1e-9)
 
 
 def test_the_gather_reports_how_much_its_jobs_curves_kink(caplog):

@@ -229,12 +229,13 @@ def kinks(w: np.ndarray, y: np.ndarray) -> np.ndarray:
 
 def largest_kink(w: np.ndarray, y: np.ndarray, start: float = KINK_FROM) -> float:
     """The largest |`kinks`| at the points with w >= `start` x the largest w (0 if there
-    are none)."""
+    are none); a point whose kink is not defined (beside a zero value, as an area at
+    first touch can be) is left out."""
     w = np.asarray(w, float)
     use = w[1:-1] >= start * np.max(w)
     with np.errstate(divide="ignore", invalid="ignore"):
         k = np.abs(kinks(w, y)[use])
-    return float(np.max(k, initial=0.0))
+    return float(np.max(k[np.isfinite(k)], initial=0.0))
 
 
 def curve_kinks(jobs) -> dict:
