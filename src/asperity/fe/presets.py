@@ -261,10 +261,9 @@ def preset(kind: str, name: str) -> dict:
         raise ValueError(f"unknown kind of model {kind!r}; known: {', '.join(KINDS)}")
     if name not in table:
         raise ValueError(f"unknown accuracy {name!r}; known: {', '.join(table)}")
-    if kind in ("inelastic", "adhesive"):
-        extra = dict(table[name])
-        return {**ACCURACY[extra.pop("base")], **extra}
-    return dict(table[name])
+    entry = dict(table[name])
+    base = entry.pop("base", None)  # a table that changes or adds keys to an elastic preset
+    return entry if base is None else {**ACCURACY[base], **entry}
 
 
 def resolve(kind: str, accuracy: str | dict) -> dict:

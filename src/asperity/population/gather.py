@@ -158,12 +158,11 @@ def _curves(ds: xr.Dataset, grid: np.ndarray, scale: float = 1.0) -> dict[str, n
     hertz = FIRST_TOUCH if ds.attrs.get("symmetry", "axisymmetric") == "axisymmetric" else {}
     out["force"], beyond, slope = _loglog(w, lb["force"], grid, derivative=True,
                                           first_touch=hertz.get("force"))
-    out["contact_area"], _ = _loglog(w, lb["contact_area"], grid,
-                                     first_touch=hertz.get("contact_area"))
-    out["contact_radius"], _ = _loglog(w, lb["contact_radius"], grid,
-                                       first_touch=hertz.get("contact_radius"))
-    out["stiffness"] = slope if lb["stiffness"] is None else _loglog(
-        w, lb["stiffness"], grid, first_touch=hertz.get("stiffness"))[0]
+    for name in ("contact_area", "contact_radius", "stiffness"):
+        if lb[name] is not None:
+            out[name] = _loglog(w, lb[name], grid, first_touch=hertz.get(name))[0]
+    if lb["stiffness"] is None:  # inelastic: the slope of the interpolated force
+        out["stiffness"] = slope
     touching = grid > 0
     out["elastic"] = (touching & (grid < lb["w_inelastic"])).astype(float)
     out["small_strain"] = (touching & (grid < lb["w_large_strain"])).astype(float)
