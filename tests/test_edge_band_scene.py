@@ -1,6 +1,8 @@
 """A scene's ``asperity: {edge_band: true}`` (issue #14): the inelastic jobs refine their
 one mesh where the plastic contact edge goes, at the preset's size
-(`asperity.fe.presets.EDGE_SIZE`); the key changes with it, and elsewhere it is an error."""
+(`asperity.fe.presets.EDGE_SIZE`); the key changes with it, and elsewhere it is an error.
+Without the key a rate-independent body has the band at standard and fine, a
+rate-dependent one at fine only (`asperity.population.kinds.inelastic.wants_band`)."""
 
 from __future__ import annotations
 
@@ -18,6 +20,8 @@ from tests.scene_defaults import filled
 
 J2 = Material(model="j2", youngs_modulus=65e9, poisson=0.33, yield_stress=320e6)
 ELASTIC = Material(model="elastic", youngs_modulus=65e9, poisson=0.33)
+BODNER_PARTOM = Material(model="bodner_partom", youngs_modulus=68.9e9, poisson=0.33,
+                         preset="aluminum_6061_t4")
 
 
 def asperity(**section) -> Asperity:
@@ -25,10 +29,11 @@ def asperity(**section) -> Asperity:
                                  Units("m", "Pa"))
 
 
-def spec(edge_band: bool, accuracy: str = "draft") -> dict:
+def spec(edge_band: bool | None, accuracy: str = "draft", material: Material = J2) -> dict:
     """The job of a J2 sphere of radius 100 um pressed to 0.3 um (about 25 times its
-    critical interference, 0.012 um)."""
-    planning = Planning(asperity=asperity(edge_band=edge_band), material=J2,
+    critical interference, 0.012 um); edge_band None: the scene does not set it."""
+    section = {} if edge_band is None else {"edge_band": edge_band}
+    planning = Planning(asperity=asperity(**section), material=material,
                         effects=frozenset({"plasticity"}), accuracy=accuracy, adhesion=None,
                         grid=interference_grid(0.3e-6, 20), family=None, width_to_height=None)
     return KINDS["inelastic"].spec(planning, None, 1e4, math.nan)
@@ -42,6 +47,18 @@ def test_the_band_reaches_the_job_spec_at_the_presets_size_and_changes_its_key(p
     assert {k: v for k, v in band.items() if k != "accuracy"} == \
         {k: v for k, v in plain.items() if k != "accuracy"}
     assert sample_key(band) != sample_key(plain)
+
+
+@pytest.mark.parametrize("preset", sorted(EDGE_SIZE))
+def test_without_the_key_a_j2_body_has_the_band_at_standard_and_fine_a_rate_dependent_one_at_fine(
+        preset):
+    """J2: the band at standard as with ``edge_band: true``, fine's own (which has it)
+    and draft's default mesh with their keys unchanged; Bodner-Partom: the preset as with
+    ``false``."""
+    j2 = spec(None, preset)
+    assert j2["accuracy"] == (spec(True, preset)["accuracy"] if preset == "standard" else preset)
+    assert spec(None, preset, BODNER_PARTOM)["accuracy"] == preset
+    assert spec(False, preset, BODNER_PARTOM)["accuracy"] == preset
 
 
 @pytest.mark.parametrize("kind, material, effects", [("elastic", ELASTIC, set()),
@@ -81,4 +98,4 @@ def test_a_scene_without_the_key_validates_as_before():
     and everything after it reran: measured with a run made before the key and a dry run
     after, on smooth_aluminum and greenwood_williamson)."""
     assert "edge_band" not in filled("asperity", {"model": "fe", "geometry": "sphere"})
-    assert asperity().edge_band is False
+    assert asperity().edge_band is None

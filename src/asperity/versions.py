@@ -23,7 +23,7 @@ VERSIONS: dict[str, int] = {
     "surface": 2,
     "convergence": 1,
     # population (workflow/rules/population.smk): the plan, the samples by kind, the gather
-    "plan": 2,
+    "plan": 3,
     "sample:hertz": 1,
     "sample:elastic": 1,
     "sample:inelastic": 3,

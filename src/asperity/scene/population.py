@@ -93,7 +93,9 @@ class Asperity:
     member of a self-similar family (None: the geometric mean of the grid); aspects,
     aspect_check: the FE jobs of the coupled hill's family of aspects (2.5.1, 8.2.2);
     edge_band: inelastic jobs refine their mesh where the plastic contact edge goes
-    (the preset's `asperity.fe.presets.EDGE_SIZE`).
+    (the preset's `asperity.fe.presets.EDGE_SIZE`); None (not set): at standard for a
+    rate-independent body, and at fine for every body
+    (`asperity.population.kinds.inelastic.wants_band`).
     """
 
     model: str
@@ -113,7 +115,7 @@ class Asperity:
     reference_curvature: float | None
     aspects: int = 6
     aspect_check: bool = False
-    edge_band: bool = False
+    edge_band: bool | None = None
 
     @classmethod
     @parses("asperity")
@@ -133,7 +135,7 @@ class Asperity:
             unloading_check=section["unloading_check"], scaling=section["scaling"],
             reference_curvature=reference / length if reference else None,
             aspects=section.get("aspects", 6), aspect_check=section.get("aspect_check", False),
-            edge_band=section.get("edge_band", False),
+            edge_band=section.get("edge_band"),
         )
 
     @property
