@@ -86,7 +86,9 @@ edge_size
     default mesh), for about twice standard's CPU; but the viscoplastic hill
     takes 2.5 times as long with it (README "Meshes that follow the
     contact").  `EDGE_SIZE` holds the size of each preset, which a scene's
-    ``asperity: {edge_band: true}`` sets.
+    ``asperity: {edge_band: true}`` sets, and which a scene's J2 jobs have at
+    standard without the key (`asperity.population.kinds.inelastic.wants_band`:
+    a J2 body's steps are not set by the time-error control).
 
 Adhesive presets (`ADHESIVE_ACCURACY`, `adhesive.solve_asperity_adhesive`)
 add to the elastic preset of the same name: the mesh of the adhesive band
@@ -197,9 +199,10 @@ ADHESIVE_ACCURACY: dict[str, dict] = {
 }
 
 #: ``edge_size`` at each preset where a scene asks for the band the plastic contact edge
-#: sweeps (``asperity: {edge_band: true}``; `benchmarks/remesh.py --edge-band` measures
-#: these): standard's within 1 % of fine's in contact area on the J2 sphere.  'fine'
-#: has its band in every inelastic history (`INELASTIC_ACCURACY`)
+#: sweeps (``asperity: {edge_band: true}``, and a J2 body at standard without the key;
+#: `benchmarks/remesh.py --edge-band` measures these): standard's within 1 % of fine's in
+#: contact area on the J2 sphere.  'fine' has its band in every inelastic history
+#: (`INELASTIC_ACCURACY`)
 EDGE_SIZE = {"draft": 0.04, "standard": 0.02, "fine": 0.0125}
 
 #: inelastic histories (`inelastic.solve_asperity_history`) on top of the preset of the
