@@ -88,7 +88,7 @@ REMESH_ARGS ?= --remesh on off
 time-remesh: $(STAMP)
 	$(BIN)/python benchmarks/remesh.py $(REMESH_ARGS)
 
-# A scene's FE jobs as planned and with the band the plastic contact edge sweeps
+# A scene's FE jobs without and with the band the plastic contact edge sweeps
 # (asperity.edge_band): kinks of force and area, CPU. About 20 minutes at standard.
 # Writes benchmarks/results/edge-band-<scene>-<preset>.json and its figure.
 EDGE_BAND_ARGS ?= --scene steel_glass_bead --accuracy standard
