@@ -7,7 +7,8 @@ from and the surface section of its scene.
 The file in the repository was made from a default run of the code before the asperity
 kinds moved into a registry (commit 352e06e); tests/test_plan_keys.py checks that the
 plans made now from the same inputs give the same keys and specs, byte for byte, so that
-no finished FE sample is rerun after an upgrade that changes no FE job.
+no finished FE sample is rerun after an upgrade that changes no FE job; a deliberate change
+of some jobs' specs is listed there (``CHANGES``), and the record stays the baseline.
 """
 
 from __future__ import annotations
