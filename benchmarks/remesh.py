@@ -32,7 +32,10 @@ goes (the preset key ``edge_size``, `asperity.fe.remesh.edge_band`; ``presets.ED
 per preset; runs recorded as <case>/<preset>/fixed-edge): the elastic contact edge at
 w_max lies well inside the plastic one (a sphere: sqrt(R w) against nearly sqrt(2 R w)),
 so the elastic adaptation leaves the plastic edge's path coarse.  Fine's one mesh has
-the band in every inelastic history (`presets.INELASTIC_ACCURACY`)::
+the band in every inelastic history (`presets.INELASTIC_ACCURACY`), and a scene's J2
+jobs have it at standard (`asperity.population.kinds.inelastic.wants_band`), so the
+J2 sphere's targets hold for standard's ``fixed-edge`` run (README, "Meshes that follow
+the contact")::
 
     python benchmarks/remesh.py --cases j2_sphere viscoplastic_hill --presets standard --remesh off --edge-band
 
