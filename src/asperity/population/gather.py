@@ -242,9 +242,9 @@ def curve_kinks(jobs) -> dict:
     the largest `largest_kink` of force and of contact area over the jobs
     (``max_kink_force``, ``max_kink_contact_area``, from ``kink_from`` of each job's
     range on), also logged with what refines them.  At 'standard' the default run's
-    areas kink by 1.4-3.8 % (elastic) and 2.2-4.2 % (inelastic) where the located edge
-    crosses the mesh's grading; the interface averages this over its asperities (README,
-    "Gather")."""
+    areas kink by 1.4-3.8 % (elastic) and 2.2-4.2 % (inelastic on the default mesh; 1.3 %
+    for the J2 job, which has the edge band) where the located edge crosses the mesh's
+    grading; the interface averages this over its asperities (README, "Gather")."""
     force = area = 0.0
     for job in jobs:
         lb = loading_branch(job)
