@@ -205,6 +205,12 @@ ADHESIVE_ACCURACY: dict[str, dict] = {
 #: (`INELASTIC_ACCURACY`)
 EDGE_SIZE = {"draft": 0.04, "standard": 0.02, "fine": 0.0125}
 
+#: the presets at which a scene's rate-independent (J2) body gets the band without the
+#: scene's key (`asperity.population.kinds.inelastic.wants_band`; fine's inelastic preset
+#: has it for every body): its steps are not set by the time-error control, which on the
+#: band takes a viscoplastic hill 2.5 times as long; draft stays a first look
+RATE_INDEPENDENT_EDGE_BAND = ("standard",)
+
 #: inelastic histories (`inelastic.solve_asperity_history`) on top of the preset of the
 #: same name (`base`).  'fine', the reference, is meshed for a plastic contact: its one
 #: mesh is adapted to the elastic solutions of the history's levels only as far as

@@ -61,19 +61,16 @@ def edge_band_accuracy(preset: str) -> dict:
     return {"base": preset, "edge_size": EDGE_SIZE[preset]}
 
 
-#: the presets at which a rate-independent body's jobs get the band without the scene's
-#: key (fine's preset has it for every body; module docstring)
-RATE_INDEPENDENT_BAND = ("standard",)
-
-
 def wants_band(planning) -> bool:
     """Whether the jobs' spec adds the band to the preset: the scene's
     ``asperity.edge_band`` if it sets it, else for a rate-independent body at
-    `RATE_INDEPENDENT_BAND`."""
+    `asperity.fe.presets.RATE_INDEPENDENT_EDGE_BAND`."""
+    from asperity.fe.presets import RATE_INDEPENDENT_EDGE_BAND
+
     if planning.asperity.edge_band is not None:
         return planning.asperity.edge_band
     return (planning.material.rate_independent(planning.effects)
-            and planning.accuracy in RATE_INDEPENDENT_BAND)
+            and planning.accuracy in RATE_INDEPENDENT_EDGE_BAND)
 
 
 class Inelastic(FiniteElementKind):
