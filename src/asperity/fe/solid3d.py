@@ -614,7 +614,10 @@ class HalfModel:
         r = (self.ccomp[:, None, None] * npts
              + np.arange(npts).reshape(nf, nq)[None]) * np.ones_like(self.cval, dtype=int)
         cc = np.broadcast_to(pos[self.cdofs][:, :, None], self.cval.shape)
-        keep = cc >= 0
+        # the dofs of the facet's nodes: the tetrahedron's other 4 nodes' basis functions
+        # vanish on it (round-off at the points, which would couple their dofs)
+        on_facet = np.abs(self.cval).max(axis=2, keepdims=True) > 1e-9
+        keep = (cc >= 0) & on_facet
         N = sp.csr_matrix((self.cval[keep], (r[keep], cc[keep])),
                           shape=(3 * npts, self.free.size))
         self.V = (sp.block_diag((Pw, Pw, Pw)) @ N).tocsr()
@@ -801,6 +804,8 @@ class SlidingModel:
         self.Ke_el = model.element_matrices(self.C)
         self.data_el = model._scatter(slice(None), self.Ke_el)
         self.linear = _LinearSolver()
+        # the frictionless tangents of `critical_factor` (a pattern of their own)
+        self._critical_lu = OrderedLU(diag_pivot_thresh=0.1)
         self.trace = None
 
     # --- contact --------------------------------------------------------------------------
@@ -932,7 +937,7 @@ class SlidingModel:
             return math.inf
         K0 = self.jacobian(dict(out, contact=c0))
         V = self.m.V
-        W = V[C] @ spl.splu(K0).solve(V[R].T.toarray())           # (V K0^-1 V^T)_CR
+        W = V[C] @ self._critical_lu.factor(K0).solve(V[R].T.toarray())  # (V K0^-1 V^T)_CR
         lam = np.linalg.eigvals(-(N[R][:, C].toarray() @ W))
         real = lam[(lam.imag == 0.0) & (lam.real < 0.0)].real
         s = -1.0 / real
