@@ -377,16 +377,6 @@ def test_full_jacobian_matches_finite_differences(flat_model):
     assert np.abs((Rp - Rm)[free] / (2 * h) - an).max() <= 1e-6 * np.abs(an).max()
 
 
-def test_the_vertex_operator_reads_the_contact_facets_dofs_only(flat_model):
-    """V reads the free dofs of the contact facets' 6 nodes and no other: the other 4
-    nodes of a facet's tetrahedron have basis functions that vanish on the facet, and
-    their round-off at the facet's points would couple their dofs in every contact
-    tangent (V^T A V), filling its factors."""
-    m = flat_model
-    on = m._pos[m.basis.get_dofs(facets=m.cfacets).all()]
-    np.testing.assert_array_equal(np.unique(m.V.nonzero()[1]), np.sort(on[on >= 0]))
-
-
 def test_a_step_through_the_slip_is_the_step_where_that_is_unique(flat_model):
     """Below the critical coefficient (mu = 0.3) the step's solution is unique: taken
     through the damped solves of `solve_through_slip` from the state at its start (10

@@ -614,10 +614,7 @@ class HalfModel:
         r = (self.ccomp[:, None, None] * npts
              + np.arange(npts).reshape(nf, nq)[None]) * np.ones_like(self.cval, dtype=int)
         cc = np.broadcast_to(pos[self.cdofs][:, :, None], self.cval.shape)
-        # the dofs of the facet's nodes: the tetrahedron's other 4 nodes' basis functions
-        # vanish on it (round-off at the points, which would couple their dofs)
-        on_facet = np.abs(self.cval).max(axis=2, keepdims=True) > 1e-9
-        keep = (cc >= 0) & on_facet
+        keep = cc >= 0
         N = sp.csr_matrix((self.cval[keep], (r[keep], cc[keep])),
                           shape=(3 * npts, self.free.size))
         self.V = (sp.block_diag((Pw, Pw, Pw)) @ N).tocsr()
