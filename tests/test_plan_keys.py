@@ -114,8 +114,9 @@ def made_now(tmp_path_factory):
 
 @pytest.mark.parametrize("scene", sorted(RECORDED))
 def test_plan_keys_and_specs_are_the_recorded_ones(scene, made_now):
-    assert made_now[scene]["keys"] == expected(scene)["keys"]
-    assert made_now[scene]["specs"] == expected(scene)["specs"]
+    want = expected(scene)
+    assert made_now[scene]["keys"] == want["keys"]
+    assert made_now[scene]["specs"] == want["specs"]
 
 
 def test_the_changes_since_the_record_touch_the_j2_scene_only():
