@@ -132,12 +132,12 @@ def scene() -> dict:
 def patch_diagnostics(tn, tx, vw, x, facets, fw, stress, dv, before=None) -> dict:
     """The contact patch of one step against the stresses under it.
 
-    tn, tx (nV,): pressure and x traction at the contact vertices; vw (nV,) their
-    weights; x (nV,) their x; facets (3, nf) the vertices of each contact facet, fw
+    tn, tx (nV,): pressure and x traction at the contact nodes; vw (nV,) their
+    weights; x (nV,) their x; facets (6, nf) the nodes of each contact facet, fw
     (nf,) the facets' areas; stress (6, nf, nqv) at the volume points of the elements
     of the contact facets, dv (nf, nqv) their volume weights; before (nV,): which
-    vertices touched in the step before.  Areas are of the whole model (twice the
-    half).  The touching facets have a touching vertex; the bulk shear stress under
+    nodes touched in the step before.  Areas are of the whole model (twice the
+    half).  The touching facets have a touching node; the bulk shear stress under
     the patch is sigma_xz in their elements: its largest value and its volume mean.
     """
     on = tn > 0

@@ -40,7 +40,7 @@ VERSIONS: dict[str, int] = {
     # uniaxial, sliding, plane strain, accuracy
     "uniaxial": 1,
     "accuracy_bodner_partom": 2,
-    "sliding": 11,
+    "sliding": 12,
     "plane_strain": 3,
     "accuracy_hertz": 1,
     "accuracy_scenes": 1,

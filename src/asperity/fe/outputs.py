@@ -30,7 +30,7 @@ VARIABLES: dict[str, tuple[str, str]] = {
     "contact_force": ("N", "compressive part of the force (penalty contact, >= 0)"),
     "adhesive_force": ("N", "adhesive part of the force (Lennard-Jones attraction, <= 0)"),
     "contact_area": ("m^2", "real contact area: pi a^2 (adhesive: where the separation <= d); "
-                            "3-D: the weights int phi_i ds of the contact facets' vertices "
+                            "3-D: the weights int phi_i ds of the contact facets' P2 nodes "
                             "with a positive pressure"),
     "contact_radius": ("m", "contact radius a (edge located between nodes)"),
     "normal_stiffness": ("N/m", "normal contact stiffness dF/dw (consistent tangent; adhesive: "
@@ -64,11 +64,11 @@ VARIABLES: dict[str, tuple[str, str]] = {
     "mean_pressure": ("Pa", "normal force / contact area"),
     "mean_tangential_traction": ("Pa", "tangential force / contact area (report 9.2: about "
                                        "64 MPa)"),
-    "max_pressure": ("Pa", "largest contact pressure (3-D: at the contact facets' vertices)"),
-    "slip_fraction": ("1", "share of the touching area (vertices' weights) whose slip |b| "
+    "max_pressure": ("Pa", "largest contact pressure (3-D: at the contact facets' P2 nodes)"),
+    "slip_fraction": ("1", "share of the touching area (the nodes' weights) whose slip |b| "
                            "reached eps_b"),
     "critical_shear_factor": ("1", "factor of the shear resistance at which the junction's "
-                                   "tangent turns singular, every touching vertex sliding "
+                                   "tangent turns singular, every touching node sliding "
                                    "(critical friction coefficient / mu; below 1 the sliding "
                                    "problem is not unique; inf: none below 1000; NaN: not "
                                    "sliding)"),

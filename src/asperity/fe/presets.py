@@ -243,9 +243,9 @@ SLIDING_ACCURACY: dict[str, dict] = {
     "draft": dict(tip_fraction=1.0, refine_fraction=0.5, grading=0.7, coarse_fraction=0.5,
                   depth_grading=None, normal_steps=6, tangential_steps=12, tolerance=1e-6,
                   max_iterations=40, max_cuts=10, max_inelastic_step=0.3),
-    # standard and fine resolve the contact surface: the contact on the facets' vertices
-    # grows a ring of vertices at a time, so the force histories converge with the
-    # surface's vertex spacing, not with the dofs (README, "The sliding presets").  fine
+    # standard and fine resolve the contact surface: the contact on the facets' P2 nodes
+    # grows a ring of nodes at a time, so the force histories converge with the
+    # surface's node spacing, not with the dofs (README, "The sliding presets").  fine
     # refines the mesh only; its time steps are standard's
     "standard": dict(tip_fraction=0.25, refine_fraction=0.8, grading=0.5, coarse_fraction=0.35,
                      depth_grading=1.0, normal_steps=16, tangential_steps=32, tolerance=1e-7,

@@ -15,8 +15,8 @@ distance of its centroid beyond ``refine_radius`` from the apex (or from a
 segment along x through it); with ``depth_grading`` the finest region is
 the disc of ``refine_radius`` on the top surface and the edge grows by
 ``depth_grading`` per unit depth below it, so the contact surface's
-vertices are fine without filling the volume under them (the `standard` and
-`fine` sliding presets: the contact area and force grow a ring of vertices
+nodes are fine without filling the volume under them (the `standard` and
+`fine` sliding presets: the contact area and force grow a ring of nodes
 at a time).  The quadratic (10-node) mesh is then mapped
 onto the body, vertices and edge midpoints alike (isoparametric P2
 elements, curved faces):
@@ -47,32 +47,34 @@ linear elastic body), plus the contact tangent alpha_ij of (3.26, 3.27)
 
 Contact (3.3.2, 3.4.1).  The flat is the plane z = -w(t) (w the approach
 from first touch at the apex) moved by delta(t) along x.  The contact
-lives on the vertices of the top facets near the apex (P1 tractions on the
-6-node facets, the stable pairing with P2 displacements of mortar methods):
-at vertex i the weighted penetration a_i = int phi_i (Z + gap_offset + u_z
-+ w) ds / int phi_i ds, phi_i its hat function (6 Gauss points per facet),
-gives the normal pressure t_N,i by the C1 penalty of 3.3.2
-(`contact.C1Penalty`, kappa = c E' / h, h the mean size of the vertex's
-facets); the tangential traction is the regularized sliding resistance of
-3.3.4 (`sliding.FrictionLaw`) of the weighted relative displacement b_i =
-(X + u_x - delta, Y + u_y)_i - anchor_i, with the anchors dragged after
-each accepted step (`sliding.drag_anchor`).  The traction on the body,
-(t_x, t_y, -t_N) interpolated from the vertices by the phi_i, is integrated
-against the P2 shape functions.  The contact area is the weight int phi_i ds
-of the vertices with t_N > 0 (a staircase of a third of a facet about each
-vertex).  Why the vertices: with the penalty at the facets' quadrature
-points (3 Gauss points per 6-node facet, used before) a plastically
-flattened junction satisfies its contact condition at only half of the
-points within its edge ring, the pressure jumping from zero to twice the
-mean between neighbours; with 6 and 12 points per facet the touching area
-of the same mesh fell from 1.63 to 1.16 and 1.00 um^2 and the junction's
-shear force with it (`asperity_sliding_junction`, F_T = k A): three
-conditions a facet are about six a vertex (a triangulated surface has twice
-as many facets as vertices), one and a half a node.  The nodes as points
-(one condition a node) let the 6-node facets' corners lift inside the
-contact instead, even on Hertz's problem.  One condition per vertex,
-weighted over the facets, leaves the pressure smooth (README, "Sliding of
-one asperity").
+lives on the P2 nodes of the top facets near the apex, vertices and edge
+midpoints: each 6-node facet is cut at its edge midpoints into 4 triangles,
+and phi_i is the hat function of node i on these sub-triangles (P1
+tractions on the sub-triangulation, the pairing with P2 displacements that
+mortar methods for quadratic elements use; 6 Gauss points a sub-triangle).
+At node i the weighted penetration a_i = int phi_i (Z + gap_offset + u_z +
+w) ds / int phi_i ds gives the normal pressure t_N,i by the C1 penalty of
+3.3.2 (`contact.C1Penalty`, kappa = c E' / h, h the mean size of the
+node's facets); the tangential traction is the regularized sliding
+resistance of 3.3.4 (`sliding.FrictionLaw`) of the weighted relative
+displacement b_i = (X + u_x - delta, Y + u_y)_i - anchor_i, with the
+anchors dragged after each accepted step (`sliding.drag_anchor`).  The
+traction on the body, (t_x, t_y, -t_N) interpolated from the nodes by the
+phi_i, is integrated against the P2 shape functions.  The contact area is
+the weight int phi_i ds of the nodes with t_N > 0 (a staircase of a
+sub-triangle's size about each node).  One condition a node, as many as
+the surface has P2 nodes: with the penalty at the facets' quadrature
+points (3 Gauss points per 6-node facet, used before 07f898e) a
+plastically flattened junction satisfied its contact condition at only
+half of the points within its edge ring, the pressure jumping from zero to
+twice the mean between neighbours (three conditions a facet are one and a
+half a node); the nodes as points let the facets' corners lift inside the
+contact (the consistent force of a uniform pressure on a 6-node facet's
+corner is zero); the facets' vertices alone (07f898e to this change) kept
+the pressure smooth but resolved the contact's edge at the vertex spacing,
+twice the node spacing, and the normal force of `asperity_sliding_junction`
+grew by rings of vertices, 5.8 % apart between `standard` and `fine` in
+pressing (README, "Sliding of one asperity").
 
 Shear resistance and the normal pressure.  The law as printed: h(t_N) at
 the pressure of the current Newton iterate, with its full linearization
@@ -100,7 +102,7 @@ Linear algebra.  The tangent is non-symmetric (friction); the bulk is
 assembled into one CSC pattern built once (elastic element matrices
 precomputed, only elements whose points' tangent differs from the elastic
 one recomputed per iteration), the contact added as the sparse products
-V^T diag(w alpha) V of the vertex operators, and solved with SuperLU; a
+V^T diag(w alpha) V of the node operators, and solved with SuperLU; a
 factorization is reused as the preconditioner of GMRES for the next
 iterations and steps while that converges in a few iterations.
 
@@ -123,15 +125,14 @@ Through the slip instability (`SlidingModel.solve_through_slip`): a sliding
 step whose Newton fails after it was cut below ``STALL_FRACTION`` of its cap
 (where the steps would stall) is solved again from the state at its start through
 damped solves, a pseudo-transient continuation whose dashpot on the
-touching vertices makes each solve's problem unique; the step ends with the
+touching nodes makes each solve's problem unique; the step ends with the
 plain Newton solve of the model.  Past the critical coefficient the
 quasi-static path can turn back in the sliding displacement (the junction
 would slip dynamically) and the step's problem has several solutions: the
 damped motion selects the one the junction slips to, at the sliding
 displacement where the cut steps stopped converging.  The same holds where a
-touching vertex lets go although the junction's tangent was regular at the
-accepted steps (the critical factor is taken there, not within the step): the
-report's scene at ``draft`` fails so at 0.083 um.  The step is cut again
+touching node lets go although the junction's tangent was regular at the
+accepted steps (the critical factor is taken there, not within the step).  The step is cut again
 only if that fails too.  ``damped_solves`` records it per step.
 """
 
@@ -147,6 +148,8 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as spl
 import xarray as xr
 from skfem import Basis, ElementTetP2, ElementVector, FacetBasis, MeshTet, MeshTet2
+from skfem.quadrature import get_quadrature
+from skfem.refdom import RefTri
 
 from . import nonlinear
 from .assembly import OrderedLU
@@ -165,9 +168,10 @@ log = logging.getLogger(__name__)
 _TET_EDGES = np.array([[0, 1], [0, 2], [0, 3], [1, 2], [1, 3], [2, 3]])
 #: quadrature order in the volume (4 points per tetrahedron)
 INTORDER = 2
-#: quadrature order on the contact facets (6 Gauss points per facet: exact for the
-#: P1 x P2 products of the vertex gaps)
-CONTACT_INTORDER = 4
+#: quadrature order on each of the 4 sub-triangles of a contact facet (6 Gauss
+#: points each, 24 per facet: exact for the P1 x P2 products of the node gaps on a
+#: plane facet)
+CONTACT_INTORDER = 3
 #: default penalty factor c in kappa = c E' / h_facet
 PENALTY_FACTOR_3D = 100.0
 #: smoothing pressure of the C1 penalty / E' (the quadratic branch covers
@@ -415,6 +419,19 @@ class _LinearSolver:
 
 
 # ------------------------------------------------------------------------------ model
+def _subtriangle_rule(order: int = CONTACT_INTORDER) -> tuple[np.ndarray, np.ndarray]:
+    """A composite rule on the reference triangle: the Gauss rule of `order` on each
+    of its 4 triangles cut at the edge midpoints (points (2, 4 n), weights (4 n,))."""
+    X, W = get_quadrature(RefTri, order)
+    corners = np.array([[[0.0, 0.0], [0.5, 0.0], [0.0, 0.5]],
+                        [[0.5, 0.0], [1.0, 0.0], [0.5, 0.5]],
+                        [[0.0, 0.5], [0.5, 0.5], [0.0, 1.0]],
+                        [[0.5, 0.5], [0.0, 0.5], [0.5, 0.0]]])       # (4, 3 corners, 2)
+    lam = np.vstack((1.0 - X.sum(axis=0), X))                           # (3, n)
+    pts = np.einsum("scd,cn->dsn", corners, lam).reshape(2, -1)
+    return pts, np.tile(W / 4.0, 4)
+
+
 class HalfModel:
     """P2 displacement fields on the half model, contact surface, operators."""
 
@@ -557,7 +574,7 @@ class HalfModel:
             raise ValueError("no top facet within the contact candidate radius")
         self.contact_radius = float(radius)
         element = ElementVector(ElementTetP2())
-        fb = FacetBasis(self.hm.mesh, element, facets=facets, intorder=CONTACT_INTORDER)
+        fb = FacetBasis(self.hm.mesh, element, facets=facets, quadrature=_subtriangle_rule())
         self.cfacets = facets
         self.ctind = np.asarray(fb.tind)
         self.cdofs = np.asarray(fb.element_dofs)                 # (30, nf)
@@ -575,24 +592,33 @@ class HalfModel:
         area = self.cw.sum(axis=1)
         self.facet_size = np.sqrt(4.0 * area / math.sqrt(3.0))
         mref = self.hm.reference
-        self._vertex_pressure(mref.facets[:, facets], mref.p[:2])
+        self._contact_nodes(mref.facets[:, facets], mref.p[:2])
 
-    def _vertex_pressure(self, fv, xy):
-        """The contact's vertex operators (module docstring, "Contact").
+    def _contact_nodes(self, fv, xy):
+        """The contact's node operators (module docstring, "Contact").
 
         fv (3, nf) the vertices of the contact facets, xy (2, :) the vertices' x, y
         (the body's x, y: the mapping onto the hill moves only z, so each facet is
-        the plane triangle of its vertices in x, y).  With phi_i the hat function of
-        vertex i on the contact facets, integrated at the facets' quadrature points:
+        the plane triangle of its vertices in x, y).  The contact nodes are the
+        facets' 6 P2 nodes, vertices and edge midpoints; each facet is cut into 4
+        triangles at its edge midpoints, and phi_i is the hat function of node i on
+        these sub-triangles, integrated at their quadrature points:
         ``vw`` (nV,) = int phi_i ds; ``V`` (3 nV x free dofs): u -> the weighted
         displacements int phi_i u_c ds / vw_i, c = x, y, z stacked (``VT`` its
         transpose); ``vX`` (3, nV) the weighted position and
         ``vz0`` (nV,) the weighted gap_offset-shifted height of the body; ``vr`` the
-        vertices' distance from the apex, ``vsize`` the mean size of their facets;
-        ``vfacets`` (3, nf) the vertices of each facet (indices into these)."""
+        nodes' distance from the apex, ``vsize`` the mean size of their facets;
+        ``vfacets`` (6, nf) the nodes of each facet (indices into these: its
+        vertices, then the midpoints of its edges 01, 12, 20)."""
         nf, nq = self.cw.shape
-        verts, vloc = np.unique(fv, return_inverse=True)
-        vloc = vloc.reshape(fv.shape)
+        nv = xy.shape[1]
+        a = fv[[0, 1, 2, 0, 1, 2]]
+        b = fv[[0, 1, 2, 1, 2, 0]]
+        key = np.minimum(a, b).astype(np.int64) * nv + np.maximum(a, b)
+        nodes, nloc = np.unique(key, return_inverse=True)
+        nloc = nloc.reshape(a.shape)                             # (6, nf)
+        na, nb = nodes // nv, nodes % nv
+        nxy = 0.5 * (xy[:, na] + xy[:, nb])                      # (2, nV)
         v = xy[:, fv]                                            # (2, 3, nf)
         J = np.stack((v[:, 1] - v[:, 0], v[:, 2] - v[:, 0]), axis=-1)   # (2, nf, 2)
         d = self.cX[:2] - v[:, 0][:, :, None]                    # (2, nf, nq)
@@ -601,12 +627,16 @@ class HalfModel:
         lam = np.stack((1.0 - st[..., 0] - st[..., 1], st[..., 0], st[..., 1]))  # (3, nf, nq)
         if lam.min() < -1e-9:
             raise RuntimeError("contact points outside their facet")
+        i, j, k = [0, 1, 2], [1, 2, 0], [2, 0, 1]
+        phi = np.concatenate((np.maximum(2.0 * lam - 1.0, 0.0),   # vertices
+                              np.maximum(0.0, np.minimum(np.minimum(2.0 * lam[i], 2.0 * lam[j]),
+                                                         1.0 - 2.0 * lam[k]))))  # midpoints
         npts = nf * nq
-        rows = np.broadcast_to(np.arange(npts).reshape(nf, nq), (3, nf, nq))
-        cols = np.broadcast_to(vloc[:, :, None], (3, nf, nq))
-        # phi_i w at the points, as a vertices x points matrix
-        Pw = sp.csr_matrix(((lam * self.cw).ravel(), (cols.ravel(), rows.ravel())),
-                           shape=(verts.size, npts))
+        rows = np.broadcast_to(np.arange(npts).reshape(nf, nq), (6, nf, nq))
+        cols = np.broadcast_to(nloc[:, :, None], (6, nf, nq))
+        # phi_i w at the points, as a nodes x points matrix
+        Pw = sp.csr_matrix(((phi * self.cw).ravel(), (cols.ravel(), rows.ravel())),
+                           shape=(nodes.size, npts))
         self.vw = np.asarray(Pw.sum(axis=1)).ravel()
         Pw = sp.diags(1.0 / self.vw) @ Pw
         pos = self._pos                                          # dof -> free dof, or -1
@@ -621,10 +651,10 @@ class HalfModel:
         self.VT = self.V.T.tocsr()
         self.vX = np.stack([Pw @ x.ravel() for x in self.cX])
         self.vz0 = Pw @ self.cz0.ravel()
-        self.vr = np.hypot(xy[0, verts], xy[1, verts])
-        self.vsize = (np.bincount(vloc.ravel(), np.tile(self.facet_size, 3))
-                      / np.bincount(vloc.ravel()))
-        self.vfacets = vloc
+        self.vr = np.hypot(nxy[0], nxy[1])
+        self.vsize = (np.bincount(nloc.ravel(), np.tile(self.facet_size, 6))
+                      / np.bincount(nloc.ravel()))
+        self.vfacets = nloc
 
     # --- symmetry plane (outputs) ------------------------------------------------------------
     def _symmetry_plane(self):
@@ -770,7 +800,7 @@ class FlatMotion:
 # ------------------------------------------------------------------------------ solver
 @dataclass
 class Interface:
-    """State of the contact vertices: where each sticks on the flat (anchor,
+    """State of the contact nodes: where each sticks on the flat (anchor,
     (2, nV), in the flat's frame)."""
 
     anchor: np.ndarray
@@ -780,7 +810,7 @@ class SlidingModel:
     """Residual, tangent and Newton of the 3-D asperity against the moving flat.
 
     ``trace``: set it to a list to record, per Newton iteration, (iteration,
-    residual norm, force scale, contact vertices touching, of them slipping).
+    residual norm, force scale, contact nodes touching, of them slipping).
     """
 
     def __init__(self, model: HalfModel, material, friction: FrictionLaw,
@@ -808,11 +838,11 @@ class SlidingModel:
     # --- contact --------------------------------------------------------------------------
     def contact(self, u, w, delta, anchors, tangent=True, friction: FrictionLaw | None = None,
                 damping=None):
-        """Contact tractions at the contact vertices: the penalty pressure t_N of the
+        """Contact tractions at the contact nodes: the penalty pressure t_N of the
         weighted penetration and the tangential traction with h(t_N) at this pressure
         (3.24-3.27) of the weighted slip; ``friction`` replaces the model's law.
         ``damping`` (start (2, nV), c (nV,) [Pa/m]) adds the dashpot -c (position -
-        start) on the touching vertices (`solve_through_slip`).
+        start) on the touching nodes (`solve_through_slip`).
         ``fc`` is the contact force on the free dofs."""
         m = self.m
         friction = self.friction if friction is None else friction
@@ -896,7 +926,7 @@ class SlidingModel:
         tangent turns singular: the smallest s > 0 with K0 + s K1 singular.
 
         K0 is the tangent of the state `out` (its material tangent, the normal
-        penalty of its touching vertices) without friction; K1 what the friction
+        penalty of its touching nodes) without friction; K1 what the friction
         law adds when every touching point slides along the flat's motion
         (``direction`` +1 or -1 along x) with a developed slip, |b| = 1e6 eps_b.
         The contact tangents of both laws come from `contact`, and h of (3.21)
@@ -908,10 +938,10 @@ class SlidingModel:
         direction from an all-slipping iterate is unbounded, and near it
         arbitrarily large.
 
-        K1 = -V^T N V, V the vertex operator (`HalfModel`) and N the weighted
-        contact tangents of the two laws' difference at the vertices (block
+        K1 = -V^T N V, V the node operator (`HalfModel`) and N the weighted
+        contact tangents of the two laws' difference at the nodes (block
         diagonal, ``Aw`` of `contact`); N has nonzero rows R (the tangential
-        components of the touching vertices) and columns C only.  So det(K0 +
+        components of the touching nodes) and columns C only.  So det(K0 +
         s K1) = det K0 det(I - s N V K0^-1 V^T), and the pencil reduces to the
         dense |R| x |R| matrix -N_RC (V K0^-1 V^T)_CR: one factorization of K0
         and |R| solves.  K0 + s K1 is singular where s = -1 / lambda for one
@@ -955,13 +985,13 @@ class SlidingModel:
     def solve_through_slip(self, u0, w, delta, state, iface, dt, reference: float = 0.0):
         """The step ending at (w, delta) from the state u0 at its start, for a sliding
         junction where Newton from u0 fails (past its critical coefficient, or where a
-        touching vertex lets go): a pseudo-transient continuation.  Returns (u, out,
+        touching node lets go): a pseudo-transient continuation.  Returns (u, out,
         iterations, damped solves).
 
         Past the critical coefficient the step's problem need not have a solution
         near u0 (the sliding path turns back in delta: the junction would slip
         dynamically, a stick-slip event) and has more than one elsewhere.  Each
-        damped solve adds a dashpot c (x - x_k) on the touching vertices' tangential
+        damped solve adds a dashpot c (x - x_k) on the touching nodes' tangential
         positions x, x_k those of the last damped solution (the start: u0 at the
         step's flat position, so the body's points first follow the flat), with c a
         multiple of the normal penalty stiffness (`SLIP_DAMPING`): a proximal point
@@ -979,7 +1009,7 @@ class SlidingModel:
         first, factor, last = SLIP_DAMPING
         kappa = self.law.kappa
         s, s_ok, f, u = first, None, factor, u0
-        # the touching vertices' positions at u (those of a solution: its own output)
+        # the touching nodes' positions at u (those of a solution: its own output)
         start = self.contact(u, w, delta, iface.anchor, tangent=False)["position"]
         total = solves = tries = 0
         while s >= last:
