@@ -42,7 +42,11 @@ sliding steps came to land on a grid of times (`solid3d.step_grid`, e9ae880), th
 sliding cases were re-recorded on that commit: other steps, so other forces; 33
 iterations instead of 32 (the steps on the grid: 1/6 to 5/6 instead of 5/24 to 7/8),
 and with 3 iterations allowed 10 cuts and 100 iterations in 40 steps instead of 11,
-105 and 38.
+105 and 38.  When the 3-D contact moved from the facets' vertices to their P2 nodes
+(hat functions on the facets cut at their edge midpoints; 155c9a1), the two sliding
+cases were re-recorded on that commit: a different discretization of the contact, so
+different forces; 40 iterations instead of 33, and with 3 iterations allowed 12 cuts
+and 122 iterations in 44 steps instead of 10, 100 and 40.
 """
 
 from __future__ import annotations
