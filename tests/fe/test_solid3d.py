@@ -118,6 +118,40 @@ def test_mesh_follows_the_hill(hill_model):
     assert m.weights.sum() == pytest.approx(exact, rel=1e-5)
 
 
+def test_contact_nodes_are_the_facets_p2_nodes_with_hats_on_their_sub_triangles(hill_model):
+    """The contact operators (`HalfModel._contact_nodes`): one node per vertex and edge of
+    the contact facets; the hat functions on the facets cut at their edge midpoints are a
+    partition of unity (the weights sum to the facets' area, 1e-12; V maps a rigid
+    translation in x or z to itself at every node, 1e-12); on the reference triangle (area 1/2)
+    the composite rule gives a vertex's hat 1/24 and a midpoint's 1/8, a third of its
+    sub-triangles, exactly (1e-14); the weighted heights vz0 lie within the body's
+    range on the facets."""
+    from asperity.fe.solid3d import _subtriangle_rule
+
+    m = hill_model
+    f = m.hm.reference.facets[:, m.cfacets]
+    edges = np.unique(np.sort(np.vstack((f[[0, 1]], f[[1, 2]], f[[2, 0]])).reshape(2, -1)
+                              .T, axis=1), axis=0)
+    assert m.vw.size == np.unique(f).size + edges.shape[0]
+    assert m.vfacets.shape == (6, m.cfacets.size)
+    assert m.vw.sum() == pytest.approx(m.cw.sum(), rel=1e-12)
+    u = np.zeros(m.ndofs)
+    for c, v in enumerate((1e-8, -2e-8, 3e-8)):
+        u[m.dofmap[c]] = v
+    Vu = (m.V @ u[m.free]).reshape(3, -1)
+    # x and z (the symmetry plane fixes u_y, so V sees part of a y translation there)
+    np.testing.assert_allclose(Vu[0], 1e-8, rtol=1e-12)
+    np.testing.assert_allclose(Vu[2], 3e-8, rtol=1e-12)
+    X, W = _subtriangle_rule()
+    lam = np.vstack((1.0 - X.sum(axis=0), X))
+    vertex = np.maximum(2.0 * lam[0] - 1.0, 0.0)
+    mid = np.maximum(0.0, np.minimum(np.minimum(2.0 * lam[0], 2.0 * lam[1]), 1.0 - 2.0 * lam[2]))
+    assert W.sum() == pytest.approx(0.5, abs=1e-14)
+    assert np.sum(vertex * W) == pytest.approx(1.0 / 24.0, abs=1e-14)
+    assert np.sum(mid * W) == pytest.approx(1.0 / 8.0, abs=1e-14)
+    assert m.vz0.min() >= m.cz0.min() - 1e-15 and m.vz0.max() <= m.cz0.max() + 1e-15
+
+
 def test_depth_grading_refines_a_disc_on_the_surface():
     """depth_grading g_z: the finest size on the surface within the disc of refine_radius,
     the edge growing by g_z per unit depth below it.  Every tetrahedron meets the size
