@@ -79,7 +79,7 @@ sys.path.insert(0, str(ROOT))  # run as a script: `benchmarks` importable
 SCENE = "asperity_sliding"
 RESULTS = Path(__file__).with_name("results")
 OUT = Path(__file__).with_name("out") / "sliding"
-STEP = re.compile(r"step (\d+): t = (\S+) s, w = (\S+) m, delta = (\S+) m, "
+STEP = re.compile(r"step (\d+): t = (\S+)(?: of \S+)? s, w = (\S+) m, delta = (\S+) m, "
                   r"F_N = (\S+) N, F_T = (\S+) N(?:, A = (\S+) m\^2)?")
 REPORT_TRACTION = 64e6           # Pa, report 9.2
 
