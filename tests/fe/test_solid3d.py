@@ -122,11 +122,12 @@ def test_contact_nodes_are_the_facets_p2_nodes_with_hats_on_their_sub_triangles(
     """The contact operators (`HalfModel._contact_nodes`): one node per vertex and edge of
     the contact facets; the hat functions on the facets cut at their edge midpoints are a
     partition of unity (the weights sum to the facets' area, 1e-12; V maps a rigid
-    translation in x or z to itself at every node, 1e-12); on the reference triangle (area 1/2)
-    the composite rule gives a vertex's hat 1/24 and a midpoint's 1/8, a third of its
-    sub-triangles, exactly (1e-14); the weighted heights vz0 lie within the body's
-    range on the facets."""
-    from asperity.fe.solid3d import _subtriangle_rule
+    translation in x or z to itself at every node, 1e-12); on the reference triangle
+    (area 1/2) each hat is 1 at its node and 0 at the others, and the composite rule
+    integrates a vertex's hat to 1/24 and a midpoint's to 1/8, a third of their
+    sub-triangles (1e-14); the weighted heights vz0 lie within the body's range on the
+    facets."""
+    from asperity.fe.solid3d import _subtriangle_hats, _subtriangle_rule
 
     m = hill_model
     f = m.hm.reference.facets[:, m.cfacets]
@@ -143,12 +144,14 @@ def test_contact_nodes_are_the_facets_p2_nodes_with_hats_on_their_sub_triangles(
     np.testing.assert_allclose(Vu[0], 1e-8, rtol=1e-12)
     np.testing.assert_allclose(Vu[2], 3e-8, rtol=1e-12)
     X, W = _subtriangle_rule()
-    lam = np.vstack((1.0 - X.sum(axis=0), X))
-    vertex = np.maximum(2.0 * lam[0] - 1.0, 0.0)
-    mid = np.maximum(0.0, np.minimum(np.minimum(2.0 * lam[0], 2.0 * lam[1]), 1.0 - 2.0 * lam[2]))
+    hats = _subtriangle_hats(np.vstack((1.0 - X.sum(axis=0), X)))
     assert W.sum() == pytest.approx(0.5, abs=1e-14)
-    assert np.sum(vertex * W) == pytest.approx(1.0 / 24.0, abs=1e-14)
-    assert np.sum(mid * W) == pytest.approx(1.0 / 8.0, abs=1e-14)
+    np.testing.assert_allclose(hats.sum(axis=0), 1.0, rtol=0, atol=1e-14)
+    np.testing.assert_allclose(hats @ W, [1 / 24] * 3 + [1 / 8] * 3, rtol=0, atol=1e-14)
+    # each hat is 1 at its node and 0 at the others
+    corners = np.array([[1, 0, 0], [0, 1, 0], [0, 0, 1],
+                        [0.5, 0.5, 0], [0, 0.5, 0.5], [0.5, 0, 0.5]]).T
+    np.testing.assert_allclose(_subtriangle_hats(corners), np.eye(6), atol=1e-15)
     assert m.vz0.min() >= m.cz0.min() - 1e-15 and m.vz0.max() <= m.cz0.max() + 1e-15
 
 

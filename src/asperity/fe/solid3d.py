@@ -132,8 +132,9 @@ would slip dynamically) and the step's problem has several solutions: the
 damped motion selects the one the junction slips to, at the sliding
 displacement where the cut steps stopped converging.  The same holds where a
 touching node lets go although the junction's tangent was regular at the
-accepted steps (the critical factor is taken there, not within the step).  The step is cut again
-only if that fails too.  ``damped_solves`` records it per step.
+accepted steps (the critical factor is taken there, not within the step).
+The step is cut again only if that fails too.  ``damped_solves`` records it
+per step.
 """
 
 from __future__ import annotations
@@ -432,6 +433,16 @@ def _subtriangle_rule(order: int = CONTACT_INTORDER) -> tuple[np.ndarray, np.nda
     return pts, np.tile(W / 4.0, 4)
 
 
+def _subtriangle_hats(lam: np.ndarray) -> np.ndarray:
+    """The hat functions of a triangle's 6 nodes on its 4 triangles cut at the edge
+    midpoints, at points of barycentric coordinates `lam` (3, ...): (6, ...), the
+    vertices 0, 1, 2, then the midpoints of the edges 01, 12, 20."""
+    i, j, k = [0, 1, 2], [1, 2, 0], [2, 0, 1]
+    return np.concatenate((np.maximum(2.0 * lam - 1.0, 0.0),
+                           np.maximum(0.0, np.minimum(np.minimum(2.0 * lam[i], 2.0 * lam[j]),
+                                                      1.0 - 2.0 * lam[k]))))
+
+
 class HalfModel:
     """P2 displacement fields on the half model, contact surface, operators."""
 
@@ -627,10 +638,7 @@ class HalfModel:
         lam = np.stack((1.0 - st[..., 0] - st[..., 1], st[..., 0], st[..., 1]))  # (3, nf, nq)
         if lam.min() < -1e-9:
             raise RuntimeError("contact points outside their facet")
-        i, j, k = [0, 1, 2], [1, 2, 0], [2, 0, 1]
-        phi = np.concatenate((np.maximum(2.0 * lam - 1.0, 0.0),   # vertices
-                              np.maximum(0.0, np.minimum(np.minimum(2.0 * lam[i], 2.0 * lam[j]),
-                                                         1.0 - 2.0 * lam[k]))))  # midpoints
+        phi = _subtriangle_hats(lam)                             # (6, nf, nq)
         npts = nf * nq
         rows = np.broadcast_to(np.arange(npts).reshape(nf, nq), (6, nf, nq))
         cols = np.broadcast_to(nloc[:, :, None], (6, nf, nq))
