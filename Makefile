@@ -8,7 +8,7 @@ CORES ?= 2
 export OPENBLAS_NUM_THREADS = 1
 export OMP_NUM_THREADS = 1
 
-.PHONY: all reproduce test test-fast bench time-scenes time-jobs time-adhesion time-plane-strain time-reference time-surface time-sliding time-remesh time-edge-band time-finite-strain compare-results figures clean-results
+.PHONY: all reproduce test test-fast docs bench time-scenes time-jobs time-adhesion time-plane-strain time-reference time-surface time-sliding time-remesh time-edge-band time-finite-strain compare-results figures clean-results
 
 all: reproduce
 
@@ -16,7 +16,7 @@ all: reproduce
 $(STAMP): pyproject.toml constraints.txt
 	test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
 	$(BIN)/python -m pip install --quiet --upgrade pip
-	$(BIN)/python -m pip install --quiet -c constraints.txt -e ".[test]"
+	$(BIN)/python -m pip install --quiet -c constraints.txt -e ".[test,docs]"
 	touch $(STAMP)
 
 # Run every scene of config/config.yaml.
@@ -35,6 +35,13 @@ test: $(STAMP)
 # Everything but the tests marked slow.
 test-fast: $(STAMP)
 	$(PYTEST) -m "not slow"
+
+# The documentation site in site/: the reference and verification pages generated from
+# config/schema.yaml, the command line and benchmarks/results/ (docs/generate.py), then
+# built with warnings as errors.
+docs: $(STAMP)
+	$(BIN)/python docs/generate.py
+	$(BIN)/mkdocs build --strict --quiet
 
 # Speed measurements; writes benchmarks/out/results.json and prints a table.
 bench: $(STAMP)

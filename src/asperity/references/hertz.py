@@ -54,9 +54,8 @@ def hertz_response(interference, curvature, youngs_modulus, poisson) -> dict[str
         Tip curvature kappa = 1/R >= 0.  kappa = 0 is a flat (R infinite):
         its response is 0 at w <= 0 and infinite for w > 0.
     youngs_modulus, poisson : array_like
-        Elastic constants of the sphere (the flat is rigid).
-
-    All arguments broadcast together.
+        Elastic constants of the sphere (the flat is rigid).  All arguments
+        broadcast together.
 
     Returns
     -------
