@@ -239,7 +239,7 @@ def test_the_warning_says_what_each_failing_limit_means_and_what_to_change():
     assert means.count("no longer independent") == 1
     assert "; large_strain_fraction: strains of 8 % or more in small-strain FE jobs: add the effect " \
            "finite_strain" in means
-    assert validity.REMEDIES.keys() == set(validity.INDICATORS) | {"plasticity_index"}
+    assert validity.REMEDIES.keys() == set(validity.INDICATORS) | {"plasticity_index", *validity.ASSUMPTIONS}
 
 
 def test_limits_are_shares():
@@ -280,3 +280,48 @@ def test_interface_figure_shades_the_invalid_separations():
     lo, hi = spans[0].get_x(), spans[0].get_x() + spans[0].get_width()
     assert lo == pytest.approx(bad.min()) and hi == pytest.approx(bad.max() + 0.25 * SIGMA_P)
     assert "outside validity, e.g. yielded_fraction" in fig.axes[0].get_legend().get_texts()[-1].get_text()
+
+
+def _elastic_scene_interface():
+    """Five separations, contact at the four smallest, every indicator within its limit."""
+    ds = _branches(["loading", "unloading"], np.array([True, True, True, True, True]))
+    ds = ds.sel(branch="loading", drop=True)
+    p = ds["nominal_pressure"].values.copy()
+    p[-1] = 0.0
+    ds["nominal_pressure"] = ("separation", p, ds["nominal_pressure"].attrs)
+    return ds
+
+
+def test_non_gaussian_heights_make_a_gaussian_density_not_valid_with_the_reason():
+    """Skewness 10.8 and kurtosis 219 (a measured profile of the issue) under a Nayak or GW
+    density: no separation with contact is valid, and the reason names both moments."""
+    ds = _elastic_scene_interface()
+    steel = Material("elastic", youngs_modulus=2.09e11, poisson=0.3, yield_stress=3.5e8)
+    plastic = validity.plasticity_of(steel, ())
+    limits = validity.Limits(**{**LIMITS, "contact_area_ratio": 1.0, "interaction": 10.0})
+    gaussian = validity.assess(ds, plastic, (SIGMA_P, 1 / CURVATURE), limits, (0.1, 3.2))
+    skewed = validity.assess(ds, plastic, (SIGMA_P, 1 / CURVATURE), limits, (10.8, 219.0))
+    contact = ds["nominal_pressure"].values > 0
+    assert gaussian["valid"].values[contact].all()
+    assert not skewed["valid"].values[contact].any() and skewed["valid"].values[~contact].all()
+    why = skewed["validity"].values[contact][0]
+    assert why.startswith("gaussian_heights:") and "skewness 10.8" in why and "kurtosis 219" in why
+    assert "gaussian_heights fails at 4 separations" in validity.valid_ranges(skewed)[0]
+
+
+def test_an_elastic_scene_without_hardness_does_not_call_yield_checked():
+    """No hardness and no yield stress: separations with contact are not valid, counted as
+    not checked (not as a failed limit); with a yield stress the same interface is valid."""
+    ds = _elastic_scene_interface()
+    limits = validity.Limits(**{**LIMITS, "contact_area_ratio": 1.0, "interaction": 10.0})
+    bare = Material("elastic", youngs_modulus=2.09e11, poisson=0.3)
+    known = Material("elastic", youngs_modulus=2.09e11, poisson=0.3, yield_stress=3.5e8)
+    unchecked = validity.assess(ds, validity.plasticity_of(bare, ()), (SIGMA_P, 1 / CURVATURE), limits)
+    checked = validity.assess(ds, validity.plasticity_of(known, ()), (SIGMA_P, 1 / CURVATURE), limits)
+    contact = ds["nominal_pressure"].values > 0
+    assert checked["valid"].values.all()
+    assert not unchecked["valid"].values[contact].any()
+    assert set(unchecked["validity"].values[contact]) == {
+        "unchecked_yield: no hardness or yield stress in the scene's material"}
+    line = validity.valid_ranges(unchecked)[0]
+    assert "unchecked_yield not checked at 4 separations" in line and "fails" not in line

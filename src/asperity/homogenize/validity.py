@@ -41,6 +41,20 @@ checked against the assumptions this rests on, with limits set in the scene
    Boussinesq deflection at the spacing l is F / (pi E' l) = 2 rho / (3 pi)
    of a Hertz asperity's own interference (rho = interaction).
 
+5. **Gaussian heights.**  The Nayak/Francis density (2.4.1) and Greenwood and
+   Williamson's (7.1) assume Gaussian heights.  Where such a density is fed by
+   a measured profile or map, its skewness and kurtosis are checked against the
+   limits of `asperity.surface.distribution` (|Sk| <= 0.3, 2.5 <= Ku <= 4, where
+   the light-load answer is off by a factor of two); outside them every
+   separation with contact is not valid (``gaussian_heights``).  A map's own
+   peaks (the sampled density) need no such assumption.
+6. **What could not be checked is not valid.**  An elastic asperity's yield is
+   judged by its contact pressure against a yield stress or hardness; with
+   neither (no ``material.hardness`` or ``yield_stress``), every separation
+   with contact is not valid (``unchecked_yield``): the result may hold, but
+   nothing in the scene says so.  `valid_ranges` (and ``asperity show``) count
+   these apart from the limits that fail.
+
 A separation is ``valid`` where every limit holds; ``validity`` names the
 first that fails (empty where valid).  A branch of unloading (8.3) starts
 from the loading state at ``unloading_from``, each asperity on its own path:
@@ -96,7 +110,16 @@ REMEDIES = {
     "interaction": _INDEPENDENT,
     "plasticity_index": ("Greenwood and Williamson's plasticity index: plastic at the lightest loads "
                          "(asperity.model: fe with effects: [plasticity])"),
+    "gaussian_heights": ("the Nayak and Greenwood-Williamson densities assume Gaussian heights: "
+                         "use the map's own peaks (population.density: sampled) or a reference "
+                         "scene's interacting or boundary-element route"),
+    "unchecked_yield": ("nothing says whether the asperities yield: give material.hardness or "
+                        "material.yield_stress"),
 }
+#: assumptions checked besides the indicators' limits (module text, 5-6)
+ASSUMPTIONS = ("gaussian_heights", "unchecked_yield")
+#: validity reasons that say a check could not be made, not that a limit failed
+UNCHECKED = ("unchecked_yield",)
 
 #: table variables this module adds before homogenizing, and what `assess` turns them into
 EXTRAPOLATED_FORCE = "extrapolated_force"
@@ -268,12 +291,14 @@ INDICATORS = {
 
 
 def assess(interface: xr.Dataset, plasticity: Plasticity | None, peaks: tuple[float, float],
-           limits: Limits) -> xr.Dataset:
+           limits: Limits, heights: tuple[float, float] | None = None) -> xr.Dataset:
     """`interface` with its validity (module docstring): the indicators, ``hardness``
     and ``plasticity_index`` (scalars), ``valid`` and ``validity`` on (branch,)
     separation; a log warning and the attribute ``validity_warning`` where a
     separation fails.  `interface` is the homogenization of a table made by
-    `with_indicators`; `peaks` the (sigma_p, R) of `peak_statistics`."""
+    `with_indicators`; `peaks` the (sigma_p, R) of `peak_statistics`; `heights`
+    the (skewness, kurtosis) of the measured heights where the density assumes
+    them Gaussian (None: not assumed, or not measured)."""
     out = interface.copy()
     p = out["nominal_pressure"]
     if f"{EXTRAPOLATED_FORCE}_per_unit_area" in out:
@@ -313,6 +338,7 @@ def assess(interface: xr.Dataset, plasticity: Plasticity | None, peaks: tuple[fl
 
     checks = _checks(out, plasticity, psi, limits)
     valid, why = _judge(out, checks)
+    valid, why = _assumed(out, valid, why, plasticity, heights)
     if "branch" in out.dims and "unloading" in out["branch"].values and "unloading_from" in out.attrs:
         valid, why = _inherit(out, valid, why)
     dims = out["nominal_pressure"].dims
@@ -326,6 +352,29 @@ def assess(interface: xr.Dataset, plasticity: Plasticity | None, peaks: tuple[fl
     if warning:
         out.attrs["validity_warning"] = warning
     return out
+
+
+def _assumed(out: xr.Dataset, valid: np.ndarray, why: np.ndarray, plasticity: Plasticity | None,
+             heights: tuple[float, float] | None) -> tuple[np.ndarray, np.ndarray]:
+    """Separations with contact fail where the density's Gaussian heights are not the
+    surface's, and where an elastic asperity's yield cannot be judged (module text, 5-6)."""
+    from asperity.surface.distribution import gaussianity
+
+    dims = out["nominal_pressure"].dims
+    contact = (out["nominal_pressure"].transpose(*dims).values > 0)
+    reasons = []
+    if heights is not None:
+        gaussian, text = gaussianity(*heights)
+        if not gaussian:
+            reasons.append(f"gaussian_heights: {text}")
+    if (plasticity is not None and not plasticity.modelled and not plasticity.by_flag
+            and not math.isfinite(plasticity.yield_pressure)):
+        reasons.append("unchecked_yield: no hardness or yield stress in the scene's material")
+    for reason in reasons:
+        new = contact & valid
+        why[new] = reason
+        valid = valid & ~contact
+    return valid, why
 
 
 def _limit_attrs(limits: Limits) -> dict[str, float]:
@@ -444,7 +493,8 @@ def valid_ranges(ds: xr.Dataset) -> list[str]:
             if d and not good:
                 reasons.setdefault(_kind(why), []).append((hk, str(why)))
         for kind, items in reasons.items():
-            text += (f"; {kind} fails at {_count(len(items))} ({items[0][0]:.4g} .. "
+            verb = "not checked" if kind in UNCHECKED else "fails"
+            text += (f"; {kind} {verb} at {_count(len(items))} ({items[0][0]:.4g} .. "
                      f"{items[-1][0]:.4g} m), e.g. {items[0][1]}")
         lines.append(text)
     return lines
@@ -452,7 +502,9 @@ def valid_ranges(ds: xr.Dataset) -> list[str]:
 
 def _kind(why) -> str:
     """The limit a `validity` reason names (its first word), or the unloading's inherited failure."""
-    return "unloading from a failing state" if str(why).startswith("unloads") else str(why).split(" ")[0]
+    if str(why).startswith("unloads"):
+        return "unloading from a failing state"
+    return str(why).split(" ")[0].rstrip(":")
 
 
 def _count(n) -> str:

@@ -139,8 +139,11 @@ def interface_dataset(
         if name in asperities.attrs:
             out.attrs[name] = asperities.attrs[name]
     if validity_cfg is not None:  # where the result holds
+        gaussian = isinstance(density, (peaks.JointDensity, peaks.FixedCurvatureDensity))
+        measured = gaussian and "skewness" in surface_ds and "kurtosis" in surface_ds
+        heights = (float(surface_ds["skewness"]), float(surface_ds["kurtosis"])) if measured else None
         out = validity_checks.assess(out, plastic, validity_checks.peak_statistics(density, rect),
-                                     validity_checks.Limits(**validity_cfg))
+                                     validity_checks.Limits(**validity_cfg), heights)
     return out
 
 
