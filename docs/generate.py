@@ -161,35 +161,41 @@ def _scenes_table(name: str) -> str:
 
 
 def _routes_table(name: str) -> str:
+    """The table of `benchmarks/routes.py`: per map and separation, every route's errors."""
     d = _load(name)
     if d is None:
         return ""
-    comparison = d.get("comparison") or {}
-    routes = comparison.get("routes") or []
-    seps = comparison.get("separation") or []
-    if not routes:
-        return ""
-    text = [f"\n### `{d['scene']}` at `{d['accuracy']}`\n\n",
-            "Nominal pressure error at equal separation (mean gap) and real contact area error at "
-            "equal pressure, each route against the elastic boundary elements, in per cent; "
-            "`-` where a quantity is zero or undefined; rows whose reference does not resolve "
-            "its contact patches are marked *.\n\n"]
-    header = "| separation (sigma) | BEM A/A0 (%) | " + " | ".join(f"{r} p | {r} A" for r in routes)
-    text.append(header + " |\n|" + "---|" * (2 + 2 * len(routes)) + "\n")
-    sigma = comparison.get("sigma", 1.0)
-    for k, h in enumerate(seps):
-        resolved = (comparison.get("reference_resolved") or [True] * len(seps))[k]
-        cells = [f"{h / sigma:.2f}" + ("" if resolved else "*"),
-                 _pct(comparison["reference_area_ratio"][k], signed=False)]
-        for i in range(len(routes)):
-            cells.append(_pct(comparison["pressure_error"][i][k]))
-            cells.append(_pct(comparison["area_error"][i][k]))
-        text.append("| " + " | ".join(cells) + " |\n")
+    text = [f"\n### Every map at `{d['accuracy']}`\n\n",
+            "Per separation h (in sigma of the prepared map): the elastic boundary elements' contact "
+            "area ratio and cells per contact patch (* where fewer than 10: the reference does not "
+            "resolve its contacts there, and no route is judged); each route's pressure error at "
+            "equal separation (the mean gap) / area error at equal pressure, in per cent "
+            "(`-`: zero or undefined); and the route closest to the boundary elements.\n"]
+    for label, record in d["maps"].items():
+        c = record.get("comparison")
+        if not c:
+            text.append(f"\n**{label}**: the run {record['status']}.\n")
+            continue
+        scale = "the pixel" if c.get("scale") in (None, "") else f"{float(c['scale']) * 1e6:.3g} um"
+        text.append(f"\n**{label}** (scene `{record['scene']}`; lateral scale {scale}"
+                    f"{'; ' + c['scale_rule'] if c.get('scale_rule') else ''})\n\n")
+        routes = c["routes"]
+        text.append("| h / sigma | BEM A/A0 (%) | cells / patch | " + " | ".join(routes)
+                    + " | closest |\n|" + "---|" * (4 + len(routes)) + "\n")
+        for k, h in enumerate(c["separation"]):
+            cells = c["cells_per_patch"][k]
+            star = "" if c["reference_resolved"][k] else "*"
+            row = [f"{h / c['sigma']:.2f}{star}", _pct(c["reference_area_ratio"][k], signed=False),
+                   "-" if cells is None else f"{cells:.3g}"]
+            row += [f"{_pct(c['pressure_error'][i][k])} / {_pct(c['area_error'][i][k])}"
+                    for i in range(len(routes))]
+            row.append(c["recommended_route"][k] or "-")
+            text.append("| " + " | ".join(row) + " |\n")
     return "".join(text) + "\n" + _provenance(d, name)
 
 
 def _pct(value, signed: bool = True) -> str:
-    if value is None or value != value:
+    if value is None or value != value or (not signed and value == 0):
         return "-"
     return f"{100 * value:+.0f}" if signed else f"{100 * value:.3g}"
 
@@ -200,8 +206,7 @@ def verification_page() -> str:
            "(`make bench` and the `make time-*` targets write them). Each table names the file, "
            "machine, date and commit it comes from. The history of these numbers is in the "
            "[changelog](../changelog.md).\n"]
-    routes = [n for n in ("routes-deterministic_reference-draft.json", "routes-afm_reference-draft.json")
-              if (RESULTS / n).exists()]
+    routes = [n for n in ("routes-draft.json", "routes-standard.json") if (RESULTS / n).exists()]
     if routes:
         out.append("\n## Routes against the boundary elements\n")
         out.extend(_routes_table(n) for n in routes)
