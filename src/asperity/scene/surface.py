@@ -51,6 +51,9 @@ class SurfaceScene:
     window: str = "hann"
     periodic: bool = False
     estimator: str = "sampling"
+    #: the lateral scale of a map's asperities (m): its low pass and its summits
+    #: (`asperity.surface.summits`); "auto" for the default rule; None: the pixel's
+    scale: float | str | None = None
 
     @classmethod
     def from_config(cls, surface_cfg: Config, units_cfg: Config) -> "SurfaceScene":
@@ -89,6 +92,14 @@ class SurfaceScene:
             kwargs["window"] = "none"
         if "estimator" in surface_cfg:
             kwargs["estimator"] = surface_cfg["estimator"]
+        if surface_cfg.get("scale") is not None:
+            if source != "map":
+                raise ValueError("key surface.scale: a lateral scale applies to a map (surface.map)")
+            if filt.get("lambda_s") is not None:
+                raise ValueError("key surface.scale: the scale is the map's short-wavelength cut-off; "
+                                 "give it or surface.filter.lambda_s, not both")
+            value = surface_cfg["scale"]
+            kwargs["scale"] = "auto" if value == "auto" else float(value) * length
         scene = cls(source=source, section=surface_cfg[source], scene_unit=units_cfg["length"], **kwargs)
         if scene.lambda_c is not None and scene.lambda_s is not None and not scene.lambda_s < scene.lambda_c:
             raise ValueError("key surface.filter: lambda_s must be shorter than lambda_c")

@@ -37,6 +37,7 @@ import xarray as xr
 
 from asperity import surface
 from asperity.scene import length_factor
+from asperity.surface import summits
 from asperity.scene.surface import SurfaceScene
 from asperity.units import attrs
 
@@ -173,6 +174,9 @@ class Prepared:
     filled: int  # points filled by harmonic in-fill
     islands: int  # defined points dropped as islands (`asperity.surface.islands`)
     spacing: Any  # dx or (dx, dy)
+    scale: float | None = None  # a map's lateral scale (m): its low pass and its summits; None: pixel
+    scale_rule: str = ""  # how the scale was chosen
+    unsmoothed: np.ndarray | None = None  # with a scale: the roughness before its low pass
 
     @property
     def evaluated(self) -> np.ndarray:
@@ -233,7 +237,27 @@ def prepare(heights, spacing, scene: SurfaceScene, defined=None) -> Prepared:
     outside = np.ones(rough.shape, dtype=bool)
     outside[region] = False
     rough[outside] = np.nan
-    return Prepared(raw, form + waviness, rough, mask, region, share, filled, dropped, spacing)
+    scale, rule = _lateral_scale(rough, spacing, scene)
+    unsmoothed = None
+    if scale is not None:  # the map as one period, low-passed at its scale (no edge is cut)
+        dx, dy = (float(v) for v in spacing)
+        unsmoothed = rough
+        rough = summits.lowpass_map(rough, dx, dy, scale, periodic=True, defined=np.isfinite(rough))
+        log.info("lateral scale %s: the map low-passed at it (periodic Gaussian, ISO 16610-61 "
+                 "transmission), its summits found and fitted at it", rule)
+    return Prepared(raw, form + waviness, rough, mask, region, share, filled, dropped, spacing, scale,
+                    rule, unsmoothed)
+
+
+def _lateral_scale(rough: np.ndarray, spacing, scene: SurfaceScene) -> tuple[float | None, str]:
+    """The map's lateral scale (m) and its rule: the scene's ``surface.scale``, or
+    `asperity.surface.summits.default_scale` for ``auto``; (None, "") for the pixel's."""
+    if scene.scale is None:
+        return None, ""
+    dx, dy = (float(v) for v in spacing)
+    if scene.scale == "auto":
+        return summits.default_scale(dx, dy, rough, defined=np.isfinite(rough))
+    return float(scene.scale), f"lambda_s = {float(scene.scale):.6g} m (surface.scale)"
 
 
 def prepared_roughness(heights, spacing, surface_cfg: Config, units_cfg: Config, defined=None) -> np.ndarray:
@@ -429,7 +453,19 @@ def _map_dataset(prep: Prepared) -> xr.Dataset:
     rough, defined = prep.evaluated, prep.evaluated_defined
     mask = None if defined.all() else defined
     stats = surface.map_statistics(rough, dx, dy, defined=mask)
-    peaks = surface.map_peaks(rough, dx, dy, defined=mask)
+    if prep.scale is None:
+        peaks = surface.map_peaks(rough, dx, dy, defined=mask)
+    else:  # summits at the scale: found and fitted on the map before its low pass, which
+        # map_summits applies itself (its fit completes the filter at the scale)
+        found = summits.map_summits(prep.unsmoothed[prep.region], dx, dy, prep.scale, defined=mask,
+                                    periodic=True)
+        peaks = found[["x", "y", "row", "column", "height", "curvature", "z_xx", "z_yy", "z_xy",
+                       "principal_curvature_1", "principal_curvature_2"]].rename(summit="peak")
+        stats["peak_density"] = stats["peak_density"].copy(
+            data=np.full(stats["peak_density"].shape, found.attrs["summit_density"]))
+        stats.attrs["scale"] = prep.scale
+        stats.attrs["scale_rule"] = prep.scale_rule
+        stats.attrs["peaks"] = found.attrs["method"]
     i0, j0 = prep.region[0].start, prep.region[1].start
     # peaks in the coordinates of the whole map (the evaluation region is inset by the filter)
     for name, shift in (("row", i0), ("column", j0), ("x", j0 * dx), ("y", i0 * dy)):
