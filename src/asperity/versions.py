@@ -32,7 +32,8 @@ VERSIONS: dict[str, int] = {
     # homogenize (workflow/rules/homogenize.smk)
     "expectation": 1,
     "unloading": 1,
-    "interface": 2,
+    "interface": 3,
+    "route_interface": 1,
     "verification": 1,
     # friction (workflow/rules/friction.smk)
     "friction": 2,
@@ -45,8 +46,8 @@ VERSIONS: dict[str, int] = {
     "accuracy_hertz": 1,
     "accuracy_scenes": 1,
     # the deterministic reference (workflow/rules/reference.smk)
-    "reference": 1,
-    "reference_comparison": 2,
+    "reference": 2,
+    "reference_comparison": 3,
     # figures (workflow/rules/figures.smk and the figures of the rules above)
     "surface_figure": 1,
     "expectation_figure": 1,

@@ -26,8 +26,34 @@ def test_files_and_attributes(run):
         ds = result(run, SCENE, name)
         assert missing_attributes(ds) == [], name
     assert (run / "results" / SCENE / "figures" / "reference.png").stat().st_size > 10_000
-    for route in ("nayak_hertz", "nayak_fe", "peaks"):
+    for route in ("nayak_hertz", "nayak_fe", "peaks", "interacting", "persson"):
         assert (run / "results" / f"{SCENE}+{route}" / "interface.nc").exists()
+
+
+def test_every_route_writes_the_same_contract(run):
+    """Statistical, interacting and Persson routes: the variables of interface.nc with their
+    units, on the reference's separations, with valid and validity; the comparison names,
+    per separation the boundary elements resolve, the route closest to them, whose error is
+    the smallest of the routes' larger errors (pressure or area)."""
+    ref = result(run, SCENE, "reference.nc")
+    units = {"nominal_pressure": "Pa", "contact_area_ratio": "1", "normal_stiffness": "Pa/m",
+             "contact_count": "1/m^2"}
+    for route in ("nayak_hertz", "nayak_fe", "peaks", "interacting", "persson"):
+        ds = result(run, f"{SCENE}+{route}", "interface.nc")
+        assert missing_attributes(ds) == [], route
+        for name, unit in units.items():
+            assert ds[name].attrs["units"] == unit, (route, name)
+        assert {"valid", "validity"} <= set(ds.data_vars), route
+        np.testing.assert_allclose(ds["separation"].values, ref["separation"].values, rtol=1e-12)
+    cmp_ = result(run, SCENE, "comparison.nc")
+    worst = np.fmax(np.abs(cmp_["pressure_error"]), np.abs(cmp_["area_error"]))
+    for k, best in enumerate(cmp_["recommended_route"].values):
+        column = worst.isel(separation=k)
+        if not best:
+            assert not (np.isfinite(column).any() and bool(cmp_["reference_resolved"][k]))
+            continue
+        assert float(column.sel(route=best)) == float(column.min(skipna=True))
+        assert float(cmp_["recommended_error"][k]) == float(column.min(skipna=True))
 
 
 def test_light_load_agreement_with_asperity_theory(run):

@@ -137,6 +137,8 @@ class Limits:
     contact_area_ratio: float
     interaction: float
     plasticity_index: float | None
+    #: the interacting route's own indicator (`asperity.stages.routes`), not used here
+    merged_load_fraction: float = 0.5
 
     def __post_init__(self):
         for name in ("extrapolated_load_fraction", "yielded_fraction", "large_strain_fraction",

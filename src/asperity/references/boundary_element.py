@@ -118,6 +118,45 @@ def contact_patches(mask: np.ndarray, periodic: bool) -> int:
     return int(connected_components(graph, directed=False)[0])
 
 
+def _compliance(system, shape):
+    """The displacement of cell forces (normalized units), signed so that a force pressing
+    into the body moves its own cell in the direction of the flat's approach."""
+    probe = np.zeros(shape)
+    probe[0, 0] = 1.0
+    sign = float(np.sign(system.substrate.evaluate_disp(probe)[0, 0]))
+    return lambda forces: sign * system.substrate.evaluate_disp(forces)
+
+
+def _incremental_force(compliance, active: np.ndarray, tolerance: float) -> float:
+    """The total force increment (normalized units) when the flat approaches by one unit
+    with the contact set `active` held: the forces on those cells whose displacement there
+    is uniform, G_aa f = 1 (conjugate gradients; G the half-space's compliance, positive
+    definite on a set smaller than the whole map)."""
+    from scipy.sparse.linalg import LinearOperator, cg
+
+    n = int(active.sum())
+    if n == 0:
+        return 0.0
+    full = np.zeros(active.shape)
+
+    def matvec(fa):
+        full[...] = 0.0
+        full[active] = np.ravel(fa)
+        return compliance(full)[active]
+
+    f, info = cg(LinearOperator((n, n), matvec=matvec, dtype=float), np.ones(n), rtol=tolerance,
+                 maxiter=20 * n + 100)
+    if info != 0:
+        raise BoundaryElementError(f"the incremental contact problem (stiffness) did not converge "
+                                   f"on {n} cells ({info} iterations)")
+    return float(f.sum())
+
+
+def _set(values: np.ndarray, k: int, value: float) -> np.ndarray:
+    values[k] = value
+    return values
+
+
 def _system(heights: np.ndarray, sizes: tuple[float, float], modulus: float, boundary: str):
     from ContactMechanics import FreeFFTElasticHalfSpace, PeriodicFFTElasticHalfSpace
     from ContactMechanics.Factory import make_system
@@ -167,6 +206,7 @@ def solve_map(
     boundary: str = "periodic",
     tolerance: float = 1e-6,
     max_iterations: int = 5000,
+    yield_pressure: float | None = None,
 ) -> xr.Dataset:
     """Contact of the map `heights` with a rigid flat at each of `separations`.
 
@@ -190,13 +230,19 @@ def solve_map(
         to the standard deviation of the heights.
     max_iterations : int
         Iterations of the solver per separation before it gives up.
+    yield_pressure : float, optional
+        A pressure (Pa, typically the hardness) whose excess the elastic solution
+        reports: ``yielded_fraction``, the share of the real contact area (cells)
+        pressed beyond it, where an elastic answer describes a surface that flows.
 
     Returns
     -------
     xarray.Dataset
         On dim ``separation`` (as given, increasing): nominal_pressure,
-        contact_area_ratio, contact_count, mean_gap, max_pressure,
-        cells_per_patch, flowing_area_ratio (hardness only), iterations;
+        contact_area_ratio, contact_count, mean_gap, normal_stiffness (the
+        incremental problem on the contact set: G_aa f = 1), max_pressure,
+        cells_per_patch, flowing_area_ratio (hardness only), yielded_fraction
+        (yield_pressure only), iterations;
         attributes: boundary, contact_modulus, hardness, undefined_fraction,
         cpu_time, grid.
 
@@ -238,12 +284,24 @@ def solve_map(
     upper = None if hardness is None else np.where(defined, hardness / contact_modulus * cell, 0.0)
     system = _system(zs, sizes, 1.0, boundary)
     order = np.argsort(h)[::-1]  # largest separation first: increasing load
-    names = ("nominal_pressure", "contact_area_ratio", "contact_count", "mean_gap",
-             "max_pressure", "cells_per_patch", "flowing_area_ratio", "iterations")
+    names = ("nominal_pressure", "contact_area_ratio", "contact_count", "mean_gap", "normal_stiffness",
+             "max_pressure", "cells_per_patch", "flowing_area_ratio", "yielded_fraction", "iterations")
+    compliance = _compliance(system, z.shape)
     out = {name: np.full(h.size, np.nan) for name in names}
     force = np.zeros(z.shape)
     start = time.process_time()
+    top = float(zs[defined].max())
     for k in order:  # each from the last solution: a loading path
+        if float(h[k]) / sigma >= top:  # the flat touches nothing: no force, the gap is h - z
+            force = np.zeros(z.shape)
+            out.update({name: _set(out[name], k, value) for name, value in (
+                ("nominal_pressure", 0.0), ("contact_area_ratio", 0.0), ("contact_count", 0.0),
+                ("mean_gap", float(np.mean(float(h[k]) - z[defined]))), ("max_pressure", 0.0),
+                ("normal_stiffness", 0.0),
+                ("flowing_area_ratio", 0.0 if upper is not None else np.nan),
+                ("yielded_fraction", 0.0 if yield_pressure is not None else np.nan),
+                ("iterations", 0.0))})
+            continue
         result, force, gap = _solve(system, -float(h[k]) / sigma, force, upper, tolerance,
                                     max_iterations)
         if not result.success:
@@ -262,9 +320,18 @@ def solve_map(
         out["mean_gap"][k] = float(np.mean(np.maximum(gap[defined], 0.0))) * sigma
         out["max_pressure"][k] = force.max() / cell * contact_modulus
         out["cells_per_patch"][k] = cells / patches if patches else np.nan
+        flowing = np.zeros(z.shape, bool)
         if upper is not None:
             flowing = force >= upper * (1 - 1e-6)
             out["flowing_area_ratio"][k] = np.count_nonzero(flowing & defined) / n_defined
+        # -dp/dh: the cells in elastic contact held, the flat approaching (flowing cells keep H)
+        out["normal_stiffness"][k] = (_incremental_force(compliance, touching & ~flowing, 1e-8)
+                                      / area * contact_modulus / sigma)
+        if yield_pressure is not None and cells:
+            above = force > yield_pressure / contact_modulus * cell
+            out["yielded_fraction"][k] = np.count_nonzero(above & defined) / cells
+        elif yield_pressure is not None:
+            out["yielded_fraction"][k] = 0.0
         out["iterations"][k] = result.nit
     cpu = time.process_time() - start
     meta = {
@@ -272,14 +339,19 @@ def solve_map(
         "contact_area_ratio": ("1", "real contact area ratio A/A0: contacting cells over defined cells"),
         "contact_count": ("1/m^2", "contact patches (connected contacting cells, eight neighbours) per unit area"),
         "mean_gap": ("m", "mean gap between the flat and the deformed surface over the defined cells"),
+        "normal_stiffness": ("Pa/m", "normal stiffness -dp/dh: the force increment of an approach with "
+                                     "the contacting cells held (flowing cells at the hardness excluded)"),
         "max_pressure": ("Pa", "largest pressure of a cell"),
         "cells_per_patch": ("1", "contacting cells per contact patch (resolution of the contacts)"),
         "flowing_area_ratio": ("1", "share of the nominal area at the hardness (flowing)"),
+        "yielded_fraction": ("1", "share of the real contact area pressed beyond the yield pressure "
+                                  "(elastic solution)"),
         "iterations": ("1", "conjugate-gradient iterations of the solve"),
     }
     ds = xr.Dataset(
         {name: ("separation", out[name], attrs(*meta[name])) for name in names
-         if hardness is not None or name != "flowing_area_ratio"},
+         if (hardness is not None or name != "flowing_area_ratio")
+         and (yield_pressure is not None or name != "yielded_fraction")},
         coords={"separation": ("separation", h, attrs(
             "m", "height of the rigid flat above the mean plane of the surface"))},
     ).sortby("separation")

@@ -47,7 +47,7 @@ ROUTE_SEPARATOR = "+"
 #: is no reference, and no route is said to hold there
 MIN_CELLS_PER_PATCH = 10.0
 #: what a route's scene takes from the route; the rest is the reference scene's
-ROUTE_PARTS = ("population", "asperity", "homogenization", "effects")
+ROUTE_PARTS = ("population", "asperity", "homogenization", "effects", "route")
 
 
 def route_scene(name: str, definition: Config, route: str, results: str) -> dict:
@@ -183,6 +183,20 @@ def _longest_run(mask: np.ndarray) -> tuple[int, int] | None:
     return best
 
 
+def recommended(names, pressure_error: np.ndarray, area_error: np.ndarray, resolved: np.ndarray
+                ) -> tuple[np.ndarray, np.ndarray]:
+    """Per separation, the route (of `names`, rows of the errors) whose larger absolute error,
+    of pressure and of area, is smallest, and that error; '' and NaN where no route has
+    both errors or the reference does not resolve its contact."""
+    worst = np.fmax(np.abs(pressure_error), np.abs(area_error))
+    worst = np.where(np.isfinite(pressure_error) & np.isfinite(area_error), worst, np.nan)
+    have = np.isfinite(worst).any(axis=0) & resolved
+    pick = np.argmin(np.where(np.isfinite(worst), worst, np.inf), axis=0)
+    best = np.where(have, np.asarray(names, dtype=object)[pick], "").astype(object)
+    error = np.where(have, np.take_along_axis(worst, pick[None, :], axis=0)[0], np.nan)
+    return best, error
+
+
 def comparison_dataset(reference: xr.Dataset, interfaces: Mapping[str, xr.Dataset],
                        agreement: float) -> xr.Dataset:
     """Each statistical route's error against the elastic boundary-element solution.
@@ -265,6 +279,13 @@ def comparison_dataset(reference: xr.Dataset, interfaces: Mapping[str, xr.Datase
     }
     for k, v in ranges.items():
         out[k] = ("route", v, attrs(*range_meta[k]))
+    best, best_error = recommended(names, vals["pressure_error"], vals["area_error"], resolved)
+    out["recommended_route"] = ("separation", best, attrs(
+        "1", "the route closest to the elastic boundary elements at this separation (the smallest "
+             "larger of its pressure and area errors); empty where no route is defined or the "
+             "boundary elements do not resolve the contact"))
+    out["recommended_error"] = ("separation", best_error, attrs(
+        "1", "the larger of the recommended route's pressure and area errors (absolute)"))
     if "hardness" in reference["limit"].values:
         pl = reference.sel(limit="hardness")["nominal_pressure"].values
         with np.errstate(divide="ignore", invalid="ignore"):
@@ -290,6 +311,9 @@ def comparison_dataset(reference: xr.Dataset, interfaces: Mapping[str, xr.Datase
     for i, name in enumerate(names):
         log.info("route %s: holds (within %g) from separation %.4g to %.4g m", name, agreement,
                  ranges["holds_from"][i], ranges["holds_to"][i])
+    for hk, route, error in zip(h, best, best_error):
+        if route:
+            log.info("separation %.4g m: recommended route %s (largest error %.3g)", hk, route, error)
     return out
 
 

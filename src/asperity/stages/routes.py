@@ -1,0 +1,209 @@
+"""The routes beyond independent asperities (workflow/rules/routes.smk): the interface law
+of a height map from interacting asperities, from Persson's theory, or from the
+boundary-element contact of the map itself, each in the contract of every
+``interface.nc`` (DESIGN.md: Routes).
+
+A scene asks for one with its ``route`` section; a reference scene's ``routes`` may
+hold them beside the statistical routes, each run as the scene ``<scene>+<route>``
+(`asperity.stages.reference.route_scene`).
+
+One definition of separation and gap in every route, the boundary elements' with a
+periodic boundary: the map is one period of an infinite interface, the separation h
+is the height of the rigid flat above the mean plane of the map's (prepared) heights,
+and the elastic displacement has zero mean (no q = 0 mode), so the deformed surface's
+mean plane stays where it was and the mean gap of an elastic contact equals h.  The
+interacting asperities use the same periodic half-space with zero mean (its Green's
+function, `asperity.homogenize.interacting`), and Persson's theory is written in the
+mean gap itself.  Hence pressure at equal separation is pressure at equal mean gap in
+all of them.
+
+Every route runs on the map as the surface stage prepares it (form removed, filtered
+at the scene's lateral scale ``surface.scale``: `asperity.stages.surface`), so the
+boundary elements, the spectrum of Persson's theory and the summits of the
+interacting route see the same heights.
+"""
+
+from __future__ import annotations
+
+import logging
+import math
+from typing import Any, Mapping
+
+import numpy as np
+import xarray as xr
+
+from asperity import scene
+from asperity.homogenize import validity
+from asperity.population.density import height_scale
+from asperity.references.hertz import plane_strain_modulus
+# the map as the surface stage reads and prepares it: the script of the route rule calls
+# this module only
+from asperity.stages.surface import prepared_roughness, reading  # noqa: F401
+from asperity.units import attrs
+
+log = logging.getLogger("asperity")
+
+Config = Mapping[str, Any]
+
+#: the routes a scene's ``route.kind`` names
+KINDS = ("interacting", "persson", "boundary_elements")
+#: fewest contacting cells per patch at which the boundary elements resolve the contact
+#: (the same limit as the reference's, `asperity.stages.reference.MIN_CELLS_PER_PATCH`)
+MIN_CELLS_PER_PATCH = 10.0
+
+#: the interface variables every route writes: units and long names
+CONTRACT = {
+    "nominal_pressure": ("Pa", "nominal pressure: total force over the nominal area"),
+    "contact_area_ratio": ("1", "real contact area ratio A/A0"),
+    "normal_stiffness": ("Pa/m", "normal stiffness -dp/dh per unit nominal area"),
+    "contact_count": ("1/m^2", "contact spots per unit nominal area"),
+    "mean_gap": ("m", "mean gap between the flat and the deformed surface"),
+}
+
+
+def separations(homogenization_cfg: Config, surface_ds: xr.Dataset, units_cfg: Config) -> np.ndarray:
+    """The separations [m] of the scene (``homogenization.separations``; in ``sigma``, the
+    standard deviation of the prepared heights, as the reference's)."""
+    units = scene.Units.from_section(units_cfg)
+    return scene.Homogenization.from_section(homogenization_cfg, units).separations(
+        height_scale(surface_ds))
+
+
+def contact_modulus_and_hardness(material_cfg: Config, units_cfg: Config) -> tuple[float, float]:
+    """E* = E / (1 - nu^2) [Pa] of the body against a rigid flat, and its hardness [Pa]
+    (`asperity.homogenize.validity.hardness_of`: given, or Tabor's 2.8 Y; NaN if unknown)."""
+    body = scene.Material.from_scene(material_cfg, scene.Units.from_section(units_cfg))
+    modulus = float(plane_strain_modulus(body.youngs_modulus, body.poisson))
+    return modulus, validity.hardness_of(body)[0]
+
+
+def _hardness_for(route_cfg: Config, hardness: float) -> float | None:
+    """The cap of a route limited by the hardness (None: elastic)."""
+    if route_cfg.get("limit", "elastic") != "hardness":
+        return None
+    if not math.isfinite(hardness):
+        raise ValueError("route.limit: hardness needs material.hardness or material.yield_stress "
+                         "in the scene")
+    return hardness
+
+
+def _boundary_elements(z, dx, dy, h, modulus, hardness, route_cfg) -> xr.Dataset:
+    from asperity.references.boundary_element import solve_map
+
+    cap = _hardness_for(route_cfg, hardness)
+    ds = solve_map(z, dx, dy, h, modulus, hardness=cap, boundary="periodic",
+                   yield_pressure=hardness if cap is None and math.isfinite(hardness) else None, tolerance=float(route_cfg.get("tolerance", 1e-6)),
+                   max_iterations=int(route_cfg.get("max_iterations", 5000)))
+    ds.attrs["route_cpu_time"] = ds.attrs.pop("cpu_time", math.nan)
+    return ds
+
+
+def _persson(z, dx, dy, h, modulus, hardness, route_cfg) -> xr.Dataset:
+    from asperity.references import persson
+
+    q, C = persson.isotropic_spectrum(z, dx, dy)
+    return persson.persson_interface(q, C, modulus, h, hardness=_hardness_for(route_cfg, hardness),
+                                     gamma=float(route_cfg.get("gamma", persson.DEFAULT_GAMMA)))
+
+
+def _interacting(z, dx, dy, h, modulus, surface_ds: xr.Dataset) -> xr.Dataset:
+    """The map's own asperities as the surface stage found them (surface.nc: the summits at
+    the scene's lateral scale, or the pixel's peaks), coupled on the map's period."""
+    from asperity.homogenize.interacting import interacting_interface
+
+    if "peak" not in surface_ds.dims or surface_ds.sizes["peak"] == 0:
+        raise ValueError("the interacting route needs the map's peaks (surface.nc has none)")
+    ny, nx = np.shape(z)
+    out = interacting_interface(surface_ds["x"].values, surface_ds["y"].values,
+                                surface_ds["height"].values, surface_ds["curvature"].values, h,
+                                modulus, (nx * dx, ny * dy))
+    out.attrs["peaks"] = int(surface_ds.sizes["peak"])
+    out.attrs["scale"] = float(surface_ds.attrs.get("scale", math.nan))
+    return out
+
+
+def route_interface(z: np.ndarray, dx: float, dy: float, surface_ds: xr.Dataset, route_cfg: Config,
+                    material_cfg: Config, homogenization_cfg: Config, units_cfg: Config,
+                    validity_cfg: Config | None = None) -> xr.Dataset:
+    """The interface of the map `z` (m, ``z[i, j] = z(x = j dx, y = i dy)``, prepared as the
+    surface stage prepares it) by the route of `route_cfg` (``kind``: one of `KINDS`), on
+    the scene's separations, in the contract of ``interface.nc``, with ``valid`` and
+    ``validity`` (`assess_route`).  The interacting route takes the map's asperities from
+    `surface_ds` (the summits at the scene's lateral scale, or the pixel's peaks)."""
+    kind = route_cfg["kind"]
+    if kind not in KINDS:
+        raise ValueError(f"route.kind must be one of {', '.join(KINDS)}; got {kind!r}")
+    h = separations(homogenization_cfg, surface_ds, units_cfg)
+    if h.min() <= 0:
+        raise ValueError("homogenization.separations: a periodic interface's mean gap equals the "
+                         "separation and cannot be zero or negative; start above 0")
+    modulus, hardness = contact_modulus_and_hardness(material_cfg, units_cfg)
+    if kind == "boundary_elements":
+        out = _boundary_elements(z, dx, dy, h, modulus, hardness, route_cfg)
+    elif kind == "persson":
+        out = _persson(z, dx, dy, h, modulus, hardness, route_cfg)
+    else:
+        out = _interacting(z, dx, dy, h, modulus, surface_ds)
+    for name, (units, long_name) in CONTRACT.items():
+        if name not in out:
+            out[name] = ("separation", np.full(h.size, np.nan))
+        out[name].attrs = {**attrs(units, long_name), **{k: v for k, v in out[name].attrs.items()
+                                                        if k not in ("units", "long_name")}}
+    out.attrs.update({"route": kind, "limit": route_cfg.get("limit", "elastic"),
+                      "contact_modulus": modulus, "separation_definition":
+                      "height of the flat above the mean plane of the prepared map; periodic, "
+                      "zero-mean displacement: the mean gap of an elastic contact"})
+    log.info("route %s (%s): %d separations, largest A/A0 %.3g, largest p %.4g Pa", kind,
+             out.attrs["limit"], h.size, float(np.nanmax(out["contact_area_ratio"].values)),
+             float(np.nanmax(out["nominal_pressure"].values)))
+    return assess_route(out, kind, hardness, validity_cfg or {})
+
+
+def assess_route(out: xr.Dataset, kind: str, hardness: float, validity_cfg: Config) -> xr.Dataset:
+    """``valid`` and ``validity`` of a route's interface: the boundary elements where they
+    resolve their contact patches (at least `MIN_CELLS_PER_PATCH` cells); the
+    interacting route where the share of load carried through merged spots is within
+    ``validity.merged_load_fraction`` (its own interaction indicator); every elastic
+    route where its yield could be judged (a hardness), as in
+    `asperity.homogenize.validity`.  Separations without contact are valid."""
+    p = out["nominal_pressure"].values
+    contact = np.isfinite(p) & (p > 0)
+    valid = np.ones(p.shape, bool)
+    why = np.full(p.shape, "", dtype=object)
+
+    def fail(where, reason):
+        nonlocal valid
+        new = where & valid
+        why[new] = np.asarray(reason, dtype=object)[new] if np.ndim(reason) else reason
+        valid = valid & ~where
+
+    if "cells_per_patch" in out:
+        cells = out["cells_per_patch"].values
+        with np.errstate(invalid="ignore"):
+            fail(contact & (cells < MIN_CELLS_PER_PATCH), np.array(
+                [f"unresolved_contacts {c:.3g} cells per patch < {MIN_CELLS_PER_PATCH:g}" for c in cells],
+                dtype=object))
+    limit = float(validity_cfg.get("merged_load_fraction", 0.5))
+    if "merged_load_fraction" in out:
+        merged = out["merged_load_fraction"].values
+        with np.errstate(invalid="ignore"):
+            fail(contact & (merged > limit), np.array(
+                [f"merged_load_fraction {m:.3g} > {limit:.3g}" for m in merged], dtype=object))
+    elastic = out.attrs.get("limit", "elastic") == "elastic"
+    if elastic and not math.isfinite(hardness):
+        fail(contact, "unchecked_yield: no hardness or yield stress in the scene's material")
+    elif elastic and "yielded_fraction" in out:
+        share = out["yielded_fraction"].values
+        cap = float(validity_cfg.get("yielded_fraction", 0.5))
+        with np.errstate(invalid="ignore"):
+            fail(contact & (share > cap), np.array([f"yielded_fraction {v:.3g} > {cap:.3g}" for v in share],
+                                                   dtype=object))
+    out["valid"] = ("separation", valid, {
+        **attrs("1", "the route's assumptions hold at this separation (asperity.stages.routes)"),
+        "limit_merged_load_fraction": limit, "min_cells_per_patch": MIN_CELLS_PER_PATCH})
+    out["validity"] = ("separation", why.astype(object), attrs(
+        "1", "the first assumption that fails at this separation (empty where valid)"))
+    warning = validity.warn_invalid(out, f"route {kind}")
+    if warning:
+        out.attrs["validity_warning"] = warning
+    return out

@@ -1,0 +1,103 @@
+"""The routes beyond independent asperities as a stage (asperity.stages.routes): the
+boundary elements as a route, its stiffness, and the validity each route reports."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from asperity.references.boundary_element import solve_map
+from asperity.stages import routes
+from asperity.surface.synthetic import gaussian_map
+from tests.scene_defaults import filled
+
+UNITS = {"length": "um", "pressure": "MPa"}
+ALUMINUM = filled("material", {"youngs_modulus": 70000.0, "poisson": 0.33, "yield_stress": 280.0})
+BARE = filled("material", {"youngs_modulus": 70000.0, "poisson": 0.33})
+
+
+@pytest.fixture(scope="module")
+def surface():
+    """A small Gaussian map (128 x 128 points every 1.25 um, sigma 1 um, l = 20 um)."""
+    z = gaussian_map(128, 1.25e-6, 1e-6, 20e-6, 3)
+    return z - z.mean()
+
+
+def _surface_ds(z):
+    import xarray as xr
+
+    return xr.Dataset({"sigma": ((), float(z.std()), {"units": "m", "long_name": "sigma"})})
+
+
+def _homogenization(start=1.0, stop=2.5, count=7):
+    return filled("homogenization", {"separations": {"start": start, "stop": stop, "count": count,
+                                                     "unit": "sigma"}})
+
+
+def test_the_boundary_element_route_stiffness_is_the_derivative_of_its_own_pressure(surface):
+    """-dp/dh of the route (the incremental problem on the contact set) against the central
+    difference of two solves 1e-4 sigma apart, at each separation: within 2e-3 (a cell that
+    enters or leaves the contact within the step moves the difference, not the stiffness)."""
+    z = surface
+    ds = routes.route_interface(z, 1.25e-6, 1.25e-6, _surface_ds(z),
+                                {"kind": "boundary_elements", "tolerance": 1e-9}, ALUMINUM,
+                                _homogenization(), UNITS, {})
+    h = ds["separation"].values
+    modulus = ds.attrs["contact_modulus"]
+    step = 1e-4 * float(z.std())
+    for k in range(h.size):
+        pair = solve_map(z, 1.25e-6, 1.25e-6, [h[k] - step, h[k] + step], modulus, tolerance=1e-10)
+        p = pair["nominal_pressure"].values
+        exact = -(p[1] - p[0]) / (2 * step)
+        assert ds["normal_stiffness"].values[k] == pytest.approx(exact, rel=2e-3), h[k]
+
+
+def test_every_route_writes_the_interface_contract(surface):
+    z = surface
+    for kind in ("boundary_elements", "persson"):
+        ds = routes.route_interface(z, 1.25e-6, 1.25e-6, _surface_ds(z), {"kind": kind}, ALUMINUM,
+                                    _homogenization(), UNITS, {})
+        for name, (unit, _) in routes.CONTRACT.items():
+            assert ds[name].attrs["units"] == unit, (kind, name)
+            assert ds[name].attrs["long_name"], (kind, name)
+        assert ds.attrs["route"] == kind
+        p = ds["nominal_pressure"].values
+        assert np.all(np.diff(p) < 0), kind  # less pressure at larger separations
+        # equal to the solver's tolerance (1e-6 sigma; Persson's exactly)
+        np.testing.assert_allclose(ds["mean_gap"].values, ds["separation"].values, rtol=1e-6)
+
+
+def test_an_elastic_route_without_hardness_is_not_called_valid(surface):
+    z = surface
+    bare = BARE
+    ds = routes.route_interface(z, 1.25e-6, 1.25e-6, _surface_ds(z), {"kind": "persson"}, bare,
+                                _homogenization(), UNITS, {})
+    assert not ds["valid"].values.any()
+    assert set(ds["validity"].values) == {"unchecked_yield: no hardness or yield stress in the "
+                                          "scene's material"}
+
+
+def test_the_boundary_elements_judge_their_own_resolution(surface):
+    """A map sampled at 4 points per correlation length: toward its highest point the few
+    contacts have fewer than 10 cells each, not valid there; above it the flat touches
+    nothing (zero force, valid)."""
+    z = gaussian_map(128, 1.25e-6, 1e-6, 5e-6, 3)
+    z = z - z.mean()
+    ds = routes.route_interface(z, 1.25e-6, 1.25e-6, _surface_ds(z), {"kind": "boundary_elements"},
+                                ALUMINUM, _homogenization(1.0, 4.5, 15), UNITS, {})
+    cells = ds["cells_per_patch"].values
+    low = np.isfinite(cells) & (cells < routes.MIN_CELLS_PER_PATCH)
+    assert low.any()
+    assert not ds["valid"].values[low].any()
+    assert all(str(w).startswith("unresolved_contacts") for w in ds["validity"].values[low])
+    free = ds["nominal_pressure"].values == 0
+    assert free.any() and ds["valid"].values[free].all()
+    assert np.all(ds["normal_stiffness"].values[free] == 0)
+
+
+def test_a_hardness_limited_route_needs_a_hardness(surface):
+    bare = BARE
+    with pytest.raises(ValueError, match="route.limit: hardness"):
+        routes.route_interface(surface, 1.25e-6, 1.25e-6, _surface_ds(surface),
+                               {"kind": "boundary_elements", "limit": "hardness"}, bare,
+                               _homogenization(), UNITS, {})
