@@ -12,6 +12,7 @@ import xarray as xr
 from matplotlib.lines import Line2D
 
 from asperity.fe.contact import PENALTY_FACTOR
+from asperity.plots.layout import fit, subplots
 from asperity.studies.hertz import REPORT_MAX_FORCE_ERROR, REPORT_MAX_RADIUS_ERROR
 
 #: colour per quantity
@@ -90,7 +91,7 @@ def _error_legend(ax, markers: dict):
 
 def accuracy_figure(ds: xr.Dataset) -> plt.Figure:
     """1 x 3: error vs wall time, error vs dofs, penalty error vs factor."""
-    fig, axes = plt.subplots(1, 3, figsize=(16.5, 5.0))
+    fig, axes = subplots(1, 3, figsize=(16.5, 5.0))
     rf = float(ds.attrs.get("report_max_force_error", REPORT_MAX_FORCE_ERROR))
     rr = float(ds.attrs.get("report_max_radius_error", REPORT_MAX_RADIUS_ERROR))
 
@@ -142,5 +143,4 @@ def accuracy_figure(ds: xr.Dataset) -> plt.Figure:
     fig.suptitle(f"Hertz problem (report 6.1): R = {ds.attrs.get('radius', np.nan):g} m, "
                  f"E = {ds.attrs.get('youngs_modulus', np.nan):g} Pa, "
                  f"nu = {ds.attrs.get('poisson', np.nan):g}", fontsize=10)
-    fig.tight_layout()
-    return fig
+    return fit(fig)

@@ -10,6 +10,8 @@ import matplotlib.pyplot as plt
 import numpy as np
 import xarray as xr
 
+from asperity.plots.layout import fit, subplots
+
 __all__ = ["scene_accuracy_figure"]
 
 QUANTITY_STYLE = {"nominal_pressure": dict(ls="-", marker="o", label="pressure"),
@@ -28,7 +30,7 @@ def scene_accuracy_figure(ds: xr.Dataset) -> plt.Figure:
     """
     branches = [str(b) for b in ds["branch"].values
                 if np.isfinite(ds["deviation"].sel(branch=b).values).any()]
-    fig, axes = plt.subplots(1, max(len(branches), 1), figsize=(6.2 * max(len(branches), 1), 4.6),
+    fig, axes = subplots(1, max(len(branches), 1), figsize=(6.2 * max(len(branches), 1), 4.6),
                              squeeze=False, sharex=True, sharey=True)
     reference = str(ds.attrs.get("reference", ds["preset"].values[-1]))
     presets = [str(p) for p in ds["preset"].values]
@@ -69,5 +71,4 @@ def scene_accuracy_figure(ds: xr.Dataset) -> plt.Figure:
         ax.legend(fontsize=7)
     fig.suptitle(f"What accuracy costs per scene (threshold {float(ds.attrs.get('threshold', np.nan)):g} "
                  f"of the largest {reference} value)", fontsize=10)
-    fig.tight_layout()
-    return fig
+    return fit(fig)

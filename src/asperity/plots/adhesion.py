@@ -14,6 +14,7 @@ import xarray as xr
 
 from asperity import units
 from asperity.plots.figures import finish
+from asperity.plots.layout import subplots
 from asperity.plots.validity import shade_invalid
 
 STYLE = {"approach": dict(ls="-", marker="o", ms=3), "retract": dict(ls="--", marker=".", ms=3)}
@@ -34,7 +35,7 @@ def adhesion_figure(interface: xr.Dataset, asperities: xr.Dataset,
     computed asperities with their pull-off forces against DMT and JKR (Fig. 7.6)."""
     ls_ = units.length_scale(length_unit)
     ps = units.pressure_scale(pressure_unit)
-    fig, axes = plt.subplots(1, 4, figsize=(21, 4.6))
+    fig, axes = subplots(1, 4, figsize=(21, 4.6))
     p_all = [interface["nominal_pressure"].values / ps]
     for i, branch in enumerate(interface["branch"].values):
         one = interface.sel(branch=branch)

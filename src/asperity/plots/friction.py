@@ -11,6 +11,7 @@ import numpy as np
 import xarray as xr
 
 from asperity import units
+from asperity.plots.layout import fit, subplots
 from asperity.plots.validity import shade_invalid
 
 __all__ = ["friction_figure", "laws_figure"]
@@ -29,7 +30,7 @@ def friction_figure(friction: xr.Dataset, others: dict[str, xr.Dataset] | None =
     h = friction["separation"].values / ls
     shear, total = friction["mu_shear"].values, friction["mu"].values
     mu_i = float(friction["mu_interlocking"])
-    fig, axes = plt.subplots(1, 2, figsize=(12, 4.4))
+    fig, axes = subplots(1, 2, figsize=(12, 4.4))
     ax = axes[0]
     ok = np.isfinite(shear) & (p > 0)
     ax.semilogx(p[ok], shear[ok], "o-", ms=3, color="C0", label="shearing τ_s A_c / F (9.41)")
@@ -75,8 +76,7 @@ def friction_figure(friction: xr.Dataset, others: dict[str, xr.Dataset] | None =
         a.set_ylim(bottom=0)
         a.grid(True, which="both", alpha=0.3)
         a.legend(fontsize=7)
-    fig.tight_layout()
-    return fig
+    return fit(fig)
 
 
 def laws_figure(laws: xr.Dataset, pressure_unit: str = "Pa", length_unit: str = "m") -> plt.Figure:
@@ -87,7 +87,7 @@ def laws_figure(laws: xr.Dataset, pressure_unit: str = "Pa", length_unit: str = 
     a = laws["approach"].values / ls
     p = laws["nominal_pressure"].values / ps
     win = laws["in_window"].values.astype(bool)
-    fig, axes = plt.subplots(1, 2, figsize=(12, 4.4))
+    fig, axes = subplots(1, 2, figsize=(12, 4.4))
     ax = axes[0]
     show = (a > 0) & (p > 0)
     ax.loglog(a[show & win], p[show & win], "o", color="C0", ms=4, label="homogenized (fitted)")
@@ -126,5 +126,4 @@ def laws_figure(laws: xr.Dataset, pressure_unit: str = "Pa", length_unit: str = 
     for a_ in axes:
         a_.grid(True, which="both", alpha=0.3)
         a_.legend(fontsize=7)
-    fig.tight_layout()
-    return fig
+    return fit(fig)

@@ -13,6 +13,7 @@ import xarray as xr
 
 from asperity import units
 from asperity.fe.outputs import SMALL_STRAIN_LIMIT
+from asperity.plots.layout import fit, subplots
 
 #: line style of each body, colour of each mesh (in the file's order)
 BODY_STYLE = {"elastic": dict(ls="--"), "viscoplastic": dict(ls="-")}
@@ -37,7 +38,7 @@ def plane_strain_figure(ds: xr.Dataset, length_unit: str = "um") -> plt.Figure:
     over the elastic one."""
     scale = units.length_scale(length_unit)
     figs, what = _what(ds)
-    fig, (ax_f, ax_e, ax_c) = plt.subplots(1, 3, figsize=(15.0, 4.6))
+    fig, (ax_f, ax_e, ax_c) = subplots(1, 3, figsize=(15.0, 4.6))
     w = ds["interference"].values / scale
     for j, mesh in enumerate(ds["mesh"].values):
         colour = MESH_COLOURS[j % len(MESH_COLOURS)]
@@ -92,8 +93,7 @@ def plane_strain_figure(ds: xr.Dataset, length_unit: str = "um") -> plt.Figure:
     ax_c.legend(fontsize=7, loc="best")
     for ax in (ax_f, ax_e, ax_c):
         ax.grid(alpha=0.3)
-    fig.tight_layout()
-    return fig
+    return fit(fig)
 
 
 def _triangulation(m: xr.Dataset, scale: float, deformed: bool):
@@ -131,7 +131,7 @@ def plane_strain_mesh_figure(ds: xr.Dataset, length_unit: str = "um") -> plt.Fig
     # a log scale over three decades: the strain at the ridge's corners is a hundred times
     # that of most of its top; below the decades, the lowest colour
     norm = LogNorm(vmin=1e-3 * float(strain.max()), vmax=float(strain.max()))
-    fig, axes = plt.subplots(len(meshes), 3, figsize=(15.0, 4.4 * len(meshes)), squeeze=False)
+    fig, axes = subplots(len(meshes), 3, figsize=(15.0, 4.4 * len(meshes)), squeeze=False)
     for row, mesh in zip(axes, meshes):
         m = ds.sel(mesh=mesh)
         ax_all, ax_near, ax_def = row
@@ -173,8 +173,7 @@ def plane_strain_mesh_figure(ds: xr.Dataset, length_unit: str = "um") -> plt.Fig
             ax.set_aspect("equal")
             ax.set(xlabel=f"x [{length_unit}]", ylabel=f"z [{length_unit}]")
     fig.suptitle(f"{what}: the meshes and the deformed body ({_mesh_figs(ds)})")
-    fig.tight_layout()
-    return fig
+    return fit(fig)
 
 
 def _outline(tri, inside: np.ndarray) -> np.ndarray:

@@ -8,6 +8,7 @@ import xarray as xr
 
 from asperity import units
 from asperity.plots.figures import finish
+from asperity.plots.layout import subplots
 
 #: A/A0 = KAPPA p / (E* h'_rms) at small load, the boundary-element literature's constant
 #: (Hyun et al., Phys. Rev. E 70 (2004) 026117), drawn for orientation
@@ -19,7 +20,7 @@ def reference_figure(reference: xr.Dataset, comparison: xr.Dataset, length_unit:
     """Pressure against separation, area against pressure, and each route's errors."""
     ls_ = units.length_scale(length_unit)
     ps = units.pressure_scale(pressure_unit)
-    fig, axes = plt.subplots(1, 3, figsize=(15, 4.4))
+    fig, axes = subplots(1, 3, figsize=(15, 4.4))
     h = reference["separation"].values / ls_
     for limit, style in (("elastic", "-"), ("hardness", "--")):
         if limit not in reference["limit"].values:

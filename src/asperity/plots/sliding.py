@@ -8,6 +8,7 @@ import numpy as np
 import xarray as xr
 
 from asperity import units
+from asperity.plots.layout import fit, subplots
 
 
 def _section(ds: xr.Dataset, snapshot: str, scale: float):
@@ -38,7 +39,7 @@ def sliding_figure(ds: xr.Dataset, length_unit: str = "um") -> plt.Figure:
     the end with contours of the horizontal displacement (Fig. 9.5); (d) the
     equivalent inelastic strain at the end and where its maximum sits."""
     scale = units.length_scale(length_unit)
-    fig, axes = plt.subplots(2, 2, figsize=(12.0, 9.0))
+    fig, axes = subplots(2, 2, figsize=(12.0, 9.0))
     (ax_f, ax_p), (ax_u, ax_e) = axes
     t = ds["time"].values
     ax_f.plot(t, 1e3 * ds["normal_force"].values, "-o", ms=3, label="normal force")
@@ -121,5 +122,4 @@ def sliding_figure(ds: xr.Dataset, length_unit: str = "um") -> plt.Figure:
     fig.suptitle(f"sliding asperity (report 9.2): {ds.attrs.get('dofs', '?')} dofs, "
                  f"{ds.attrs.get('steps', '?')} steps, accuracy {ds.attrs.get('accuracy', '?')}",
                  fontsize=11)
-    fig.tight_layout()
-    return fig
+    return fit(fig)

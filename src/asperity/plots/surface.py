@@ -22,8 +22,13 @@ import xarray as xr
 from scipy.special import ndtri
 
 from asperity import units
+from asperity.plots.layout import fit, subplots
 
-__all__ = ["ESTIMATOR_STYLE", "surface_figure", "map_figure", "directional_figure"]
+__all__ = ["ESTIMATOR_STYLE", "MAX_PEAK_MARKERS", "surface_figure", "map_figure", "directional_figure",
+           "robust_limits", "shown_peaks"]
+
+#: at most this many peaks are marked on a map (the highest: they touch first)
+MAX_PEAK_MARKERS = 200
 
 ESTIMATOR_STYLE = {
     "sampling": dict(color="C0", marker="o"),
@@ -91,13 +96,12 @@ def surface_figure(surface: xr.Dataset, convergence: xr.Dataset | None = None,
     """A profile's surface.nc: heights and form, roughness, estimators, convergence, PSD, bearing curve."""
     scale = units.length_scale(length_unit)
     if "estimator" not in surface.dims:  # statistics given in the scene
-        fig, ax = plt.subplots(figsize=(5.2, 4.0))
+        fig, ax = subplots(figsize=(5.2, 4.0))
         text = "\n".join(f"{n} = {float(surface[n]):.6g} {surface[n].attrs['units']}"
                          for n in surface.data_vars if surface[n].ndim == 0)
         ax.text(0.05, 0.5, text, transform=ax.transAxes, va="center", family="monospace")
         ax.set_axis_off()
-        fig.tight_layout()
-        return fig
+        return fit(fig)
     measured = "raw_height" in surface
     removed = measured and (surface.attrs.get("form_removed", "none") != "none"
                             or surface.attrs.get("filter", "none") != "none")
@@ -107,7 +111,7 @@ def surface_figure(surface: xr.Dataset, convergence: xr.Dataset | None = None,
     panels += ["psd", "bearing"] if measured else []
     cols = min(3, len(panels))
     rows = -(-len(panels) // cols)
-    fig, axes = plt.subplots(rows, cols, figsize=(5.2 * cols, 4.0 * rows), squeeze=False)
+    fig, axes = subplots(rows, cols, figsize=(5.2 * cols, 4.0 * rows), squeeze=False)
     axes = list(axes.ravel())
     for ax in axes[len(panels):]:
         ax.set_axis_off()
@@ -147,45 +151,102 @@ def surface_figure(surface: xr.Dataset, convergence: xr.Dataset | None = None,
         elif name == "bearing":
             _bearing(ax, surface, scale, length_unit)
     _gaussian_note(fig, surface)
-    fig.tight_layout()
-    return fig
+    return fit(fig)
 
 
-def _image(fig, ax, surface, name, scale, length_unit, title, cmap="terrain"):
+def robust_limits(values: np.ndarray, percentiles: tuple[float, float] = (1.0, 99.0)
+                  ) -> tuple[float, float]:
+    """Colour limits symmetric about the mean m of the finite `values`, out to the
+    farther of their `percentiles` (default 1st and 99th): m -+ max(|P1 - m|, |P99 - m|).
+    A few spikes or pits of a measured map then do not set the scale, and the
+    roughness shows."""
+    v = np.asarray(values, float)
+    v = v[np.isfinite(v)]
+    if not v.size:
+        return (-1.0, 1.0)
+    mean = float(v.mean())
+    lo, hi = np.percentile(v, percentiles)
+    half = max(abs(float(lo) - mean), abs(float(hi) - mean)) or max(abs(mean), 1.0)
+    return (mean - half, mean + half)
+
+
+def shown_peaks(height: np.ndarray, count: int = MAX_PEAK_MARKERS) -> np.ndarray:
+    """Indices of the `count` highest peaks (all if fewer), highest last."""
+    height = np.asarray(height, float)
+    if height.size <= count:
+        return np.argsort(height)
+    top = np.argpartition(height, height.size - count)[height.size - count:]
+    return top[np.argsort(height[top])]
+
+
+def _image(fig, ax, surface, name, scale, length_unit, title, cmap="terrain", robust=False,
+           label="height"):
+    """`surface[name]` as an image in the length unit, with a colour bar; `robust`:
+    colour limits from `robust_limits` (values beyond drawn in the end colours)."""
     x, y = surface["map_x"].values / scale, surface["map_y"].values / scale
     values = surface[name].values / scale
     dx = (x[1] - x[0]) if x.size > 1 else 1.0
     dy = (y[1] - y[0]) if y.size > 1 else 1.0
-    im = ax.imshow(np.ma.masked_invalid(values), origin="lower", cmap=cmap,
+    vmin, vmax = robust_limits(values) if robust else (None, None)
+    im = ax.imshow(np.ma.masked_invalid(values), origin="lower", cmap=cmap, vmin=vmin, vmax=vmax,
                    extent=(x[0] - dx / 2, x[-1] + dx / 2, y[0] - dy / 2, y[-1] + dy / 2))
-    fig.colorbar(im, ax=ax, label=f"height [{length_unit}]")
+    fig.colorbar(im, ax=ax, label=f"{label} [{length_unit}]", extend="both" if robust else "neither")
     ax.set(xlabel=f"x [{length_unit}]", ylabel=f"y [{length_unit}]", title=title)
+
+
+def _density_panel(fig, ax, h: np.ndarray, k: np.ndarray, bins: tuple[int, int], length_unit: str,
+                   title: str, tails: float = 0.5) -> None:
+    """The sampled joint density of peak height and curvature (Fig. 2.9): counts on a
+    `bins` grid over the `tails`-th to (100 - `tails`)-th percentile of each, divided
+    by the number of all peaks and the cell area (so the few peaks outside, e.g. of
+    spikes, do not squeeze the rest into one cell, and the density keeps its scale)."""
+    if not h.size:
+        ax.set(title=title)
+        return
+    ranges = [np.percentile(v, [tails, 100.0 - tails]) for v in (h, k)]
+    ranges = [(lo, hi) if hi > lo else (lo - 0.5, hi + 0.5) for lo, hi in ranges]
+    counts, ze, ke = np.histogram2d(h, k, bins=bins, range=ranges)
+    f = counts / (h.size * np.diff(ze)[:, None] * np.diff(ke)[None, :])
+    mesh = ax.pcolormesh(ze, ke, f.T, cmap="Blues")
+    fig.colorbar(mesh, ax=ax, label=f"sampled f(z_p, κ) [1/({length_unit}·1/{length_unit})]")
+    inside = (h >= ranges[0][0]) & (h <= ranges[0][1]) & (k >= ranges[1][0]) & (k <= ranges[1][1])
+    ax.plot(h[inside], k[inside], "k.", ms=1, alpha=0.4)
+    ax.set(xlim=ranges[0], ylim=ranges[1], xlabel=f"peak height z_p [{length_unit}]",
+           ylabel=f"mean curvature κ [1/{length_unit}]",
+           title=title + (f"; {h.size - int(inside.sum())} beyond the {tails:g}-{100 - tails:g}th "
+                          "percentiles not drawn" if not inside.all() else ""))
 
 
 def map_figure(surface: xr.Dataset, length_unit: str = "m", bins: tuple[int, int] = (20, 20)) -> plt.Figure:
     """A map's surface.nc: raw, form, roughness with peaks (Fig. 2.8), sampled joint density
     of peaks (Fig. 2.9), radially averaged PSD, height-difference autocorrelation (log-log),
-    bearing-area curve."""
+    bearing-area curve.
+
+    The heights as read and the roughness are coloured on robust limits (`robust_limits`:
+    1st to 99th percentile, symmetric about the mean), the roughness on a diverging map;
+    on it the `MAX_PEAK_MARKERS` highest peaks are marked by small hollow circles."""
     scale = units.length_scale(length_unit)
-    fig, axes = plt.subplots(2, 4, figsize=(22, 9.5))
+    # "compressed": the constrained layout that packs a grid of fixed-aspect images
+    fig, axes = subplots(2, 4, figsize=(22, 10), layout="compressed")
+    fig.get_layout_engine().set(w_pad=6 / 72)
     a = axes.ravel()
     share = float(surface["undefined_share"])
     _image(fig, a[0], surface, "raw_height", scale, length_unit,
            f"as read: rms {float(surface['rms_height_raw']) / scale:.4g} {length_unit}, "
-           f"{100 * share:.1f} % undefined (white)")
+           f"{100 * share:.1f} % undefined (white)", robust=True)
     _image(fig, a[1], surface, "form_height", scale, length_unit,
            f"removed: {surface.attrs['form_removed']}"[:60], cmap="viridis")
     _image(fig, a[2], surface, "roughness_height", scale, length_unit,
-           f"roughness: rms {float(surface['rms_height']) / scale:.4g} {length_unit}")
-    a[2].plot(surface["x"] / scale, surface["y"] / scale, "r.", ms=2, label="peaks")
+           f"roughness: rms {float(surface['rms_height']) / scale:.4g} {length_unit} "
+           "(colours: 1st-99th percentile)", cmap="RdBu_r", robust=True, label="roughness height")
+    top = shown_peaks(surface["height"].values)
+    a[2].plot(surface["x"].values[top] / scale, surface["y"].values[top] / scale, "o", ms=3,
+              mfc="none", mec="k", mew=0.6, ls="none",
+              label=f"{top.size} highest of {surface.sizes['peak']} peaks")
     a[2].legend(fontsize=8, loc="upper right")
-    h, k = surface["height"].values / scale, surface["curvature"].values * scale
-    counts, ze, ke, mesh = a[3].hist2d(h, k, bins=bins, cmap="Blues", density=True)
-    fig.colorbar(mesh, ax=a[3], label=f"sampled f(z_p, κ) [1/({length_unit}·1/{length_unit})]")
-    a[3].plot(h, k, "k.", ms=2)
-    a[3].set(xlabel=f"peak height z_p [{length_unit}]", ylabel=f"mean curvature κ [1/{length_unit}]",
-             title=f"{surface.sizes['peak']} peaks, {float(surface['peak_density']) * scale**2:.3g} "
-                   f"per {length_unit}^2 (2.4.3)")
+    _density_panel(fig, a[3], surface["height"].values / scale, surface["curvature"].values * scale,
+                   bins, length_unit, f"{surface.sizes['peak']} peaks, "
+                   f"{float(surface['peak_density']) * scale**2:.3g} per {length_unit}^2 (2.4.3)")
     _loglog(a[4], surface["wavenumber"].values * scale, surface["psd"].values / scale**4,
             f"wavenumber q [rad/{length_unit}]", f"C(q) [{length_unit}^4]",
             "radially averaged power spectral density")
@@ -211,8 +272,7 @@ def map_figure(surface: xr.Dataset, length_unit: str = "m", bins: tuple[int, int
               va="center", fontsize=8, family="monospace")
     a[7].set_axis_off()
     _gaussian_note(fig, surface)
-    fig.tight_layout()
-    return fig
+    return fit(fig)
 
 
 def _wrap(text: str, width: int) -> str:
@@ -228,7 +288,7 @@ def directional_figure(surface: xr.Dataset, length_unit: str = "m") -> plt.Figur
     estimator = surface.attrs.get("population_estimator", "sampling")
     t = np.linspace(0, np.pi, 181)
     c, s = np.cos(t), np.sin(t)
-    fig, axes = plt.subplots(1, 2, figsize=(11, 4.2))
+    fig, axes = subplots(1, 2, figsize=(11, 4.2))
 
     def m2(sfx=""):
         g = lambda n: float(surface[f"{n}{sfx}"])  # noqa: E731
@@ -254,5 +314,4 @@ def directional_figure(surface: xr.Dataset, length_unit: str = "m") -> plt.Figur
     axes[1].set(xlabel="profile direction [deg]", ylabel=f"m4 (curvature variance) [1/{length_unit}^2]")
     for ax in axes:
         ax.legend(fontsize=8)
-    fig.tight_layout()
-    return fig
+    return fit(fig)

@@ -17,6 +17,8 @@ import numpy as np
 import xarray as xr
 from matplotlib.lines import Line2D
 
+from asperity.plots.layout import fit, subplots
+
 #: variable -> (factor from SI, axis label)
 AXES = {
     "time": (1.0, "time [s]"),
@@ -45,7 +47,7 @@ def uniaxial_figure(ds: xr.Dataset) -> plt.Figure:
     panels = list(dict.fromkeys(_text(ds["panel"].values)))
     ncol = min(3, len(panels))
     nrow = math.ceil(len(panels) / ncol)
-    fig, axes = plt.subplots(nrow, ncol, figsize=(5.2 * ncol, 3.9 * nrow), squeeze=False)
+    fig, axes = subplots(nrow, ncol, figsize=(5.2 * ncol, 3.9 * nrow), squeeze=False)
     flat = list(axes.ravel())
     for ax in flat[len(panels):]:
         ax.set_axis_off()
@@ -82,8 +84,7 @@ def uniaxial_figure(ds: xr.Dataset) -> plt.Figure:
         ax.grid(True, alpha=0.3)
         ax.legend(fontsize=7)
     fig.suptitle(ds.attrs.get("title", "uniaxial tests"), fontsize=10)
-    fig.tight_layout()
-    return fig
+    return fit(fig)
 
 
 def _positive(values) -> np.ndarray:
@@ -124,7 +125,7 @@ def uniaxial_accuracy_figure(ds: xr.Dataset) -> plt.Figure:
     tolerance sweep; circled: the study's pairing of tolerances), and the step
     ratios explicit / implicit per test (the pairing and matched accuracy)."""
     tests = _text(ds["test"].values)
-    fig, axes = plt.subplots(1, 3, figsize=(17.0, 5.0))
+    fig, axes = subplots(1, 3, figsize=(17.0, 5.0))
     _sweep_panel(axes[0], ds, "steps")
     axes[0].set_xlabel("accepted integration steps [1]")
     axes[0].set_title("(a) end error vs steps (tolerance sweep)")
@@ -165,5 +166,4 @@ def uniaxial_accuracy_figure(ds: xr.Dataset) -> plt.Figure:
     ax.grid(True, axis="y", which="major", alpha=0.3)
     fig.suptitle(f"Bodner-Partom material point: implicit against explicit integration "
                  f"(reference: {ds.attrs.get('reference', '')})", fontsize=10)
-    fig.tight_layout()
-    return fig
+    return fit(fig)

@@ -60,7 +60,10 @@ def adhesion_figure(interface: xr.Dataset, asperities: xr.Dataset, units_cfg: Co
 
 def asperities_figure(asperities: xr.Dataset, units_cfg: Config,
                       others: Mapping[str, xr.Dataset] | None = None):
-    return plots.asperities_figure(asperities, others or {}, length_unit=units_cfg["length"])
+    """Single asperities against Hertz (report 6.1, 7.2), lengths and the material's
+    stresses in the scene's units."""
+    return plots.asperities_figure(asperities, others or {}, length_unit=units_cfg["length"],
+                                   pressure_unit=units_cfg.get("pressure", "Pa"))
 
 
 def verification_figure(verification: xr.Dataset):
