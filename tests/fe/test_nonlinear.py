@@ -7,8 +7,9 @@ in tests/data/nonlinear_reference.json (with the commit they came from: the
 file's, or the case's own; re-record a case with ``python
 tests/fe/test_nonlinear.py <case>``, only on purpose).
 On the same mesh and steps the routine must do exactly what the four
-loops did: iteration counts and cuts equal, forces and areas to 1e-10
-relative.
+loops did: iteration counts and cuts equal, forces and areas to the
+round-off of a history (1e-9 relative; a stiffness, a difference quotient of
+forces, 1e-5), which differs between processors' BLAS kernels.
 
 One deliberate change since: the adhesive path retries a steep position once
 before bisecting (`adhesive._advance`), so the adhesive case's iteration
@@ -68,7 +69,14 @@ from asperity.fe import (BodnerPartom, FlatMotion, FrictionLaw, History, J2Plast
 DATA = Path(__file__).resolve().parents[1] / "data" / "nonlinear_reference.json"
 #: what the record keeps per case: counters (exact) and results (1e-10 relative)
 COUNTS = ("newton_iterations", "step_cuts")
-RTOL = 1e-10
+#: states to round-off of the whole history: OpenBLAS picks its kernels by processor
+#: (OPENBLAS_CORETYPE), and an 80-step viscoplastic history recorded on one processor
+#: agrees on another to 2.7e-10 (bodner_partom, its last steps); the iteration counts
+#: and cuts, which say whether the algorithm is the same, stay exact
+RTOL = 1e-9
+#: a difference quotient of forces (normal_stiffness) amplifies that round-off by F/dF:
+#: 1.8e-6 on the elastic exact-contact case between two processors
+RTOL_DERIVED = 1e-5
 
 
 def _elastic(**kw):
@@ -160,7 +168,8 @@ def test_same_iterations_and_results_as_the_previous_loops(reference, name):
     for key in COUNTS:
         assert got[key] == ref[key], (key, got[key], ref[key])
     for key in CASES[name][1]:
-        np.testing.assert_allclose(got[key], ref[key], rtol=RTOL, atol=0.0, err_msg=key)
+        rtol = RTOL_DERIVED if key == "normal_stiffness" else RTOL
+        np.testing.assert_allclose(got[key], ref[key], rtol=rtol, atol=0.0, err_msg=key)
 
 
 if __name__ == "__main__":
