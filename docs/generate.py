@@ -118,7 +118,7 @@ def cli_page() -> str:
            "`asperity` is installed with the package (`make reproduce` or `make test` installs it "
            "into `.venv`). The pipeline itself is Snakemake: `snakemake --cores 2 [TARGET]`.\n\n",
            "```text\n$ asperity --help\n", _help(), "\n```\n"]
-    for command in ("new-scene", "show"):
+    for command in ("new-scene", "show", "check"):
         out += [f"\n## `asperity {command}`\n\n```text\n$ asperity {command} --help\n", _help(command),
                 "\n```\n"]
     return "".join(out)

@@ -36,9 +36,10 @@ def test_show_var_prints_a_table(folder, capsys):
     assert "0.000002" in out.replace("2e-06", "0.000002") and "1.0" in out
 
 
-def test_show_unknown_variable_names_the_file(folder):
-    with pytest.raises(SystemExit, match="no variable 'nope'"):
-        main(["show", str(folder / "interface.nc"), "--var", "nope"])
+def test_show_unknown_variable_names_the_file(folder, capsys):
+    assert main(["show", str(folder / "interface.nc"), "--var", "nope"]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith(f"asperity: error: {folder / 'interface.nc'}: nope: no such variable"), err
 
 
 # --------------------------------------------------------------------------
@@ -61,35 +62,42 @@ def validated(path):
 
 
 def test_new_scene_for_a_map(tmp_path, capsys):
-    assert main(["new-scene", str(DATA / "di-3.di"), "--scene-dir", str(tmp_path)]) == 0
+    assert main(["new-scene", str(DATA / "di-3.di"), "--scene-dir", str(tmp_path), "--material", "steel"]) == 0
     out = capsys.readouterr().out
     assert f"wrote {tmp_path / 'di_3.yaml'}" in out
-    assert "snakemake --cores 2 --config 'scenes=[di_3]' studies=False" in out
+    assert ("snakemake --cores 2 results/di_3/interface.nc results/di_3/figures/interface.png "
+            f"--config scene_dir={tmp_path.resolve()}") in out
     text = (tmp_path / "di_3.yaml").read_text()
-    assert "EDIT" in text.split("material:")[1].splitlines()[0]  # the material is marked for the user
+    assert "steel: SAE 1020" in text.split("material:")[1].splitlines()[0]  # the material and its source
     scene = validated(tmp_path / "di_3.yaml")
-    assert scene["surface"]["map"] == {"file": str(DATA / "di-3.di")}  # unit, spacing from the file
+    # inside the workflow folder: relative to it (unit, spacing from the file)
+    assert scene["surface"]["map"] == {"file": "data/topographies/di-3.di"}
     assert scene["surface"]["form"] == "tilt"
     assert scene["population"]["density"] == "sampled"
     assert scene["homogenization"]["rule"] == "peaks"
     assert scene["asperity"]["model"] == "hertz"
+    assert scene["material"] == {"youngs_modulus": 209000, "poisson": 0.3, "yield_stress": 350,
+                                 "model": "elastic"}  # the schema's default model
     assert "nm" in text  # says which unit the file's numbers are in
 
 
 def test_new_scene_for_a_profile_and_a_unitless_file(tmp_path, capsys):
-    assert main(["new-scene", str(DATA / "hfm-1.hfm"), "stylus", "--scene-dir", str(tmp_path)]) == 0
+    steel = ["--scene-dir", str(tmp_path), "--material", "steel"]
+    assert main(["new-scene", str(DATA / "hfm-1.hfm"), "stylus", *steel]) == 0
     scene = validated(tmp_path / "stylus.yaml")
     assert scene["population"]["density"] == "nayak" and scene["homogenization"]["rule"] == "gauss"
-    with pytest.raises(SystemExit, match=r"xy-4.txt: the file states no length unit; give the unit of its "
-                                         r"numbers with --unit"):
-        main(["new-scene", str(DATA / "xy-4.txt"), "--scene-dir", str(tmp_path)])
+    capsys.readouterr()
+    assert main(["new-scene", str(DATA / "xy-4.txt"), *steel]) == 2
+    assert capsys.readouterr().err == (f"asperity: error: {DATA / 'xy-4.txt'}: the file states no length "
+                                       f"unit (give the unit of its numbers with --unit: m, cm, mm, um, nm)\n")
     assert not (tmp_path / "xy_4.yaml").exists()
-    assert main(["new-scene", str(DATA / "xy-4.txt"), "--unit", "mm", "--scene-dir", str(tmp_path)]) == 0
+    assert main(["new-scene", str(DATA / "xy-4.txt"), "--unit", "mm", *steel]) == 0
     assert validated(tmp_path / "xy_4.yaml")["surface"]["profile"]["unit"] == "mm"
-    with pytest.raises(SystemExit, match="exists; choose another NAME or pass --force"):
-        main(["new-scene", str(DATA / "hfm-1.hfm"), "stylus", "--scene-dir", str(tmp_path)])
-    with pytest.raises(SystemExit, match="no such file"):
-        main(["new-scene", str(tmp_path / "missing.plu"), "--scene-dir", str(tmp_path)])
+    capsys.readouterr()
+    assert main(["new-scene", str(DATA / "hfm-1.hfm"), "stylus", *steel]) == 2
+    assert "exists (choose another NAME or pass --force)" in capsys.readouterr().err
+    assert main(["new-scene", str(tmp_path / "missing.plu"), *steel]) == 2
+    assert capsys.readouterr().err == f"asperity: error: {tmp_path / 'missing.plu'}: no such file\n"
 
 
 def test_show_flags_files_written_by_another_version_of_their_stage(tmp_path, capsys):

@@ -170,7 +170,7 @@ def test_missing_and_binary_files(tmp_path):
     raises_at(p, None, lambda: read_profile(p, spacing=1.0), "cannot read")
     b = tmp_path / "bin.dat"
     b.write_bytes(b"\xff\xfe\x00\x01")
-    raises_at(b, None, lambda: read_profile(b, spacing=1.0), "not a UTF-8 text file")
+    raises_at(b, None, lambda: read_profile(b, spacing=1.0), r"byte 0x00 at offset 2: not a text file")
 
 
 # --------------------------------------------------------------------------
@@ -276,3 +276,45 @@ def test_netcdf_map_errors(tmp_path):
     raises_at(s, None, lambda: read_map(s, spacing=1.0), "cannot read as netCDF")
     t = netcdf_map(tmp_path / "agree.nc", MAP, np.arange(4.0), np.arange(3.0), units="m", coord_units="m")
     raises_at(t, None, lambda: read_map(t, spacing=2.0), "disagrees")
+
+
+# --------------------------------------------------------------------------
+# text exports: encodings other than UTF-8, a header that states the units
+# --------------------------------------------------------------------------
+
+EXPORT_Z = np.array([0.125, -1.5, 2.25, 0.75, -0.375])
+
+
+@pytest.mark.parametrize("encoding, extra", [
+    ("cp1252", "\u20ac"),  # the euro sign: 0x80 in Windows-1252, undefined in Latin-1's C1 range
+    ("latin-1", "\x81"),  # 0x81: undefined in Windows-1252, so only Latin-1 decodes the file
+])
+def test_a_latin1_or_cp1252_export_is_read_with_the_unit_its_header_states(tmp_path, encoding, extra):
+    from asperity.io.inputs import text_header
+    from asperity.io.topography import read_measurement
+
+    head = f"Profile export {extra}\r\nX unit: mm\r\nZ unit: \u00b5m\r\nX;Z\r\n"
+    body = "".join(f"{0.002 * k:.3f};{z}\r\n" for k, z in enumerate(EXPORT_Z))
+    p = tmp_path / "export.txt"
+    p.write_bytes((head + body).encode(encoding))
+    assert p.read_bytes().count(b"\xb5") == 1  # the micro sign is one byte
+    lines, units, found = text_header(p)
+    assert (len(lines), units, found) == (4, {"x": "mm", "z": "um"}, encoding)
+    m = read_measurement(p, "profile")
+    np.testing.assert_array_equal(m.heights, EXPORT_Z * 1e-6)  # um, exactly as the product
+    assert m.dx == pytest.approx(0.002e-3, rel=1e-12)  # the x column in mm
+    assert m.unit == "um" and f"({encoding})" in m.notes[0]
+    z, dx = read_profile(p, length_unit="mm", header=True, height_unit="um")
+    np.testing.assert_array_equal(z, EXPORT_Z * 1e-6)
+    # the scene's unit overrides the header's, for positions and heights alike
+    m = read_measurement(p, "profile", unit="nm")
+    np.testing.assert_array_equal(m.heights, EXPORT_Z * 1e-9)
+    assert m.dx == pytest.approx(0.002e-9, rel=1e-12)
+
+
+def test_header_units_spellings():
+    from asperity.io.inputs import header_units
+
+    assert header_units(["# Z unit: [µm]", "x-unit = mm"]) == {"z": "um", "x": "mm"}
+    assert header_units(["Height units: nm", "Lateral unit: micrometre"]) == {"z": "nm", "x": "um"}
+    assert header_units(["Unit: um", "Z unit: volts"]) == {"any": "um"}  # a unit asperity knows only

@@ -194,7 +194,7 @@ def test_fe_range_stops_short_of_the_foot_of_sphere_and_paraboloid():
 
     sphere = asperity(model="fe", geometry="sphere")
     assert geometry.max_interference(fe.Sphere(2.0), sphere) == pytest.approx(0.5, rel=1e-15)
-    assert geometry.max_interference(fe.Sphere(2.0), asperity(model="fe", max_radius_fraction=0.5)) == \
+    assert geometry.max_interference(fe.Sphere(2.0), asperity(model="fe", geometry="sphere", max_radius_fraction=0.5)) == \
         pytest.approx(0.9 * 2.0 * (1 - 2**-0.5), rel=1e-12)
     assert geometry.max_interference(fe.Paraboloid(2.0), sphere) == pytest.approx(0.9 * 0.25, rel=1e-12)
 

@@ -1,34 +1,47 @@
 """The ``asperity`` command: browse a results folder, or start a scene from a measured surface.
 
-    asperity show results/greenwood_williamson           every file: variables, dims, headline numbers
+    asperity show results/greenwood_williamson           every file: variables, dims, headline
+                                                         numbers, where the interface is valid
+                                                         and what its validity did not check
     asperity show results/greenwood_williamson/interface.nc --var nominal_pressure
                                                          one variable as a table
-    asperity new-scene data/topographies/mi-1.mi [NAME]  config/scenes/NAME.yaml for the file,
+    asperity show FILE.nc --var nominal_pressure --csv   the same as CSV (with `valid`), full precision
+    asperity new-scene data/topographies/mi-1.mi [NAME] --material steel
+                                                         config/scenes/NAME.yaml for the file,
                                                          and the command that runs it
+    asperity check config/scenes/NAME.yaml               a scene checked as the workflow will
+    asperity --version
 
 A file (or figure) written by another version of a stage's code than this one
-(`asperity.versions`) is flagged with ``!``: `snakemake` computes it again.
+(`asperity.versions`) is flagged with ``!``: `snakemake` computes it again.  Every
+error a user can cause is one line, ``asperity: error: <file>: <key or byte>: <what>
+(<likely fix>)``, and exit status 2.
 """
 
 from __future__ import annotations
 
 import argparse
+import csv
+import io
+import math
+import os
 import re
 import sys
 from pathlib import Path
 
 import numpy as np
 import xarray as xr
+import yaml
 
-from asperity import versions
-from asperity.io.figures import figure_version
+from asperity import __version__, units, versions
 from asperity.homogenize.validity import valid_ranges
+from asperity.io.figures import figure_version
 from asperity.io.netcdf import read_dataset
 
 
 def _headline(var: xr.DataArray) -> str:
     values = np.asarray(var.values)
-    units = var.attrs.get("units", "")
+    units_ = var.attrs.get("units", "")
     if values.dtype.kind in "SUO":
         return f"{values.size} strings"
     if values.size == 0:
@@ -39,8 +52,8 @@ def _headline(var: xr.DataArray) -> str:
     if finite.size == 0:
         return "all NaN"
     if values.size == 1:
-        return f"{finite.item():.6g} {units}".strip()
-    return f"{finite.min():.4g} .. {finite.max():.4g} {units}".strip()
+        return f"{finite.item():.6g} {units_}".strip()
+    return f"{finite.min():.4g} .. {finite.max():.4g} {units_}".strip()
 
 
 def version_note(written: str | None) -> str | None:
@@ -52,10 +65,38 @@ def version_note(written: str | None) -> str | None:
     return None if stale is None else f"{stale}: computed again by snakemake"
 
 
+def _open_result(path: Path) -> xr.Dataset:
+    """A result file, or a UserError naming it."""
+    try:
+        return read_dataset(path)
+    except FileNotFoundError:
+        raise UserError(f"{path}: no such result file") from None
+    except Exception as exc:  # netCDF4 and xarray raise OSError, ValueError, RuntimeError...
+        first = (str(exc).strip().splitlines() or [""])[0]
+        raise UserError(f"{path}: not a netCDF result file ({type(exc).__name__}: {first})") from None
+
+
+def caveats(ds: xr.Dataset) -> list[str]:
+    """What the validity of an interface (`asperity.homogenize.validity`) holds beside
+    ``valid: N of M``: the limits it applied and what it did not check (``not_checked``)."""
+    if "valid" not in ds:
+        return []
+    a = ds["valid"].attrs
+    lines = []
+    limits = {k[len("limit_"):]: v for k, v in a.items() if k.startswith("limit_")}
+    if limits:
+        lines.append("limits: " + ", ".join(f"{k} <= {float(v):.3g}" for k, v in limits.items()))
+    unchecked = str(a.get("not_checked", "none"))
+    if unchecked and unchecked != "none":
+        lines += ["not checked:"] + [f"  - {item}" for item in unchecked.split("; ")]
+    return lines
+
+
 def describe(path: Path) -> str:
-    """Variables, dimensions and headline numbers of one result file, and a note if
-    another version of its stage's code wrote it."""
-    ds = read_dataset(path)
+    """Variables, dimensions and headline numbers of one result file, where its interface
+    is valid and what that did not check, and a note if another version of its stage's
+    code wrote it."""
+    ds = _open_result(path)
     dims = ", ".join(f"{k}={v}" for k, v in ds.sizes.items()) or "scalars"
     lines = [f"{path}  [{dims}]  {ds.attrs.get('title', '')}"]
     note = version_note(ds.attrs.get(versions.ATTRIBUTE))
@@ -66,6 +107,7 @@ def describe(path: Path) -> str:
     if numbers:  # the file's headline numbers (FE cost, errors against closed forms, ...)
         lines.append("  " + ", ".join(f"{k} = {float(v):.6g}" for k, v in numbers.items()))
     lines += [f"  {line}" for line in valid_ranges(ds)]  # where the interface holds
+    lines += [f"  {line}" for line in caveats(ds)]  # and what that did not check
     for name, var in ds.data_vars.items():
         shape = f"({', '.join(var.dims)})" if var.dims else ""
         lines.append(f"  {name:<32s}{shape:<34s}{_headline(var)}")
@@ -75,13 +117,16 @@ def describe(path: Path) -> str:
     return "\n".join(lines)
 
 
+def _variable(ds: xr.Dataset, path: Path, name: str) -> xr.DataArray:
+    if name not in ds:
+        raise UserError(f"{path}: {name}: no such variable (it has: {', '.join(ds.data_vars)})")
+    return ds[name]
+
+
 def table(path: Path, name: str) -> str:
     """One variable of a result file as a text table over its dimensions."""
-    ds = read_dataset(path)
-    if name not in ds:
-        known = ", ".join(ds.data_vars)
-        raise SystemExit(f"{path}: no variable {name!r}; it has: {known}")
-    var = ds[name]
+    ds = _open_result(path)
+    var = _variable(ds, path, name)
     header = f"# {name} [{var.attrs.get('units', '')}]: {var.attrs.get('long_name', '')}"
     if var.ndim == 0:
         return f"{header}\n{var.values.item()}"
@@ -89,25 +134,61 @@ def table(path: Path, name: str) -> str:
     return f"{header}\n{frame.to_string()}"
 
 
+def csv_table(path: Path, name: str) -> str:
+    """One variable of a result file as CSV: a column per coordinate of its dimensions, the
+    variable, and ``valid`` (1 or 0) where the file has it on those dimensions; the header
+    names each column with its unit, ``name [unit]``; numbers with 17 significant digits
+    (a float64 reads back exactly)."""
+    ds = _open_result(path)
+    var = _variable(ds, path, name)
+    names = [name]
+    if "valid" in ds and name != "valid" and set(ds["valid"].dims) <= set(var.dims):
+        names.append("valid")
+    if var.ndim == 0:
+        frame = ds[names].expand_dims("row").to_dataframe().reset_index(drop=True)
+    else:
+        frame = ds[names].to_dataframe().reset_index()
+    frame = frame[[c for c in frame.columns if c in var.dims or c in var.coords or c in names]]
+    for column in frame.columns:
+        if frame[column].dtype == bool:
+            frame[column] = frame[column].astype(int)
+    labels = {}
+    for column in frame.columns:
+        unit = ds[column].attrs.get("units", "") if column in ds.variables else ""
+        labels[column] = f"{column} [{unit}]" if unit else str(column)
+    out = io.StringIO()
+    frame.rename(columns=labels).to_csv(out, index=False, float_format="%.17g",
+                                        quoting=csv.QUOTE_MINIMAL, lineterminator="\n")
+    return out.getvalue()
+
+
 # --------------------------------------------------------------------------
 # asperity new-scene FILE [NAME]
 # --------------------------------------------------------------------------
 
-#: what the written scene says about a profile's and a map's population (report 2.4.1, 2.4.3)
+#: a 2nd-degree polynomial that removes more than this share of the variance left after the
+#: tilt is form (the curvature of the part), not roughness
+FORM_SHARE = 0.5
+#: a removed tilt whose rms exceeds this many rms roughnesses is noted
+TILT_RATIO = 10.0
+#: ISO 4288: the evaluation length of a profile is five cut-off wavelengths
+CUTOFFS_PER_LENGTH = 5
+
+#: what the written scene says about a profile's population (Gaussian: 2.4.1) and a map's (2.4.3)
 _POPULATION = {
-    "profile": ("population:\n"
-                "  density: nayak          # Nayak/Francis peaks of a Gaussian isotropic surface (2.4.1)\n"
-                "  samples: {height: 11, curvature: 21, interference: 241}\n"),
-    "map": ("population:\n"
-            "  density: sampled        # the map's own peaks, eight-neighbour rule (2.4.3)\n"
-            "  histogram_bins: [20, 20]\n"),
+    "nayak": ("population:\n"
+              "  density: nayak          # Nayak/Francis peaks of a Gaussian isotropic surface (2.4.1)\n"
+              "  samples: {height: 11, curvature: 21, interference: 241}\n"),
+    "sampled": ("population:\n"
+                "  density: sampled        # the map's own peaks, eight-neighbour rule (2.4.3)\n"
+                "  histogram_bins: [20, 20]\n"),
 }
 _HOMOGENIZATION = {
-    "profile": ("homogenization:\n"
-                "  rule: gauss             # 2 x 2 Gauss points per cell of the (height, curvature) plane (2.5)\n"
-                "  cells: [60, 40]\n"),
-    "map": ("homogenization:\n"
-            "  rule: peaks             # the expectation over the map's actual peaks (2.5.3)\n"),
+    "nayak": ("homogenization:\n"
+              "  rule: gauss             # 2 x 2 Gauss points per cell of the (height, curvature) plane (2.5)\n"
+              "  cells: [60, 40]\n"),
+    "sampled": ("homogenization:\n"
+                "  rule: peaks             # the expectation over the map's actual peaks (2.5.3)\n"),
 }
 
 
@@ -117,114 +198,339 @@ def scene_name(path: Path) -> str:
     return name if name and name[0].isalpha() else f"surface_{name}"
 
 
-def scene_text(path: Path, info: dict, unit: str | None, spacing: float | None) -> str:
-    """The YAML of a scene for the measured file `path` (`info`: what its metadata says)."""
-    kind = info["kind"]
-    source = [f"    file: {path.as_posix()}"]
+def workflow_root(start: Path | None = None) -> Path | None:
+    """The workflow folder (where the Snakefile is, and `snakemake` runs): the first of
+    `start` (default the current folder) and its parents that holds one, else the
+    checkout this package is installed from, else None."""
+    here = (start or Path.cwd()).resolve()
+    for folder in (here, *here.parents):
+        if (folder / "Snakefile").is_file():
+            return folder
+    checkout = Path(__file__).resolve().parents[2]
+    return checkout if (checkout / "Snakefile").is_file() else None
+
+
+def scene_path(file: Path, root: Path | None) -> str:
+    """How a scene names `file`: relative to the workflow folder `root` when the file is
+    inside it (the workflow runs there), else absolute; never relative to the shell's folder."""
+    resolved = file.resolve()
+    if root is not None:
+        try:
+            return resolved.relative_to(root).as_posix()
+        except ValueError:
+            pass
+    return resolved.as_posix()
+
+
+def material_section(name: str | None, youngs_modulus: float | None, poisson: float | None,
+                     yield_stress: float | None, hardness: float | None,
+                     pressure_unit: str) -> tuple[dict, str]:
+    """The ``material`` section (values in `pressure_unit`) from `--material NAME` and the
+    constants given (which override the named material's), and where its numbers come from.
+    Refused (UserError, SceneError naming the option): no material, an unknown name, a
+    modulus without a Poisson's ratio, a size that says the unit is wrong
+    (`asperity.scene.checks.check_material`)."""
+    from asperity.scene.checks import SceneError, check_material
+    from asperity.scene.materials import named_materials
+
+    p = units.pressure_scale(pressure_unit)
+    section: dict[str, float] = {}
+    source = "given to asperity new-scene"
+    if name is not None:
+        table = named_materials()
+        if name not in table:
+            raise UserError(f"--material: unknown material {name!r} (known: {', '.join(table)})")
+        known = table[name]
+        section = {"youngs_modulus": known.youngs_modulus / p, "poisson": known.poisson}
+        if known.yield_stress is not None:
+            section["yield_stress"] = known.yield_stress / p
+        source = f"{name}: {known.label} ({known.source})"
+    given = {"youngs_modulus": youngs_modulus, "poisson": poisson, "yield_stress": yield_stress,
+             "hardness": hardness}
+    section.update({k: float(v) for k, v in given.items() if v is not None})
+    if not section:
+        raise UserError(f"--material: no material given (give --material NAME, one of "
+                        f"{', '.join(named_materials())}, or --youngs-modulus E --poisson NU in "
+                        f"{pressure_unit}; a placeholder would go unnoticed)")
+    for key in ("youngs_modulus", "poisson"):
+        if key not in section:
+            raise UserError(f"--{key.replace('_', '-')}: missing (give it too, or --material NAME)")
+    if not -1.0 < section["poisson"] < 0.5:
+        raise UserError(f"--poisson: {section['poisson']:g} is outside -1 < nu < 0.5")
+    for key, value in section.items():
+        if not (math.isfinite(value) and value > 0.0) and key != "poisson":
+            raise UserError(f"--{key.replace('_', '-')}: {value:g} must be a positive number")
+    try:
+        check_material(section, pressure_unit)
+    except SceneError as err:
+        option = "--" + err.key.split(".")[-1].replace("_", "-")
+        fix = (err.fix or "").replace("set units.pressure:", "pass --pressure-unit")
+        raise UserError(f"{option}: {err.what} ({fix})") from None
+    if name is not None and any(v is not None for v in given.values()):
+        source += "; overridden by the constants given"
+    return section, source
+
+
+def assess_surface(m) -> dict:
+    """The numbers `new-scene` chooses by, for a `Measurement` `m`: skewness and kurtosis of
+    the heights less their least-squares tilt (`asperity.surface.distribution`) and whether
+    they are Gaussian; the rms of the removed tilt over the rms roughness; the share of the
+    variance left after the tilt that a 2nd-degree polynomial removes (form, not roughness:
+    above `FORM_SHARE`); the record length [m] (the longer side of a map)."""
+    from asperity.surface.distribution import gaussianity, height_distribution
+    from asperity.surface.form import remove_form
+
+    z, defined = m.heights, m.defined
+    rough, tilt = remove_form(z, "tilt", defined=defined)
+    second, _ = remove_form(z, "polynomial", 2, defined=defined)
+    dist = height_distribution(rough, defined)
+    gaussian, why = gaussianity(dist["skewness"], dist["kurtosis"])
+    r1, r2 = rough[defined], second[defined]
+    variance = float(np.mean((r1 - r1.mean()) ** 2))
+    tilt_rms = float(np.sqrt(np.mean((tilt[defined] - z[defined].mean()) ** 2)))
+    if m.kind == "profile":
+        length = (z.size - 1) * m.dx
+    else:
+        length = max((z.shape[1] - 1) * m.dx, (z.shape[0] - 1) * m.dy)
+    return {"skewness": dist["skewness"], "kurtosis": dist["kurtosis"], "gaussian": gaussian,
+            "why": why, "rms": dist["rms"], "tilt_ratio": tilt_rms / dist["rms"],
+            "form_share": 1.0 - float(np.mean((r2 - r2.mean()) ** 2)) / variance, "length": length}
+
+
+def surface_notes(kind: str, stats: dict, length_unit: str) -> list[str]:
+    """What the scene's comment says about the surface, and `new-scene` prints: non-Gaussian
+    heights (and, for a profile, what the Nayak density then assumes) and a dominating form."""
+    notes = []
+    numbers = f"skewness {stats['skewness']:.3g}, kurtosis {stats['kurtosis']:.3g}"
+    if not stats["gaussian"]:
+        if kind == "map":
+            notes.append(f"the heights are not Gaussian ({stats['why']}): the population is the "
+                         f"map's own peaks (density: sampled, 2.4.3)")
+        else:
+            notes.append(f"the heights are not Gaussian ({stats['why']}); the Nayak density "
+                         f"assumes Gaussian heights (2.4.1), and the light-load answer may be off "
+                         f"by a factor (asperity.surface.distribution): measure a map of the "
+                         f"surface for its own peaks (2.4.3)")
+    else:
+        notes.append(f"the heights are Gaussian within the limits ({numbers})")
+    scale = units.length_scale(length_unit)
+    cutoff = stats["length"] / CUTOFFS_PER_LENGTH / scale
+    if stats["form_share"] > FORM_SHARE:
+        notes.append(f"the form dominates: a 2nd-degree polynomial removes {100 * stats['form_share']:.0f} % "
+                     f"of the variance left after the tilt; set surface.form: polynomial with "
+                     f"surface.polynomial_degree: 2, or surface.filter: {{lambda_c: {cutoff:.3g}}} "
+                     f"({length_unit}: a fifth of the record, ISO 4288)")
+    elif stats["tilt_ratio"] > TILT_RATIO:
+        notes.append(f"the removed tilt is {stats['tilt_ratio']:.3g} times the rms roughness: if "
+                     f"waviness remains, add surface.filter: {{lambda_c: {cutoff:.3g}}} ({length_unit})")
+    return notes
+
+
+def scene_text(file_text: str, path: Path, info: dict, m, unit: str | None, spacing: float | None,
+               material: tuple[dict, str], pressure_unit: str, notes: list[str]) -> str:
+    """The YAML of a scene for the measured file `path` (named `file_text` in the scene;
+    `info`: what its metadata says; `m`: the `Measurement` read from it)."""
+    kind = m.kind
+    density = "sampled" if kind == "map" else "nayak"
+    source = [f"    file: {file_text}"]
     if info["unit"] is None:
         source.append(f"    unit: {unit}                # the file states no unit: given to new-scene")
     elif unit is not None and unit != info["unit"]:
         source.append(f"    unit: {unit}                # overrides the file's {info['unit']}")
     if spacing is not None:
         source.append(f"    spacing: {spacing:g}           # in um; overrides the file's")
-    points = " x ".join(str(n) for n in info["points"])
-    where = (f"{info['reader']}, channel {info['channel']!r}" if info.get("channel")
-             else info["reader"])
-    file_unit = unit or info["unit"]
+    points = " x ".join(str(n) for n in m.heights.shape)
+    where = f"{m.reader}, channel {m.channel!r}" if m.channel else m.reader
+    section, origin = material
+    comment = "".join(f"# NOTE: {n}\n" for n in notes)
     return (
         f"title: Measured {kind} {path.name} with elastic Hertz asperities\n"
-        f"report: \"2.3 statistics, {'2.4.1' if kind == 'profile' else '2.4.3'} peaks, 6.1 Hertz, 2.5 expectation\"\n"
-        f"# Written by: asperity new-scene {path.as_posix()}\n"
-        f"# The {kind} of {path.name}: {points} points, read by {where}; its numbers in {file_unit}.\n"
+        f"report: \"2.3 statistics, {'2.4.3' if density == 'sampled' else '2.4.1'} peaks, 6.1 Hertz, "
+        f"2.5 expectation\"\n"
+        f"# Written by: asperity new-scene {file_text}\n"
+        f"# The {kind} of {path.name}: {points} points, read by {where}; its numbers in {m.unit}.\n"
         f"# Its least-squares tilt is removed before the statistics (surface.form); add\n"
-        f"# surface.filter: {{lambda_c: ...}} (um) to keep only the roughness shorter than a cut-off\n"
+        f"# surface.filter: {{lambda_c: ...}} to keep only the roughness shorter than a cut-off\n"
         f"# wavelength. Every asperity is an elastic Hertz tip.\n"
-        f"units: {{length: um, pressure: MPa}}\n"
+        + comment
+        + f"units: {{length: um, pressure: {pressure_unit}}}\n"
         f"surface:\n"
         f"  {kind}:\n" + "\n".join(source) + "\n"
         f"  form: tilt\n"
-        + _POPULATION[kind]
+        + _POPULATION[density]
         + "asperity:\n"
         "  model: hertz            # or {model: fe, geometry: sphere | paraboloid | cosine}\n"
-        "material:                 # EDIT: a placeholder (steel); give your material's constants, or for\n"
-        "  youngs_modulus: 210000.0  # two rough bodies the sum surface and the effective modulus\n"
-        "  poisson: 0.3\n"
-        + _HOMOGENIZATION[kind]
+        f"material:                 # {origin}\n"
+        + "".join(f"  {k}: {v:.6g}\n" for k, v in section.items())
+        + _HOMOGENIZATION[density]
         + "  separations: {start: 0.0, stop: 3.0, count: 31, unit: sigma}\n"
     )
 
 
-def new_scene(file: Path, name: str | None, scene_dir: Path, unit: str | None, spacing: float | None,
-              force: bool) -> tuple[Path, str]:
-    """Write scene_dir/NAME.yaml for a measured file; returns its path and the command that runs it."""
-    from asperity.io.inputs import InputError
-    from asperity.io.topography import describe_file
+def new_scene(file: Path, name: str | None, scene_dir: Path | None, unit: str | None,
+              spacing: float | None, force: bool, material: tuple[dict, str],
+              pressure_unit: str = "MPa") -> tuple[Path, str, list[str]]:
+    """Write scene_dir/NAME.yaml for a measured file, read whole (`read_measurement`);
+    returns its path, the command that runs it and the notes on the surface."""
+    from asperity.io.topography import describe_file, read_measurement
+    from asperity.scene.checks import check_scene
 
     if not file.exists():
-        raise SystemExit(f"{file}: no such file")
-    try:
-        info = describe_file(file)
-    except InputError as err:
-        raise SystemExit(str(err)) from None
+        raise UserError(f"{file}: no such file")
+    info = describe_file(file)
     if info["kind"] not in ("profile", "map"):
-        raise SystemExit(f"{file}: holds neither a profile nor a map ({info['points']} points)")
+        raise UserError(f"{file}: holds neither a profile nor a map ({info['points']} points)")
     if info["unit"] is None and unit is None:
-        raise SystemExit(f"{file}: the file states no length unit; give the unit of its numbers with "
-                         f"--unit (m, cm, mm, um, nm)")
+        raise UserError(f"{file}: the file states no length unit (give the unit of its numbers "
+                        f"with --unit: m, cm, mm, um, nm)")
     if info["spacing"] is None and spacing is None:
-        raise SystemExit(f"{file}: the file states no spacing; give it with --spacing (in um)")
+        raise UserError(f"{file}: the file states no spacing (give it with --spacing, in um)")
+    m = read_measurement(file, info["kind"], unit=unit,  # the whole file, as the surface job will
+                         spacing=None if spacing is None else spacing * units.length_scale("um"))
+    notes = surface_notes(m.kind, assess_surface(m), "um")
     name = name or scene_name(file)
     if not re.fullmatch(r"[a-z0-9_]+", name):
-        raise SystemExit(f"scene name {name!r}: use lower-case letters, digits and underscores")
+        raise UserError(f"scene name {name!r}: use lower-case letters, digits and underscores")
+    root = workflow_root(scene_dir)  # where snakemake runs the scene
+    scene_dir = scene_dir if scene_dir is not None else (root or Path.cwd()) / "config" / "scenes"
     target = scene_dir / f"{name}.yaml"
     if target.exists() and not force:
-        raise SystemExit(f"{target} exists; choose another NAME or pass --force")
+        raise UserError(f"{target}: exists (choose another NAME or pass --force)")
+    text = scene_text(scene_path(file, root), file, info, m, unit, spacing, material, pressure_unit,
+                      notes)
+    check_scene(yaml.safe_load(text), target)
     target.parent.mkdir(parents=True, exist_ok=True)
     tmp = target.with_name(f".{target.name}.tmp")
-    tmp.write_text(scene_text(file, info, unit, spacing))
+    tmp.write_text(text)
     tmp.replace(target)
-    command = f"snakemake --cores 2 --config 'scenes=[{name}]' studies=False"
-    return target, command
+    # any scene file runs by its targets; one outside the workflow's folder names it
+    command = f"snakemake --cores 2 results/{name}/interface.nc results/{name}/figures/interface.png"
+    default_dir = None if root is None else (root / "config" / "scenes").resolve()
+    if target.parent.resolve() != default_dir:
+        command += f" --config scene_dir={target.parent.resolve()}"
+    if root is not None:
+        command = f"cd {root} && {command}"
+    return target, command, notes
 
 
-def main(argv: list[str] | None = None) -> int:
+# --------------------------------------------------------------------------
+# asperity check SCENE.yaml
+# --------------------------------------------------------------------------
+
+def check_scene_file(path: Path) -> str:
+    """Check a scene file as the workflow will, before it runs: YAML, the schema of the
+    workflow folder (config/schema.yaml) and `asperity.scene.check_scene`; returns what was
+    checked, raises a one-line error naming the file and the key."""
+    from asperity.scene.checks import check_scene
+
+    if not path.is_file():
+        raise UserError(f"{path}: no such scene file")
+    try:
+        scene = yaml.safe_load(path.read_text()) or {}
+    except yaml.YAMLError as err:
+        mark = getattr(err, "problem_mark", None)
+        where = f"{path}:{mark.line + 1}" if mark is not None else str(path)
+        raise UserError(f"{where}: not valid YAML ({getattr(err, 'problem', None) or err})") from None
+    if not isinstance(scene, dict):
+        raise UserError(f"{path}: (top level): a scene is a mapping of sections, not {type(scene).__name__}")
+    root = workflow_root(path.parent)
+    schema = None if root is None else root / "config" / "schema.yaml"
+    checked = "YAML, scene checks"
+    if schema is not None and schema.is_file():
+        _schema_check(path, scene, schema)
+        checked = f"YAML, {schema}, scene checks"
+    check_scene(scene, path)
+    return checked
+
+
+def _schema_check(path: Path, scene: dict, schema: Path) -> None:
+    from asperity.scene.checks import text_number_hint
+
+    try:
+        from jsonschema import Draft202012Validator
+        from jsonschema.exceptions import best_match
+    except ImportError:  # installed without the workflow's dependencies
+        return
+    name = path.stem
+    config = {"scenes": [name], "accuracy": "standard", "results": "results",
+              "scene_dir": str(path.parent), "scene_definitions": {name: scene}}
+    error = best_match(Draft202012Validator(yaml.safe_load(schema.read_text())).iter_errors(config))
+    if error is None:
+        return
+    key = ".".join(str(k) for k in list(error.absolute_path)[2:]) or "(top level)"
+    raise UserError(f"{path}: {key}: {error.message}{text_number_hint(error.instance)}")
+
+
+# --------------------------------------------------------------------------
+# the command line
+# --------------------------------------------------------------------------
+
+
+class UserError(Exception):
+    """What a user can change: printed as one line ``asperity: error: <file>: <key>: <what> (<fix>)``."""
+
+
+def _parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(prog="asperity", description=__doc__,
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--version", action="version", version=f"asperity {__version__}")
     sub = parser.add_subparsers(dest="command", required=True)
     show = sub.add_parser("show", help="list a results folder or file, or print one variable")
     show.add_argument("path", type=Path, help="a results folder (results/<scene>) or a .nc file")
     show.add_argument("--var", help="print this variable as a table (with a .nc file)")
-    new = sub.add_parser("new-scene", help="write a scene for a measured profile or map file",
-                         description="Write config/scenes/NAME.yaml for a measured profile or height map: "
-                                     "units and spacing from the file, tilt removal, the population that "
-                                     "fits a profile (Nayak) or a map (its peaks), elastic Hertz asperities "
-                                     "and a placeholder material to edit; print the command that runs it.")
+    show.add_argument("--csv", action="store_true",
+                      help="with --var: write the variable, its coordinates and `valid` as CSV to stdout")
+    check = sub.add_parser("check", help="check scene files as the workflow will, before a run",
+                           description="Check each scene file: YAML, the workflow's schema "
+                                       "(config/schema.yaml) and the checks the schema cannot make "
+                                       "(an FE asperity's geometry, sizes that say a unit is wrong).")
+    check.add_argument("scenes", type=Path, nargs="+", help="config/scenes/NAME.yaml ...")
+    new = sub.add_parser(
+        "new-scene", help="write a scene for a measured profile or map file",
+        description="Write config/scenes/NAME.yaml (in the workflow folder, where the Snakefile is) "
+                    "for a measured profile or height map, read whole: units and spacing from the "
+                    "file, tilt removal, the population the heights allow (Nayak for a profile, "
+                    "the map's own peaks for a map; non-Gaussian heights and a dominating form are "
+                    "noted), elastic Hertz asperities and the material given; print the command "
+                    "that runs it. The material is required: --material NAME, or --youngs-modulus "
+                    "and --poisson (and --yield-stress, --hardness), in the scene's pressure unit "
+                    "(--pressure-unit, MPa by default).")
     new.add_argument("file", type=Path, help="the measured file (text, .npy, netCDF, or an instrument format)")
     new.add_argument("name", nargs="?", help="scene name (default: from the file name)")
     new.add_argument("--unit", choices=["m", "cm", "mm", "um", "nm"],
                      help="the unit of the file's numbers, where the file states none (or to override it)")
     new.add_argument("--spacing", type=float, help="the sampling interval in um, where the file states none")
-    new.add_argument("--scene-dir", type=Path, default=Path("config/scenes"), help="default: config/scenes")
+    new.add_argument("--material", help="a named material: steel, aluminum, copper, titanium, glass "
+                                        "(E, nu, yield stress and their sources in the scene's comment)")
+    new.add_argument("--youngs-modulus", type=float, help="Young's modulus E, in the pressure unit (MPa by default)")
+    new.add_argument("--poisson", type=float, help="Poisson's ratio nu")
+    new.add_argument("--yield-stress", type=float, help="yield stress, in the pressure unit (MPa by default)")
+    new.add_argument("--hardness", type=float, help="indentation hardness H, in the pressure unit (MPa by default)")
+    new.add_argument("--pressure-unit", default="MPa", choices=[u for u in units.PRESSURE if u != "1"],
+                     help="the scene's pressure unit (default MPa)")
+    new.add_argument("--scene-dir", type=Path,
+                     help="default: config/scenes of the workflow folder (where the Snakefile is)")
     new.add_argument("--force", action="store_true", help="overwrite an existing scene file")
-    args = parser.parse_args(argv)
+    return parser
 
-    if args.command == "new-scene":
-        target, command = new_scene(args.file, args.name, args.scene_dir, args.unit, args.spacing, args.force)
-        print(f"wrote {target}: edit its material (a placeholder), then run it with\n\n    {command}\n\n"
-              f"(results in results/{target.stem}/: surface.nc, interface.nc and figures/)")
-        return 0
 
+def _show(args) -> int:
     path: Path = args.path
     if not path.exists():
-        parser.error(f"{path}: no such file or folder")
+        raise UserError(f"{path}: no such file or folder")
+    if args.csv and not args.var:
+        raise UserError(f"{path}: --csv: give the variable with --var")
     if args.var:
         if path.is_dir():
-            parser.error("--var needs a .nc file, not a folder")
-        print(table(path, args.var))
+            raise UserError(f"{path}: --var: needs a .nc file, not a folder")
+        if args.csv:
+            sys.stdout.write(csv_table(path, args.var))
+        else:
+            print(table(path, args.var))
         return 0
     files = [path] if path.is_file() else sorted(path.glob("*.nc"))
     if not files:
-        parser.error(f"{path}: no .nc files")
+        raise UserError(f"{path}: no .nc files")
     print("\n\n".join(describe(f) for f in files))
     for figure in sorted(path.glob("figures/*.png")) if path.is_dir() else []:
         note = version_note(figure_version(figure))
@@ -232,16 +538,68 @@ def main(argv: list[str] | None = None) -> int:
             print(f"! {figure}: {note}")
     plan = path / "plan.nc"
     if path.is_dir() and plan.exists():  # the scene's FE jobs, in the folder shared by all scenes
-        ds = read_dataset(plan)
+        ds = _open_result(plan)
         keys = set(ds["key"].values[ds["job"].values.astype(bool)])
         done = [path.parent / "samples" / f"{k}.nc" for k in keys]
         done = [f for f in done if f.exists()]
         print(f"\n{len(done)} of {len(keys)} sample files of this scene in {path.parent / 'samples'}")
         for f in done:
-            note = version_note(read_dataset(f).attrs.get(versions.ATTRIBUTE))
+            note = version_note(_open_result(f).attrs.get(versions.ATTRIBUTE))
             if note:
                 print(f"! {f}: {note}")
     return 0
+
+
+def _run(argv: list[str] | None) -> int:
+    parser = _parser()
+    args = parser.parse_args(argv)
+    if args.command == "show":
+        return _show(args)
+    if args.command == "check":
+        for scene in args.scenes:
+            print(f"ok: {scene} ({check_scene_file(scene)})")
+        return 0
+    material = material_section(args.material, args.youngs_modulus, args.poisson, args.yield_stress,
+                                args.hardness, args.pressure_unit)
+    target, command, notes = new_scene(args.file, args.name, args.scene_dir, args.unit, args.spacing,
+                                       args.force, material, args.pressure_unit)
+    for note in notes:
+        print(f"note: {note}")
+    print(f"wrote {target} ({material[1]}); run it with\n\n    {command}\n\n"
+          f"(results in results/{target.stem}/: surface.nc, interface.nc and figures/)")
+    return 0
+
+
+def _fail(message: str) -> int:
+    one_line = " ".join(str(message).split())
+    print(f"asperity: error: {one_line}", file=sys.stderr)
+    return 2
+
+
+def main(argv: list[str] | None = None) -> int:
+    """The ``asperity`` command. Every error a user can cause (a file, a scene, an option)
+    is one line on stderr, ``asperity: error: <file>: <key or byte>: <what> (<likely fix>)``,
+    and exit status 2, without a traceback (ASPERITY_TRACEBACK=1 shows it)."""
+    from asperity.io.inputs import InputError
+    from asperity.scene.checks import SceneError
+
+    try:
+        return _run(argv)
+    except (UserError, InputError, SceneError) as err:
+        if os.environ.get("ASPERITY_TRACEBACK"):
+            raise
+        return _fail(str(err))
+    except OSError as err:
+        if os.environ.get("ASPERITY_TRACEBACK"):
+            raise
+        where = f"{err.filename}: " if err.filename else ""
+        return _fail(f"{where}{err.strerror or err}")
+    except Exception as err:  # a bug, not a user's error: still one line, with how to see more
+        if os.environ.get("ASPERITY_TRACEBACK"):
+            raise
+        first = (str(err).strip().splitlines() or [""])[0]
+        return _fail(f"{type(err).__name__}: {first} (unexpected: rerun with ASPERITY_TRACEBACK=1 "
+                     f"and report the traceback)")
 
 
 if __name__ == "__main__":

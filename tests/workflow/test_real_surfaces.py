@@ -33,9 +33,10 @@ def new_scene(workdir: Path, *args: str) -> str:
 @pytest.fixture(scope="module")
 def run(tmp_path_factory):
     workdir = copy_workflow(tmp_path_factory.mktemp("real_surfaces"))
-    out = new_scene(workdir, "data/topographies/hfm-1.hfm", "stylus_profile")
-    assert "snakemake --cores 2 --config 'scenes=[stylus_profile]' studies=False" in out
-    new_scene(workdir, "data/topographies/frt-1.frt", "optical_map")
+    out = new_scene(workdir, "data/topographies/hfm-1.hfm", "stylus_profile", "--material", "steel")
+    assert ("snakemake --cores 2 results/stylus_profile/interface.nc "
+            "results/stylus_profile/figures/interface.png") in out
+    new_scene(workdir, "data/topographies/frt-1.frt", "optical_map", "--material", "steel")
     snakemake(workdir, "--config", "scenes=[stylus_profile,optical_map]", "studies=False")
     return workdir
 

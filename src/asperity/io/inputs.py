@@ -5,6 +5,12 @@ unit of the file happens here, once (see :mod:`asperity.units`).
 
 Text files (any extension but ``.npy`` / ``.nc``):
 
+* read in UTF-8, else Windows-1252, else Latin-1 (`ENCODINGS`: the code pages of
+  profilometer software, whose micro sign is the single byte 0xB5); a byte no text
+  holds (a C0 control but tab, LF, VT, FF, CR) is an error naming its offset;
+* a header (the lines before the first line of numbers) is an error, unless the
+  caller asks to skip it (``header=True``); `text_header` and `header_units` read the
+  length units it states ("Z unit: µm", "x-unit = mm", "Height units: [nm]");
 * ``#`` starts a comment that runs to the end of the line; blank lines and
   comment-only lines are ignored;
 * fields are separated by commas, semicolons or whitespace (a comma or
@@ -29,7 +35,8 @@ import numpy as np
 
 from asperity.units import LENGTH, length_scale
 
-__all__ = ["InputError", "known_length_unit", "read_profile", "read_map"]
+__all__ = ["InputError", "known_length_unit", "read_profile", "read_map", "read_text", "text_header",
+           "header_units", "ENCODINGS"]
 
 # relative tolerance on the uniformity of the sampling steps
 STEP_TOLERANCE = 1e-6
@@ -122,19 +129,95 @@ class _DataLines:
         return int(self._lines[i])
 
 
-def _read_table(path: Path, ragged) -> tuple[np.ndarray, _DataLines]:
+#: bytes no text file holds (C0 controls but tab, line feed, vertical tab, form feed, carriage return)
+_BINARY = re.compile(rb"[\x00-\x08\x0e-\x1f]")
+#: the encodings a text export is tried in: UTF-8 (with or without its byte-order mark), then the
+#: Windows-1252 and ISO 8859-1 (Latin-1) code pages of profilometer software, in which the micro
+#: sign is the single byte 0xB5 (Latin-1 decodes every byte: it is the last resort)
+ENCODINGS = ("utf-8-sig", "cp1252", "latin-1")
+
+
+def read_text(path) -> tuple[str, str]:
+    """The text of a file and the encoding it was read in (the first of `ENCODINGS` that
+    decodes it); InputError naming the first byte no text file holds, and its offset."""
+    path = Path(path)
+    try:
+        data = path.read_bytes()
+    except OSError as exc:
+        raise InputError(path, f"cannot read: {exc.strerror or exc}") from None
+    binary = _BINARY.search(data)
+    if binary:
+        raise InputError(path, f"byte 0x{data[binary.start()]:02x} at offset {binary.start()}: not a "
+                               f"text file (a binary file given as text: give an instrument file "
+                               f"its own suffix, e.g. .di, .plu, .sur, .x3p)")
+    for encoding in ENCODINGS:
+        try:
+            return data.decode(encoding), encoding.replace("-sig", "")
+        except UnicodeDecodeError:
+            continue
+    raise AssertionError("latin-1 decodes every byte")  # pragma: no cover
+
+
+#: a header line stating a length unit: "Z unit: µm", "x-unit = mm", "Height units: [nm]", "Unit: um"
+_UNIT_LINE = re.compile(
+    r"^[\s#;%*/]*(?:(?P<axis>[xyz]|height|value|values|data|lateral|length|position)[\s_-]*)?"
+    r"units?\s*(?:[:=]\s*|\s+)\[?\s*(?P<unit>[^\]\s,;]+)", re.IGNORECASE)
+_AXES = {"x": "x", "y": "x", "lateral": "x", "length": "x", "position": "x",
+         "z": "z", "height": "z", "value": "z", "values": "z", "data": "z", None: "any"}
+
+
+def header_units(lines) -> dict[str, str]:
+    """The length units the header `lines` of a text export state: ``{"x": ..., "z": ...,
+    "any": ...}`` (keys of `asperity.units.LENGTH`; an axis the header does not name is left
+    out; "any": a unit stated for no axis)."""
+    out: dict[str, str] = {}
+    for line in lines:
+        m = _UNIT_LINE.match(line)
+        if m is None:
+            continue
+        unit = known_length_unit(m["unit"])
+        axis = _AXES[(m["axis"] or "").lower() or None]
+        if unit is not None:
+            out.setdefault(axis, unit)
+    return out
+
+
+def _is_data(line: str) -> bool:
+    tokens = line.translate(_DELIMS).split()
+    try:
+        [float(t) for t in tokens]
+    except ValueError:
+        return False
+    return bool(tokens)
+
+
+def _split_header(text: str) -> tuple[list[str], str]:
+    """The leading lines of `text` before its first line of numbers (a text export's header),
+    and the text with those lines blanked (so that line numbers stay the file's)."""
+    lines = text.split("\n")
+    first = next((i for i, line in enumerate(lines) if _is_data(_COMMENT.sub("", line))), len(lines))
+    return lines[:first], "\n" * first + "\n".join(lines[first:])
+
+
+def text_header(path) -> tuple[list[str], dict[str, str], str]:
+    """The header of a text export (its lines before the first line of numbers), the length
+    units it states (`header_units`) and the file's encoding (`read_text`)."""
+    text, encoding = read_text(path)
+    lines, _ = _split_header(text.replace("\r\n", "\n").replace("\r", "\n"))
+    return lines, header_units(lines), encoding
+
+
+def _read_table(path: Path, ragged, header: bool = False) -> tuple[np.ndarray, _DataLines]:
     """Numbers of a text table, shape (rows, columns), and the file line of each row.
 
     ``ragged(row, count, first_count)`` words the error for a row whose
-    length differs from the first row's.
+    length differs from the first row's; `header`: skip the lines before the
+    first line of numbers (a text export's header).
     """
-    try:
-        text = path.read_text(encoding="utf-8", errors="strict")
-    except UnicodeDecodeError as exc:
-        raise InputError(path, f"not a UTF-8 text file ({exc.reason} at byte {exc.start})") from None
-    except OSError as exc:
-        raise InputError(path, f"cannot read: {exc.strerror or exc}") from None
+    text, _ = read_text(path)
     text = text.replace("\r\n", "\n").replace("\r", "\n")
+    if header:
+        _, text = _split_header(text)
     if "#" in text:
         text = _COMMENT.sub("", text)  # comments end at the end of the line
     m = _EMPTY_FIELD.search(text)
@@ -215,7 +298,8 @@ def _uniform_step(path, x: np.ndarray, lines, what: str) -> float:
     return float((x[-1] - x[0]) / (x.size - 1))
 
 
-def read_profile(path, spacing: float | None = None, length_unit: str = "m") -> tuple[np.ndarray, float]:
+def read_profile(path, spacing: float | None = None, length_unit: str = "m", header: bool = False,
+                 height_unit: str | None = None) -> tuple[np.ndarray, float]:
     """Read a profile z(s) sampled at uniform spacing (input of report 2.3.1).
 
     Parameters
@@ -231,6 +315,11 @@ def read_profile(path, spacing: float | None = None, length_unit: str = "m") -> 
     length_unit : str
         Unit of the file's numbers and of ``spacing`` (``asperity.units``:
         m, cm, mm, um, nm).
+    header : bool
+        Skip the lines before the first line of numbers (a text export's
+        header, `text_header`); else such a line is an error.
+    height_unit : str, optional
+        Unit of the heights where it differs from that of the positions.
 
     Returns
     -------
@@ -241,6 +330,7 @@ def read_profile(path, spacing: float | None = None, length_unit: str = "m") -> 
     """
     p = Path(path)
     scale = _scale(p, length_unit)
+    zscale = scale if height_unit is None else _scale(p, height_unit)
     if p.suffix.lower() == ".npy":
         z = _load_npy(p)
         if z.ndim != 1:
@@ -253,7 +343,7 @@ def read_profile(path, spacing: float | None = None, length_unit: str = "m") -> 
         dx = _spacing_arg(p, spacing)
     else:
         values, lines = _read_table(
-            p, lambda i, count, first: f"found {count} columns where the first data line has {first}"
+            p, lambda i, count, first: f"found {count} columns where the first data line has {first}", header
         )
         ncol = values.shape[1]
         if ncol not in (1, 2):
@@ -274,7 +364,7 @@ def read_profile(path, spacing: float | None = None, length_unit: str = "m") -> 
             dx = _spacing_arg(p, spacing)
     if z.size < 3:
         raise InputError(p, f"a profile needs at least 3 points; found {z.size}")
-    return np.ascontiguousarray(z, dtype=np.float64) * scale, dx * scale
+    return np.ascontiguousarray(z, dtype=np.float64) * zscale, dx * scale
 
 
 # --------------------------------------------------------------------------
@@ -309,7 +399,7 @@ def _check_map_size(p: Path, z: np.ndarray):
 
 
 def read_map(path, spacing=None, length_unit: str | None = "m",
-             spacing_unit: str | None = None) -> tuple[np.ndarray, float, float]:
+             spacing_unit: str | None = None, header: bool = False) -> tuple[np.ndarray, float, float]:
     """Read a height map z(x, y) on a uniform grid (input of report 2.4.3).
 
     Parameters
@@ -336,6 +426,8 @@ def read_map(path, spacing=None, length_unit: str | None = "m",
         None: the file must say (an error "states no length unit" otherwise).
     spacing_unit : str, optional
         Unit of ``spacing`` if not ``length_unit``.
+    header : bool
+        Text: skip the lines before the first line of numbers (`text_header`).
 
     Returns
     -------
@@ -361,6 +453,7 @@ def read_map(path, spacing=None, length_unit: str | None = "m",
                 f"row {i} has {count} values where the first row has {first}; "
                 "all rows of a map must have the same length"
             ),
+            header,
         )
         _check_finite(p, z, lines, "map")
     _check_map_size(p, z)

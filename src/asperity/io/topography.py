@@ -11,8 +11,15 @@ One entry point, :func:`read_measurement`, for every file a scene can name:
   Bruker/DI, Wyko .opd, Keyence .vk, FRT, Gwyddion, ...), with their
   metadata: length unit, physical size, channels, undefined points.
 
+A text export with a header that neither reader takes (or whose unit only the
+header states, "Z unit: µm") is read by asperity past its header, with the units
+the header states; text in Windows-1252 or Latin-1 is read as such (given to
+SurfaceTopography as a UTF-8 copy).  An instrument file whose own reader fails
+on it (a truncated or damaged file: its format told by its magic bytes or its
+suffix) is an error naming the file, the format and the reader's words.
+
 The unit of the numbers comes from the file where the file states it (an
-instrument's metadata, a netCDF ``units`` attribute).  Where it does not
+instrument's metadata, a netCDF ``units`` attribute, a text export's header).  Where it does not
 (text, ``.npy``, some instrument files), the scene must say it
 (``surface.<kind>.unit``); a unit given in the scene overrides the file's,
 and so does a spacing, and the notes returned say so (for the job's log).
@@ -26,13 +33,16 @@ scene key to set).
 
 from __future__ import annotations
 
+import tempfile
 import warnings
+from contextlib import contextmanager
 from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
 
-from asperity.io.inputs import InputError, known_length_unit, read_map, read_profile
+from asperity.io.inputs import (InputError, known_length_unit, read_map, read_profile, read_text,
+                                text_header)
 from asperity.units import LENGTH, length_scale
 
 __all__ = ["Measurement", "read_measurement", "OWN_TEXT", "describe_file"]
@@ -106,13 +116,47 @@ def read_measurement(path, kind: str, unit: str | None = None, spacing: float | 
         try:
             found = _read_instrument(p, kind, unit, spacing, channel, key)
         except InputError as err:
-            if "states no" in err.reason:
-                raise  # SurfaceTopography read the file, and the scene must add what it lacks
+            try:  # a header SurfaceTopography cannot read (or a unit only the header states)
+                return _read_export(p, kind, unit, spacing, key)
+            except InputError as export:
+                if "states no" in err.reason:
+                    raise err from None  # SurfaceTopography read the file; the scene must add what it lacks
+                if "states no" in export.reason:
+                    raise export from None
             raise own from None  # the line asperity's reader could not take says most
         found.notes.insert(0, f"read by {found.reader}, which takes it as uniformly sampled "
                               f"(asperity's reader: {own})")
         return found
     return _read_instrument(p, kind, unit, spacing, channel, key)
+
+
+def _read_export(p: Path, kind: str, unit, spacing, key) -> Measurement:
+    """A text export with a header (lines before the first line of numbers) through asperity's
+    reader: the header's length units (`asperity.io.inputs.header_units`: "Z unit: µm", ...) unless
+    the scene gives one, the numbers after it."""
+    lines, stated, encoding = text_header(p)
+    if not lines:
+        raise InputError(p, "no header")
+    z_unit = unit or stated.get("z") or stated.get("any")
+    x_unit = unit or stated.get("x") or stated.get("any") or z_unit
+    if z_unit is None:
+        raise _unit_error(p, key)
+    notes = [f"read by asperity past its {len(lines)}-line header ({encoding})"]
+    notes.append(f"length unit {unit} from the scene ({key}.unit)" if unit else
+                 f"length units from the header: heights in {z_unit}, positions in {x_unit}")
+    if kind == "profile":
+        given = None if spacing is None else spacing / length_scale(x_unit)
+        z, dx = read_profile(p, spacing=given, length_unit=x_unit, header=True, height_unit=z_unit)
+        dy = None
+    else:
+        if x_unit != z_unit and spacing is None:
+            raise InputError(p, f"a map's header with heights in {z_unit} and positions in {x_unit}: "
+                                f"give the spacing as {key}.spacing")
+        z, dx, dy = read_map(p, spacing=spacing, length_unit=z_unit, spacing_unit="m", header=True)
+    if spacing is not None:
+        notes.append(f"spacing {spacing:.6g} m from the scene ({key}.spacing)")
+    return Measurement(str(p), kind, z, np.ones(z.shape, dtype=bool), dx, dy, z_unit,
+                       "asperity (text export)", notes=notes)
 
 
 def _instrument_text(err: InputError) -> bool:
@@ -153,23 +197,96 @@ def _read_own(p: Path, kind: str, unit, spacing, key) -> Measurement:
                        unit or "file units", "asperity", notes=notes)
 
 
-def _open(p: Path):
+#: suffixes instruments write that SurfaceTopography's readers do not list as theirs
+SUFFIX_READERS = {"di": ("DIReader",)}
+#: what a reader that fails on a file of its own format most likely means
+DAMAGED = "is the file truncated or damaged? copy it again from the instrument, or export it anew"
+
+
+@contextmanager
+def _utf8(p: Path):
+    """`p`, or for a text export in another encoding (`asperity.io.inputs.read_text`) a UTF-8
+    copy of it under the same name (SurfaceTopography reads text as UTF-8)."""
+    if p.suffix.lower() not in OWN_TEXT:
+        yield p
+        return
+    text, encoding = read_text(p)
+    if encoding == "utf-8":
+        yield p
+        return
+    with tempfile.TemporaryDirectory(prefix="asperity-") as tmp:
+        copy = Path(tmp) / p.name
+        copy.write_text(text, encoding="utf-8")
+        yield copy
+
+
+def _surface_topography():
     try:
         with warnings.catch_warnings():  # NuMPI says it runs without MPI: so do we
             warnings.filterwarnings("ignore", message="Could not import mpi4py", category=ImportWarning)
             import SurfaceTopography as ST
-            from SurfaceTopography.Exceptions import CannotDetectFileFormat
     except ImportError as exc:  # a broken installation, not a user error
-        raise InputError(p, f"instrument files need SurfaceTopography: {exc}") from None
+        raise InputError("SurfaceTopography", f"instrument files need it: {exc}") from None
+    return ST
+
+
+def _open(p: Path, source: Path | None = None):
+    """SurfaceTopography's reader of the file `source` (default `p`; errors name `p`)."""
+    ST = _surface_topography()
+    from SurfaceTopography.Exceptions import CannotDetectFileFormat
+
     try:
-        return ST.open_topography(str(p))
+        return ST.open_topography(str(source or p))
     except CannotDetectFileFormat:
+        failure = _own_format_failure(source or p)
+        if failure is not None:
+            name, exc = failure
+            raise InputError(p, f"a {name} file whose reader fails: {type(exc).__name__}: "
+                                f"{_first_line(exc)} ({DAMAGED})") from None
         raise InputError(
             p, "not a format asperity can read: a plain text table (.txt, .csv, .tsv: x z, z, or a "
                "matrix), .npy, netCDF (.nc), or one of the instrument formats SurfaceTopography "
                "reads (.plu, .datx, .sur, .x3p, .di, .opd, .frt, .gwy, ...)") from None
     except Exception as exc:  # a reader recognized the file and failed on it
-        raise InputError(p, f"cannot read: {type(exc).__name__}: {exc}") from None
+        raise InputError(p, f"cannot read: {type(exc).__name__}: {_first_line(exc)} ({DAMAGED})") from None
+
+
+def _first_line(exc: BaseException) -> str:
+    text = str(exc).strip().splitlines()
+    return text[0] if text else "(no message)"
+
+
+def _own_format_failure(p: Path):
+    """(format name, exception) of the first SurfaceTopography reader whose format the file
+    claims (its magic bytes say so, or its suffix is the reader's) and which fails on it;
+    None if no reader claims it."""
+    from SurfaceTopography.IO import readers
+    from SurfaceTopography.IO.Reader import MagicMatch
+
+    try:
+        with open(p, "rb") as fh:
+            magic = fh.read(4096)
+    except OSError:
+        return None
+    suffix = p.suffix.lower().lstrip(".")
+    claims = [r for r in readers if _magic(r, magic) == MagicMatch.YES]
+    claims += [r for r in readers if r not in claims and _magic(r, magic) != MagicMatch.NO and (
+        suffix in getattr(r, "_file_extensions", ()) or r.__name__ in SUFFIX_READERS.get(suffix, ()))]
+    for reader in claims:
+        try:
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore")
+                reader(str(p)).topography()
+        except Exception as exc:  # the failure of the reader of the file's own format
+            return getattr(reader, "_name", reader.__name__), exc
+    return None
+
+
+def _magic(reader, magic: bytes):
+    try:
+        return reader.can_read(magic)
+    except Exception:
+        return None
 
 
 def _channel(reader, p: Path, channel: str | None):
@@ -183,9 +300,21 @@ def _channel(reader, p: Path, channel: str | None):
 
 
 def _read_instrument(p: Path, kind: str, unit, spacing, channel, key) -> Measurement:
-    """An instrument file through SurfaceTopography."""
-    reader = _open(p)
-    ch = _channel(reader, p, channel)
+    """An instrument file (or a text export in any of `asperity.io.inputs.ENCODINGS`)
+    through SurfaceTopography."""
+    with _utf8(p) as source:
+        reader = _open(p, source)
+        return _read_channel(reader, p, kind, unit, spacing, channel, key)
+
+
+def _read_channel(reader, p: Path, kind: str, unit, spacing, channel, key) -> Measurement:
+    try:
+        ch = _channel(reader, p, channel)
+    except InputError:
+        raise
+    except Exception as exc:  # a reader that fails on its metadata
+        raise InputError(p, f"cannot read its channels: {type(exc).__name__}: {_first_line(exc)} "
+                            f"({DAMAGED})") from None
     file_kind = KINDS.get(ch.dim)
     if file_kind != kind:
         raise InputError(p, f"holds a {file_kind or f'{ch.dim}-D data set'} (channel {ch.name!r}); "
@@ -225,7 +354,8 @@ def _read_instrument(p: Path, kind: str, unit, spacing, channel, key) -> Measure
     except InputError:
         raise
     except Exception as exc:
-        raise InputError(p, f"cannot read channel {ch.name!r}: {type(exc).__name__}: {exc}") from None
+        raise InputError(p, f"cannot read channel {ch.name!r}: {type(exc).__name__}: {_first_line(exc)} "
+                            f"({DAMAGED})") from None
     # the numbers ST returns are in topo.unit; reinterpret them in the scene's unit where it overrides
     scale = length_scale(use_unit)
     undefined = np.ma.getmaskarray(heights)
@@ -255,8 +385,11 @@ def _read_instrument(p: Path, kind: str, unit, spacing, channel, key) -> Measure
 
 def describe_file(path) -> dict:
     """What a file holds, from its metadata, without reading the heights: kind, unit (or None),
-    points, spacing in the file's unit (or None), channel, reader.  For `asperity new-scene`."""
+    points, spacing in the file's unit (or None), channel, reader.  For `asperity new-scene`
+    (which then reads the whole file with `read_measurement`)."""
     p = Path(path)
+    if not p.exists():
+        raise InputError(p, "no such file")
     suffix = p.suffix.lower()
     if suffix in (".npy", ".nc") or suffix in OWN_TEXT:
         try:
@@ -264,19 +397,44 @@ def describe_file(path) -> dict:
         except InputError as err:
             if suffix not in OWN_TEXT or not _instrument_text(err):
                 raise
-    reader = _open(p)
-    ch = reader.default_channel
-    unit = known_length_unit(ch.unit) if isinstance(ch.unit, str) else None
-    sizes = ch.physical_sizes
-    spacing = None if sizes is None else float(sizes[0]) / ch.nb_grid_pts[0]
-    return {"kind": KINDS.get(ch.dim), "unit": unit, "points": tuple(int(n) for n in ch.nb_grid_pts),
-            "spacing": spacing, "channel": str(ch.name), "reader": type(reader).__name__}
+            own = err
+        try:
+            found = _describe_instrument(p)
+            if found["unit"] is None:  # a unit only the header states (asperity's reader reads it)
+                stated = text_header(p)[1]
+                found["unit"] = stated.get("z") or stated.get("any")
+            return found
+        except InputError:
+            try:
+                return _describe_own(p, header=True)
+            except InputError:
+                raise own from None
+    return _describe_instrument(p)
 
 
-def _describe_own(p: Path) -> dict:
+def _describe_instrument(p: Path) -> dict:
+    with _utf8(p) as source:
+        reader = _open(p, source)
+        try:
+            ch = reader.default_channel
+            unit = known_length_unit(ch.unit) if isinstance(ch.unit, str) else None
+            sizes = ch.physical_sizes
+            spacing = None if sizes is None else float(sizes[0]) / ch.nb_grid_pts[0]
+            points = tuple(int(n) for n in ch.nb_grid_pts)
+        except Exception as exc:  # a reader that fails on its metadata
+            raise InputError(p, f"cannot read its metadata: {type(exc).__name__}: {_first_line(exc)} "
+                                f"({DAMAGED})") from None
+    return {"kind": KINDS.get(ch.dim), "unit": unit, "points": points, "spacing": spacing,
+            "channel": str(ch.name), "reader": type(reader).__name__}
+
+
+def _describe_own(p: Path, header: bool = False) -> dict:
     suffix = p.suffix.lower()
     if suffix == ".npy":
-        a = np.load(p, mmap_mode="r", allow_pickle=False)
+        try:
+            a = np.load(p, mmap_mode="r", allow_pickle=False)
+        except (OSError, ValueError) as exc:
+            raise InputError(p, f"cannot read as .npy: {exc}") from None
         return {"kind": KINDS.get(a.ndim), "unit": None, "points": tuple(a.shape), "spacing": None,
                 "channel": None, "reader": "asperity .npy"}
     if suffix == ".nc":  # the unit and the spacing where the file states them, else None
@@ -290,17 +448,23 @@ def _describe_own(p: Path) -> dict:
             z, dx, _ = read_map(p, spacing=1.0, length_unit="m")
         return {"kind": "map", "unit": unit, "points": z.shape, "spacing": spacing, "channel": None,
                 "reader": "asperity netCDF"}
+    stated = text_header(p)[1] if header else {}
+    unit = stated.get("z") or stated.get("any")
+    x_unit = stated.get("x") or stated.get("any") or unit
+    reader = "asperity text export" if header else "asperity text"
     try:  # a text table: one or two columns are a profile (z or x, z), more a map
-        z, dx = read_profile(p, spacing=None, length_unit="m")
-        return {"kind": "profile", "unit": None, "points": (z.size,), "spacing": dx, "channel": None,
-                "reader": "asperity text"}
+        z, dx = read_profile(p, spacing=None, length_unit="m", header=header)
+        if x_unit is not None and x_unit != unit:  # the spacing in the heights' unit
+            dx *= length_scale(x_unit) / length_scale(unit)
+        return {"kind": "profile", "unit": unit, "points": (z.size,), "spacing": dx, "channel": None,
+                "reader": reader}
     except InputError as err:
         if "one column of heights" in err.reason:
-            z, _ = read_profile(p, spacing=1.0, length_unit="m")
-            return {"kind": "profile", "unit": None, "points": (z.size,), "spacing": None,
-                    "channel": None, "reader": "asperity text"}
+            z, _ = read_profile(p, spacing=1.0, length_unit="m", header=header)
+            return {"kind": "profile", "unit": unit, "points": (z.size,), "spacing": None,
+                    "channel": None, "reader": reader}
         if "a profile has 1 column" not in err.reason:
             raise
-    z, _, _ = read_map(p, spacing=1.0, length_unit="m")
-    return {"kind": "map", "unit": None, "points": z.shape, "spacing": None, "channel": None,
-            "reader": "asperity text"}
+    z, _, _ = read_map(p, spacing=1.0, length_unit="m", header=header)
+    return {"kind": "map", "unit": unit, "points": z.shape, "spacing": None, "channel": None,
+            "reader": reader}

@@ -16,9 +16,13 @@ read a scene's dictionaries:
 - `sliding`: `Sliding`, the 3-D asperity pressed and slid (9.2);
 - `plane_strain`: `PlaneStrain`, a plane-strain asperity pressed by the flat (6.3.2, 6.3.3).
 
-The `surface` section is read by `asperity.stages.surface`.
+`checks`: `SceneError` (``<file>: <key>: <what> (<fix>)``), and `check_scene`, the
+checks the schema cannot make (an FE asperity's geometry, sizes that say a unit is
+wrong), which the typed objects above also make. The `surface` section is read by
+`asperity.stages.surface`.
 """
 
+from asperity.scene.checks import SceneError, check_scene
 from asperity.scene.interface import Friction, Homogenization, Laws
 from asperity.scene.materials import Material, build, kinematics
 from asperity.scene.plane_strain import PlaneStrain
@@ -28,5 +32,5 @@ from asperity.scene.uniaxial import UniaxialTest
 from asperity.scene.units import Units, length_factor
 
 __all__ = ["Adhesion", "Asperity", "Friction", "Homogenization", "Laws", "Material", "PlaneStrain",
-           "Population", "Sliding", "UniaxialTest", "Units", "build", "effects", "kinematics",
+           "Population", "SceneError", "Sliding", "UniaxialTest", "Units", "build", "check_scene", "effects", "kinematics",
            "length_factor"]

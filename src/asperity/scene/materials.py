@@ -26,6 +26,7 @@ import math
 from dataclasses import dataclass, field
 from typing import Any, Iterable, Mapping
 
+from asperity.scene.checks import SceneError, check_material
 from asperity.scene.units import Units, parses
 
 Config = Mapping[str, Any]
@@ -70,6 +71,56 @@ BP_PRESETS = ("b1900_hf_871C", "aluminum_6061_t4", "aluminum_6061_t6", "sae_1020
 MODELS = ("elastic", "j2", "bodner_partom")
 
 
+@dataclass(frozen=True)
+class NamedMaterial:
+    """A material by name, for `asperity new-scene --material NAME`, in SI: E [Pa], nu,
+    yield_stress [Pa] (None: a brittle solid, no yield) and where the numbers come from.
+    `preset`: the report's Bodner-Partom set (`BP_PRESETS`) whose E and nu it takes."""
+
+    label: str
+    youngs_modulus: float
+    poisson: float
+    yield_stress: float | None
+    source: str
+    preset: str | None = None
+
+
+def _preset_elastic(preset: str) -> tuple[float, float]:
+    """E [Pa] and nu of one of the report's Bodner-Partom sets (`asperity.fe.bodner_partom`)."""
+    from asperity.fe.bodner_partom import BodnerPartom
+
+    body = getattr(BodnerPartom, preset)()
+    return float(body.E), float(body.nu)
+
+
+def named_materials() -> dict[str, NamedMaterial]:
+    """The named materials of `asperity new-scene --material`: the report's steel and 6061
+    aluminum take E and nu from its sets (8.2.1, 6.3.1); the yield stresses and the other
+    materials are handbook values (each entry's `source`)."""
+    steel_e, steel_nu = _preset_elastic("sae_1020")
+    al_e, al_nu = _preset_elastic("aluminum_6061_t4")
+    mpa, gpa = 1e6, 1e9
+    return {
+        "steel": NamedMaterial(
+            "SAE 1020 steel, cold drawn", steel_e, steel_nu, 350 * mpa,
+            "E, nu: report 8.2.1 (the sae_1020 set); yield: ASM Handbook vol. 1 (1990), AISI 1020 "
+            "cold drawn", "sae_1020"),
+        "aluminum": NamedMaterial(
+            "aluminum 6061-T6", al_e, al_nu, 276 * mpa,
+            "E, nu: report 6.3.1 (the aluminum_6061_t4 set); yield: ASM Handbook vol. 2 (1990), "
+            "6061-T6", "aluminum_6061_t4"),
+        "copper": NamedMaterial(
+            "copper C11000 (ETP), annealed", 115 * gpa, 0.31, 69 * mpa,
+            "ASM Handbook vol. 2 (1990), C11000 annealed (O60)"),
+        "titanium": NamedMaterial(
+            "titanium alloy Ti-6Al-4V, annealed", 114 * gpa, 0.34, 880 * mpa,
+            "ASM Handbook vol. 2 (1990), Ti-6Al-4V annealed"),
+        "glass": NamedMaterial(
+            "soda-lime silicate glass", 70 * gpa, 0.2, None,
+            "EN 572-1 (2012), soda-lime silicate glass; brittle: no yield stress"),
+    }
+
+
 def unit_scale(kind: str, pressure: float) -> float:
     """SI factor of a constant of `kind` given the scene's pressure unit [Pa]."""
     return {"pressure": pressure, "compliance": 1.0 / pressure, "plain": 1.0}[kind]
@@ -104,12 +155,13 @@ class Material:
 
     def __post_init__(self):
         if self.model not in MODELS:
-            raise ValueError(f"unknown material.model {self.model!r}; known: {', '.join(MODELS)}")
+            raise SceneError("material.model", f"unknown model {self.model!r}", f"known: {', '.join(MODELS)}")
 
     @classmethod
     @parses("material")
     def from_scene(cls, section: Config, units: Units) -> "Material":
         """A scene's ``material`` section (its pressure unit) in SI."""
+        check_material(section, units.pressure)  # sizes that say the unit is wrong
         p = units.pressure_factor
         bp = dict(section.get("bodner_partom") or {})
         return cls(

@@ -6,6 +6,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Any, Iterable, Mapping
 
+from asperity.scene.checks import SceneError, require_geometry
 from asperity.scene.units import Units, parses
 
 Config = Mapping[str, Any]
@@ -20,7 +21,7 @@ def effects(section: Iterable[str]) -> frozenset[str]:
     out = frozenset(section)
     unknown = sorted(out - set(EFFECTS))
     if unknown:
-        raise ValueError(f"effects: unknown {unknown}; known: {', '.join(EFFECTS)}")
+        raise SceneError("effects", f"unknown {unknown}", f"known: {', '.join(EFFECTS)}")
     return out
 
 
@@ -123,7 +124,7 @@ class Asperity:
         length = units.length_factor
         velocity = section.get("velocity")
         reference = section.get("reference_curvature")
-        return cls(
+        asperity = cls(
             model=section["model"], value=section["value"], geometry=section.get("geometry"),
             mapping=section["mapping"], width_to_height=section.get("width_to_height"),
             levels=section["levels"], contact=section["contact"],
@@ -137,6 +138,8 @@ class Asperity:
             aspects=section.get("aspects", 6), aspect_check=section.get("aspect_check", False),
             edge_band=section.get("edge_band"),
         )
+        require_geometry(section)  # after the keys: a missing one is named first
+        return asperity
 
     @property
     def coupled(self) -> bool:

@@ -7,11 +7,12 @@ from dataclasses import dataclass
 from typing import Any, Mapping
 
 from asperity import units
+from asperity.scene.checks import SceneError
 
 
 def parses(section: str):
-    """Decorator of a section's parser: a key the section lacks raises ValueError naming
-    the section and the key (the workflow validates every section against
+    """Decorator of a section's parser: a key the section lacks raises `SceneError` (a
+    ValueError) naming the section and the key (the workflow validates every section against
     config/schema.yaml, which fills in the defaults, before the library sees it)."""
 
     def wrap(parse):
@@ -20,8 +21,10 @@ def parses(section: str):
             try:
                 return parse(*args, **kwargs)
             except KeyError as err:
-                raise ValueError(f"scene section `{section}`: no key {err.args[0]!r} (validate the "
-                                 "scene against config/schema.yaml: it gives every default)") from None
+                raise SceneError(f"{section}.{err.args[0]}",
+                                 f"scene section `{section}`: no key {err.args[0]!r}",
+                                 "validate the scene against config/schema.yaml: it gives every "
+                                 "default") from None
 
         return parse_section
 
