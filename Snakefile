@@ -2,7 +2,12 @@
 #
 #   snakemake --cores 2            every scene of config/config.yaml
 #   snakemake --cores 2 results/greenwood_williamson/interface.nc
+#                                  a target of any scene file of config/scenes/,
+#                                  listed in config/config.yaml or not
 #   snakemake --report report.html every figure with its caption
+#
+# A run ends with the warnings of its jobs on the console, grouped, and the error of a
+# failed job in one line (the job logs, results/<scene>/logs/<job>.log, keep all).
 #
 # The task graph is that of DESIGN.md: surface.nc -> (checkpoint) plan.nc ->
 # one job per asperity sample -> asperities.nc -> interface.nc -> figures.
@@ -37,6 +42,7 @@ include: "workflow/rules/uniaxial.smk"
 include: "workflow/rules/sliding.smk"
 include: "workflow/rules/plane_strain.smk"
 include: "workflow/rules/reference.smk"
+include: "workflow/rules/routes.smk"
 
 
 rule all:
@@ -47,3 +53,11 @@ rule all:
         [f"{RESULTS}/accuracy/hertz.nc", f"{RESULTS}/accuracy/bodner_partom.nc"]
         if config["studies"]
         else [],
+
+
+onsuccess:
+    tell_the_end(failed=False)
+
+
+onerror:
+    tell_the_end(failed=True)

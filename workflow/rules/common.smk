@@ -3,6 +3,9 @@
 # rules alone). All a job depends on reaches it through `params:`, the version of the
 # code that computes it included (asperity.versions).
 
+import os
+import sys
+import time
 from pathlib import Path
 
 import jsonschema
@@ -10,6 +13,8 @@ import yaml
 from snakemake.exceptions import WorkflowError
 from snakemake.utils import validate
 
+from asperity.io.run_report import failure_lines, logs_since, warning_summary
+from asperity.scene.checks import SceneError, check_scene, text_number_hint
 from asperity.stages.reference import ROUTE_SEPARATOR, route_scene
 from asperity.versions import code_version, sample_version
 
@@ -18,6 +23,20 @@ RESULTS = config.get("results", "results")
 SCENE_DIR = Path(config.get("scene_dir", "config/scenes"))
 #: the software environment of the rules (snakemake --sdm conda): this package, pinned
 ENV = "../envs/asperity.yaml"
+#: when this invocation started: the job logs written since are those of its jobs
+STARTED = time.time()
+
+
+def tell_the_end(failed):
+    """On the console where a run ends (the Snakefile's onsuccess and onerror): the
+    WARNING lines of the jobs of this run, grouped, and the error of each failed job
+    in one line (asperity.io.run_report); the job logs keep the whole lines."""
+    logs = logs_since(RESULTS, STARTED)
+    lines = warning_summary(logs, RESULTS)
+    if failed:
+        lines += failure_lines(logs)
+    if lines:
+        print("\n".join(lines), file=sys.stderr, flush=True)
 
 
 def _schema_error(error):
@@ -41,7 +60,7 @@ def _explain(error):
     else:
         where = Path("config/config.yaml")
         key = ".".join(str(p) for p in path) or "(top level)"
-    return f"{where}: key {key}: {error.message}"
+    return f"{where}: key {key}: {error.message}{text_number_hint(error.instance)}"
 
 
 def _canonical(obj):
@@ -54,36 +73,69 @@ def _canonical(obj):
     return obj
 
 
-def _load_scenes():
+#: the schema of config and scenes, by absolute path (scenes are also validated when a
+#: target asks for one, after parsing, when the include directory is no longer known)
+SCHEMA = str(Path(workflow.basedir) / "config" / "schema.yaml")
+
+
+def _read_scene(name, missing):
+    """The YAML of scene `name`; `missing(file)`: the message if it has no file."""
+    scene_file = SCENE_DIR / f"{name}.yaml"
+    if not scene_file.exists():
+        raise WorkflowError(missing(scene_file))
+    with open(scene_file) as fh:
+        try:
+            return yaml.safe_load(fh) or {}
+        except yaml.YAMLError as err:
+            raise WorkflowError(f"{scene_file}: not valid YAML: {err}")
+
+
+def _load_scenes(names, loaded=None):
+    """Scenes `names`, the scenes they compare with and the routes of a reference scene,
+    validated against the schema (its defaults filled in) and their input files checked.
+    At start `names` are config `scenes` and the whole config is validated; later
+    (`loaded`: the scenes known so far) a scene a target asks for, validated alone."""
+    at_start = loaded is None
+    loaded = {} if at_start else loaded
     definitions = {}
-    pending = list(config["scenes"])
-    while pending:  # the configured scenes and the scenes they compare with
+    pending = list(names)
+    while pending:  # the scenes asked for and the scenes they compare with
         name = pending.pop(0)
-        if name in definitions:
+        if name in definitions or name in loaded:
             continue
-        scene_file = SCENE_DIR / f"{name}.yaml"
-        if not scene_file.exists():
-            raise WorkflowError(f"config/config.yaml: key scenes: no scene file {scene_file}")
-        with open(scene_file) as fh:
-            try:
-                definitions[name] = yaml.safe_load(fh) or {}
-            except yaml.YAMLError as err:
-                raise WorkflowError(f"{scene_file}: not valid YAML: {err}")
+        definitions[name] = _read_scene(
+            name,
+            lambda f: (
+                f"config/config.yaml: key scenes: no scene file {f}"
+                if at_start
+                else f"no scene file {f} (a scene is a file {SCENE_DIR}/<name>.yaml)"
+            ),
+        )
         pending += list(definitions[name].get("compare_with", []) or [])
     for name, scene in list(definitions.items()):  # the statistical routes of a reference scene
         for route in scene.get("routes") or {}:
             definitions[f"{name}{ROUTE_SEPARATOR}{route}"] = route_scene(
                 name, scene, route, RESULTS
             )
-    config["scene_definitions"] = definitions
+    if not at_start:  # a scene not in config `scenes`: validated on its own
+        checked = {k: config[k] for k in ("scenes", "accuracy", "results", "scene_dir")}
+        checked["scene_definitions"] = definitions
+        config["scene_definitions"].update(definitions)
+    else:
+        config["scene_definitions"] = definitions
+        checked = config
     try:
-        validate(config, "../../config/schema.yaml")
+        validate(checked, SCHEMA)
     except WorkflowError as err:
         cause = _schema_error(err)
         raise WorkflowError(_explain(cause) if cause is not None else str(err)) from None
     for name, scene in definitions.items():
         if ROUTE_SEPARATOR in name:
             continue  # a route reads its reference scene's map, checked with that scene
+        try:  # what the schema cannot say: a modulus in the wrong unit, an FE shape
+            check_scene(scene, SCENE_DIR / f"{name}.yaml")
+        except SceneError as err:
+            raise WorkflowError(str(err)) from None
         for kind in ("profile", "map"):
             source = scene.get("surface", {}).get(kind, {})
             if "file" in source and not Path(source["file"]).exists():
@@ -104,23 +156,159 @@ PRESETS = ("draft", "standard", "fine")
 
 
 class _Scenes(dict):
-    """Scene name -> definition.  ``<scene>@<preset>`` is the scene run at another
-    accuracy preset, in its own results folder (the accuracy study of the scenes);
-    its samples share keys, hence files, with runs of the same preset.
-    ``<scene>+<route>``, a statistical route of a scene with a deterministic reference
+    """Scene name -> definition.  A scene of config `scenes` (and those it compares
+    with) is loaded at start; any other scene file of `scene_dir` when a target or a
+    rule asks for it (config `scenes` only chooses what `rule all` runs), validated
+    the same way.  ``<scene>@<preset>`` is the scene run at another accuracy preset,
+    in its own results folder (the accuracy study of the scenes); its samples share
+    keys, hence files, with runs of the same preset.  ``<scene>+<route>``, a statistical
+    route of a scene with a deterministic reference
     (asperity.stages.reference.route_scene), is loaded and validated with its scene."""
 
     def __missing__(self, name):
         base, _, preset = name.partition("@")
         if preset in PRESETS:
             return self[base]
-        raise WorkflowError(
-            f"scene {name!r} is not among the scenes of config/config.yaml (nor compared with "
-            f"by one); add it to `scenes:` or run with --config 'scenes=[{name}]'"
-        )
+        if preset:
+            raise WorkflowError(f"scene {name!r}: no preset {preset!r} (one of {PRESETS})")
+        scene, _, route = name.partition(ROUTE_SEPARATOR)
+        if scene not in self:
+            self.update(_load_scenes([scene], loaded=self))
+        if name not in self:
+            raise WorkflowError(
+                f"scene {scene!r}: no route {route!r} in {SCENE_DIR / f'{scene}.yaml'}"
+            )
+        return dict.__getitem__(self, name)
 
 
-SCENES = _Scenes(_load_scenes())
+SCENES = _Scenes(_load_scenes(config["scenes"]))
+
+
+# --- what a scene makes ---------------------------------------------------------------
+
+#: what a scene needs to make a product: (test of the scene's name, what it lacks)
+_NEEDS = {
+    "surface": (
+        lambda n: "surface" in SCENES[n],
+        "has no surface (key `surface:` with a profile, profiles, map, statistics or "
+        "gaussian_heights)",
+    ),
+    "population": (
+        lambda n: model(n) not in (None, "constant"),
+        "has no asperity population (key `asperity.model`: hertz or fe)",
+    ),
+    "law": (
+        lambda n: model(n) not in (None, "constant") or "route" in SCENES[n],
+        "makes no interface law (key `asperity.model`: hertz or fe, or a `route:` section)",
+    ),
+    "constant": (
+        lambda n: model(n) == "constant",
+        "takes no expectation of a constant (key `asperity.model: constant`)",
+    ),
+    "unloading": (
+        lambda n: unloads(n),
+        "does not unload (add `effects: [unloading]`, or `unloading` to its `effects:` list)",
+    ),
+    "adhesion": (
+        lambda n: "adhesion" in SCENES[n]["effects"],
+        "has no adhesion (add `adhesion` to its `effects:` list)",
+    ),
+    "verification": (
+        lambda n: "single_asperity" in SCENES[n] or bool(SCENES[n].get("verification")),
+        "verifies nothing (key `verification:` greenwood_williamson or hertz, or a "
+        "`single_asperity:` section)",
+    ),
+    "convergence": (
+        lambda n: bool((generated(n) or {}).get("convergence_spacings")),
+        "has no convergence study (key `surface.profile.generate.convergence_spacings`)",
+    ),
+    **{
+        section: (lambda n, s=section: s in SCENES[n], f"has no `{section}:` section")
+        for section in ("friction", "laws", "uniaxial", "sliding", "plane_strain", "reference")
+    },
+}
+
+#: product (path under results/<scene>/) -> what the scene needs to make it, in order
+PRODUCT_NEEDS = {
+    "surface.nc": ["surface"],
+    "figures/surface.png": ["surface"],
+    "convergence.nc": ["convergence"],
+    "expectation.nc": ["constant"],
+    "figures/expectation.png": ["constant"],
+    **{f: ["population"] for f in ("plan.nc", "asperities.nc", "figures/asperities.png")},
+    "interface.nc": ["law"],
+    "figures/interface.png": ["law"],
+    "unloading.nc": ["population", "unloading"],
+    "figures/unloading.png": ["population", "unloading"],
+    "figures/adhesion.png": ["population", "adhesion"],
+    "friction.nc": ["population", "friction"],
+    "figures/friction.png": ["population", "friction"],
+    "laws.nc": ["population", "laws"],
+    "figures/laws.png": ["population", "laws"],
+    "verification.nc": ["verification"],
+    "figures/verification.png": ["verification"],
+    "uniaxial.nc": ["uniaxial"],
+    "figures/uniaxial.png": ["uniaxial"],
+    "sliding.nc": ["sliding"],
+    "figures/sliding.png": ["sliding"],
+    "plane_strain.nc": ["plane_strain"],
+    "figures/plane_strain.png": ["plane_strain"],
+    "figures/plane_strain_meshes.png": ["plane_strain"],
+    "reference.nc": ["reference"],
+    "comparison.nc": ["reference"],
+    "figures/reference.png": ["reference"],
+}
+
+
+def check_product(scene, product):
+    """Raise a one-line WorkflowError if scene `scene` does not make `product` (a path
+    under results/<scene>/ of PRODUCT_NEEDS), naming the scene file and the key that
+    would make it; loads the scene if it is not loaded yet."""
+    target = f"{RESULTS}/{scene}/{product}"
+    base = scene.partition("@")[0]
+    name, _, route = base.partition(ROUTE_SEPARATOR)
+    where = f"scene {SCENE_DIR / f'{name}.yaml'}" + (f" (route {route})" if route else "")
+    try:
+        SCENES[scene]
+    except WorkflowError as err:
+        raise WorkflowError(f"{target}: {err}") from None
+    for need in PRODUCT_NEEDS.get(product, []):
+        test, lacks = _NEEDS[need]
+        if not test(base):
+            raise WorkflowError(f"{target}: {where} {lacks}")
+
+
+def made(product):
+    """An input function with no files that fails (before any job runs) where the
+    scene does not make `product` (`check_product`)."""
+
+    def check(wildcards):
+        check_product(wildcards.scene, product)
+        return []
+
+    return check
+
+
+def _named_targets():
+    """The paths named on the command line (relative to the working directory), as
+    (scene, product) where they are ``<RESULTS>/<scene>/<product>``; Snakemake hands its
+    targets to the workflow only after parsing."""
+    root = Path(RESULTS).parts
+    named = []
+    for arg in sys.argv[1:]:
+        if arg.startswith("-"):
+            continue
+        parts = Path(os.path.relpath(arg) if os.path.isabs(arg) else os.path.normpath(arg)).parts
+        if len(parts) >= len(root) + 2 and parts[: len(root)] == root:
+            named.append((parts[len(root)], Path(*parts[len(root) + 1 :]).as_posix()))
+    return named
+
+
+def check_targets(targets):
+    """`check_product` of every (scene, product) of `targets` that PRODUCT_NEEDS knows."""
+    for scene, product in targets:
+        if scene not in ("samples", "accuracy") and product in PRODUCT_NEEDS:
+            check_product(scene, product)
 
 
 def accuracy_of(wildcards):
@@ -178,6 +366,8 @@ def scene_targets(name):
     gen = generated(name)
     if gen and gen.get("convergence_spacings"):
         targets.append(f"{out}/convergence.nc")
+    if "route" in SCENES[name]:  # a route beyond independent asperities (routes.smk)
+        targets += [f"{out}/interface.nc", f"{out}/figures/interface.png"]
     if model(name) == "constant":
         targets += [f"{out}/expectation.nc", f"{out}/figures/expectation.png"]
     elif model(name) is not None:
@@ -362,3 +552,7 @@ def route_interfaces(wildcards):
 
 def reference_map(wildcards):
     return surface_inputs(wildcards)["data"]
+
+
+# a target the scene does not make fails here, before any job (the rules check it too)
+check_targets(_named_targets())

@@ -3,6 +3,7 @@
 
 rule surface_figure:
     input:
+        made("figures/surface.png"),
         unpack(surface_figure_inputs),
     output:
         report(
@@ -25,6 +26,7 @@ rule surface_figure:
 
 rule expectation_figure:
     input:
+        made("figures/expectation.png"),
         surface=f"{RESULTS}/{{scene}}/surface.nc",
         expectation=f"{RESULTS}/{{scene}}/expectation.nc",
     output:
@@ -48,6 +50,7 @@ rule expectation_figure:
 
 rule interface_figure:
     input:
+        made("figures/interface.png"),
         unpack(interface_figure_inputs),
     output:
         report(
@@ -71,6 +74,7 @@ rule interface_figure:
 rule adhesion_figure:
     """With and without adhesion (report 7.3, Figs. 7.6 to 7.9): scenes with the effect."""
     input:
+        made("figures/adhesion.png"),
         interface=f"{RESULTS}/{{scene}}/interface.nc",
         asperities=f"{RESULTS}/{{scene}}/asperities.nc",
         others=lambda w: compared(w, "interface.nc"),
@@ -95,6 +99,7 @@ rule adhesion_figure:
 
 rule asperities_figure:
     input:
+        made("figures/asperities.png"),
         asperities=f"{RESULTS}/{{scene}}/asperities.nc",
         others=lambda w: compared(w, "asperities.nc"),
     output:
@@ -118,6 +123,7 @@ rule asperities_figure:
 
 rule verification_figure:
     input:
+        made("figures/verification.png"),
         verification=f"{RESULTS}/{{scene}}/verification.nc",
     output:
         report(
@@ -138,6 +144,7 @@ rule verification_figure:
 
 rule unloading_figure:
     input:
+        made("figures/unloading.png"),
         unloading=f"{RESULTS}/{{scene}}/unloading.nc",
     output:
         report(

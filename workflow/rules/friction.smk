@@ -5,6 +5,7 @@
 rule friction:
     """mu = tau_s A_c / F plus interlocking, on the loading branch (9.41)."""
     input:
+        made("friction.nc"),
         interface=f"{RESULTS}/{{scene}}/interface.nc",
         surface=f"{RESULTS}/{{scene}}/surface.nc",
     output:
@@ -26,6 +27,7 @@ rule friction:
 rule laws:
     """Oden-Martins (10.42, 10.43) and exponential laws fitted to the loading curve."""
     input:
+        made("laws.nc"),
         interface=f"{RESULTS}/{{scene}}/interface.nc",
     output:
         f"{RESULTS}/{{scene}}/laws.nc",
@@ -44,6 +46,7 @@ rule laws:
 
 rule friction_figure:
     input:
+        made("figures/friction.png"),
         friction=f"{RESULTS}/{{scene}}/friction.nc",
         others=lambda w: [f"{RESULTS}/{other}/friction.nc" for other in friction_compared(w)],
     output:
@@ -67,6 +70,7 @@ rule friction_figure:
 
 rule laws_figure:
     input:
+        made("figures/laws.png"),
         laws=f"{RESULTS}/{{scene}}/laws.nc",
     output:
         report(

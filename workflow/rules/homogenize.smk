@@ -4,6 +4,7 @@
 rule expectation:
     """Expectation of a constant over the peak density: the check of report 2.6.2."""
     input:
+        made("expectation.nc"),
         surface=f"{RESULTS}/{{scene}}/surface.nc",
     output:
         f"{RESULTS}/{{scene}}/expectation.nc",
@@ -25,6 +26,7 @@ rule expectation:
 rule unloading:
     """The blended family of unloading paths of every asperity (report 8.3)."""
     input:
+        made("unloading.nc"),
         asperities=f"{RESULTS}/{{scene}}/asperities.nc",
     output:
         f"{RESULTS}/{{scene}}/unloading.nc",
@@ -42,6 +44,7 @@ rule unloading:
 rule interface:
     """Nominal pressure, real contact area, stiffness versus separation (and branch)."""
     input:
+        made("interface.nc"),
         unpack(interface_inputs),
     output:
         f"{RESULTS}/{{scene}}/interface.nc",
@@ -66,6 +69,7 @@ rule verification:
     """A result against a closed form: one FE asperity against Hertz (6.1), or
     the homogenized interface against Greenwood-Williamson (7.1)."""
     input:
+        made("verification.nc"),
         unpack(verification_inputs),
     output:
         f"{RESULTS}/{{scene}}/verification.nc",

@@ -6,6 +6,8 @@
 rule plane_strain:
     """Force against interference of both bodies on each mesh, the largest nonelastic strain
     (a scene's `plane_strain` section with its material and effects, at the accuracy preset)."""
+    input:
+        made("plane_strain.nc"),
     output:
         f"{RESULTS}/{{scene}}/plane_strain.nc",
     log:
@@ -29,6 +31,7 @@ rule plane_strain:
 rule plane_strain_figure:
     """Figs. 6.17 and 6.22: force against interference, elastic and viscoplastic, both meshes."""
     input:
+        made("figures/plane_strain.png"),
         plane_strain=f"{RESULTS}/{{scene}}/plane_strain.nc",
     output:
         report(
@@ -51,6 +54,7 @@ rule plane_strain_figure:
 rule plane_strain_mesh_figure:
     """Figs. 6.15, 6.16, 6.19-6.21: each mesh, and the viscoplastic body on it at the end."""
     input:
+        made("figures/plane_strain_meshes.png"),
         plane_strain=f"{RESULTS}/{{scene}}/plane_strain.nc",
     output:
         report(

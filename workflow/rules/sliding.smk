@@ -4,6 +4,8 @@
 rule sliding:
     """Normal and tangential force histories, the deformed section y = 0 and where the
     largest deformation sits (a scene's `sliding` section, at the global accuracy preset)."""
+    input:
+        made("sliding.nc"),
     output:
         f"{RESULTS}/{{scene}}/sliding.nc",
     log:
@@ -25,6 +27,7 @@ rule sliding:
 rule sliding_figure:
     """Fig. 9.4 (forces versus time) and Fig. 9.5 (deformed section, horizontal displacement)."""
     input:
+        made("figures/sliding.png"),
         sliding=f"{RESULTS}/{{scene}}/sliding.nc",
     output:
         report(

@@ -51,6 +51,7 @@ rule synthetic_map:
 rule surface:
     """Surface statistics by sampling, counting and spectrum; or given statistics."""
     input:
+        made("surface.nc"),
         unpack(surface_inputs),
     output:
         f"{RESULTS}/{{scene}}/surface.nc",
@@ -69,6 +70,8 @@ rule surface:
 
 rule convergence:
     """Sampled statistics of a synthetic series against its exact ones, versus spacing."""
+    input:
+        made("convergence.nc"),
     output:
         f"{RESULTS}/{{scene}}/convergence.nc",
     log:

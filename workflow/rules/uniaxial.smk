@@ -4,6 +4,8 @@
 
 rule uniaxial:
     """The tests of a scene's `uniaxial` section: one material point each, on dims (test, step)."""
+    input:
+        made("uniaxial.nc"),
     output:
         f"{RESULTS}/{{scene}}/uniaxial.nc",
     log:
@@ -24,6 +26,7 @@ rule uniaxial:
 rule uniaxial_figure:
     """Panels like the report's Figs. 5.1-5.4, 6.14 and 8.13 (stress-strain, -time, strain-time)."""
     input:
+        made("figures/uniaxial.png"),
         uniaxial=f"{RESULTS}/{{scene}}/uniaxial.nc",
     output:
         report(

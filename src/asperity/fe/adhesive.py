@@ -148,6 +148,7 @@ the adhesive jobs cost is measured by `make time-adhesion` (README,
 
 from __future__ import annotations
 
+import logging
 import math
 import time
 from dataclasses import dataclass, replace
@@ -170,6 +171,9 @@ from .newton import ROUNDOFF_FACTOR
 from .nonlinear import EnergySearch, Problem
 from .outputs import accuracy_attrs, dataset, describe
 from .presets import PLANE_STRAIN_DOMAIN, resolve
+from asperity.io.run_report import StepProgress
+
+log = logging.getLogger(__name__)
 
 #: Newton iterations of a step attempt are the preset's ``max_iterations``
 #: (40): a continuous step converges in 4-20; one that does not is halved
@@ -1370,6 +1374,9 @@ def _trace(model: AdhesiveModel, path, pre: dict, label: str = "",
     `progress(line)`, if given, hears of every level reached."""
     newton = model.newton
     branches = _branches(path)
+    # a progress line every ~5 s of a run past ~5 s (the job's log; logging only)
+    ticker = StepProgress(log, f"adhesive path{' of ' + label if label else ''}: ",
+                          total=len(path) - 1)
     t0 = time.perf_counter()
     try:
         u, parts, T, its = newton.solve(float(path[0]), np.zeros(model.zone.ndofs))
@@ -1407,6 +1414,8 @@ def _trace(model: AdhesiveModel, path, pre: dict, label: str = "",
             state, mirror = back
             state.wall_time = time.perf_counter() - t0
             records.append(_Record(state, branch, False, True, n))
+            ticker.update(n, n / (len(path) - 1), f"flat at w = {target:.4g} m ({branch}), "
+                          f"force {state.force:.4g} N", 0)
             if progress is not None:
                 progress(f"level {n} of {len(path) - 1} ({branch}): w = {target:.6g} m, force "
                          f"{state.force:.6g} N, retraced (the approach's state)")
@@ -1429,6 +1438,8 @@ def _trace(model: AdhesiveModel, path, pre: dict, label: str = "",
         state.wall_time = time.perf_counter() - t0
         if records[-1].state is not state:
             records.append(_Record(state, branch, False, True, n))
+        ticker.update(n, n / (len(path) - 1), f"flat at w = {target:.4g} m ({branch}), "
+                      f"force {state.force:.4g} N", iterations)
         if progress is not None:
             progress(f"level {n} of {len(path) - 1} ({branch}): w = {target:.6g} m, force "
                      f"{state.force:.6g} N, {iterations} Newton iterations, {halvings} cuts, "

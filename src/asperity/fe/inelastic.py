@@ -145,6 +145,7 @@ not finite, the default partial pivoting.
 
 from __future__ import annotations
 
+import logging
 import math
 import time
 from dataclasses import dataclass, fields, replace
@@ -164,9 +165,13 @@ from .material import LinearElastic, equivalent_strain, von_mises
 from .nonlinear import (Pace, Problem, ResidualSearch, StepCuts, check_local_update, next_time,
                         strain_limited)
 from .outputs import INELASTIC_THRESHOLD, SMALL_STRAIN_LIMIT, dataset
+from asperity.io.run_report import StepProgress
+
 from .presets import resolve
 from .remesh import EDGE_BAND, ContactMeshes, Transfer, edge_band
 from .solve import adapted_model, check_levels, run_attrs
+
+log = logging.getLogger(__name__)
 
 #: on unloading, a force below this fraction of the largest force counts as zero
 ZERO_FORCE = 1e-6
@@ -899,6 +904,8 @@ def solve_asperity_history(geometry, material, history: History, accuracy="stand
 
     t = float(history.times[0])
     w = float(history(t))
+    # a progress line every ~5 s of a run past ~5 s (the job's log; logging only)
+    ticker, t_first = StepProgress(log, "asperity history: "), t
     state = material.initial_state(model.shape)
     u = np.zeros(model.disc.ndofs)
     u_prev, t_prev = None, None
@@ -1043,6 +1050,9 @@ def solve_asperity_history(geometry, material, history: History, accuracy="stand
         append(rec, time=t, branch=branch, newton_iterations=iterations, step_cuts=cuts.count,
                time_step=h, integration_order=order, time_error=err,
                wall_time=time.perf_counter() - step_start, dofs=model.dofs)
+        ticker.update(n, (t - t_first) / (t_end - t_first),
+                      f"t = {t:.4g} of {t_end:.4g} s ({branch}), interference {w:.4g} m, "
+                      f"force {rec['force']:.4g} N", iterations)
         if progress is not None:
             progress(f"step {n} ({branch}): t = {t:.6g} of {t_end:.6g} s, w = {w:.6g} m, force "
                      f"{rec['force']:.6g} N, {iterations} Newton iterations, {cuts.count} cuts, "

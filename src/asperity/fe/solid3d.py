@@ -162,6 +162,7 @@ from .nonlinear import (Pace, Problem, ResidualSearch, StepCuts, check_local_upd
 from .outputs import INELASTIC_THRESHOLD, dataset, describe
 from .presets import resolve
 from .sliding import FrictionLaw, ShearResistance, contact_tangent, drag_anchor
+from asperity.io.run_report import StepProgress
 
 log = logging.getLogger(__name__)
 
@@ -1293,6 +1294,8 @@ def solve_sliding(geometry, material, motion: FlatMotion, friction: FrictionLaw,
         if ts <= t:
             snap[k] = (t, _snapshot(model, u, state), {})
     dt = caps[motion.segment(t)] / 2.0
+    # a progress line every ~5 s of a run past ~5 s (the job's log; logging only)
+    ticker = StepProgress(log, "sliding: ")
     n = 0
     critical, warned = [], False       # critical_factor at the starts of sliding and after
     slow, stop_reason = 0, ""          # steps in a row below stall_fraction of their cap
@@ -1361,6 +1364,9 @@ def solve_sliding(geometry, material, motion: FlatMotion, friction: FrictionLaw,
                 a_ref = math.sqrt(a_max / math.pi) if a_max > 0 else model.contact_radius / 2.5
                 snap[k] = (t, _snapshot(model, u, state),
                            _largest_deformation(model, u, w, state, a_ref))
+        ticker.update(n, (t - motion.start) / (motion.end - motion.start),
+                      f"t = {t:.4g} of {motion.end:.4g} s ({phase}), approach {w:.4g} m, "
+                      f"slide {delta:.4g} m", iterations)
         s_c = rec["critical_shear_factor"]
         say(f"step {n}: t = {t:.6g} of {motion.end:.6g} s, w = {w:.4g} m, delta = {delta:.4g} m, "
             f"F_N = {rec['normal_force']:.4g} N, F_T = {rec['tangential_force']:.4g} N, "
