@@ -108,6 +108,7 @@ def describe(path: Path) -> str:
         lines.append("  " + ", ".join(f"{k} = {float(v):.6g}" for k, v in numbers.items()))
     lines += [f"  {line}" for line in valid_ranges(ds)]  # where the interface holds
     lines += [f"  {line}" for line in caveats(ds)]  # and what that did not check
+    lines += [f"  {line}" for line in recommendations(ds)]  # a reference's closest route
     for name, var in ds.data_vars.items():
         shape = f"({', '.join(var.dims)})" if var.dims else ""
         lines.append(f"  {name:<32s}{shape:<34s}{_headline(var)}")
@@ -115,6 +116,23 @@ def describe(path: Path) -> str:
         if long_name:
             lines.append(f"  {'':<32s}{long_name}")
     return "\n".join(lines)
+
+
+def recommendations(ds: xr.Dataset) -> list[str]:
+    """For a reference's comparison.nc: per separation, the route closest to the boundary
+    elements and its larger error, or why none is named."""
+    if "recommended_route" not in ds:
+        return []
+    sigma = float(ds.attrs.get("sigma", np.nan))
+    lines = ["recommended route (closest to the elastic boundary elements):"]
+    for h, route, error, resolved in zip(ds["separation"].values, ds["recommended_route"].values,
+                                         ds["recommended_error"].values, ds["reference_resolved"].values):
+        where = f"separation {h:.4g} m" + (f" ({h / sigma:.3g} sigma)" if np.isfinite(sigma) else "")
+        if route:
+            lines.append(f"  {where}: {route}, within {100 * error:.3g} %")
+        else:
+            lines.append(f"  {where}: none ({'no route defined' if resolved else 'the boundary elements do not resolve the contact'})")
+    return lines
 
 
 def _variable(ds: xr.Dataset, path: Path, name: str) -> xr.DataArray:

@@ -128,3 +128,28 @@ def test_no_route_holds_where_the_boundary_elements_do_not_resolve_the_contact(c
     expected = (f"the boundary elements do not resolve the contact at 3 of 9 separations "
                 f"({h[-3]:.4g} .. {h[-1]:.4g} m): 1.5 to 9 cells per contact patch")
     assert expected in out.attrs["warning"] and expected in caplog.text
+
+
+def test_the_recommended_route_has_the_smallest_larger_error():
+    """Per separation the route whose larger of |pressure error| and |area error| is least;
+    none where no route has both errors, or where the reference does not resolve its
+    contacts; asperity show prints it."""
+    import xarray as xr
+
+    from asperity.cli import recommendations
+    from asperity.stages.reference import recommended
+
+    names = ["a", "b", "c"]
+    p = np.array([[0.05, -0.30, 0.05, 0.2], [0.10, 0.02, np.nan, 0.1], [-0.5, 0.01, 0.3, 0.1]])
+    a = np.array([[0.04, 0.01, 0.1, 0.2], [-0.20, 0.03, np.nan, 0.1], [0.01, -0.5, np.nan, 0.1]])
+    resolved = np.array([True, True, True, False])
+    best, error = recommended(names, p, a, resolved)
+    assert list(best) == ["a", "b", "a", ""]
+    np.testing.assert_allclose(error[:3], [0.05, 0.03, 0.1], rtol=1e-15)
+    assert np.isnan(error[3])
+    ds = xr.Dataset({"recommended_route": ("separation", best), "recommended_error": ("separation", error),
+                     "reference_resolved": ("separation", resolved)},
+                    coords={"separation": [1e-6, 2e-6, 3e-6, 4e-6]}, attrs={"sigma": 1e-6})
+    lines = recommendations(ds)
+    assert lines[1] == "  separation 1e-06 m (1 sigma): a, within 5 %"
+    assert lines[4].endswith("none (the boundary elements do not resolve the contact)")

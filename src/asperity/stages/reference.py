@@ -291,7 +291,8 @@ def comparison_dataset(reference: xr.Dataset, interfaces: Mapping[str, xr.Datase
         with np.errstate(divide="ignore", invalid="ignore"):
             out["plastic_departure"] = ("separation", np.where(p_ref > 0, pl / p_ref - 1, np.nan), attrs(
                 "1", "boundary-element pressure with the hardness over the elastic one, minus 1"))
-    out.attrs.update({"agreement": agreement, "hardness": reference.attrs.get("hardness", np.nan),
+    out.attrs.update({"agreement": agreement, "sigma": reference.attrs.get("sigma", np.nan),
+                      "hardness": reference.attrs.get("hardness", np.nan),
                       "boundary": reference.attrs.get("boundary", "")})
     warnings = []
     if reference.attrs.get("boundary") == "free":
