@@ -244,10 +244,10 @@ def test_law_without_area_derivative(peaks):
     # a law returning (F, A, dF/dw) only: dA/dw by a central difference of the law; the solution is
     # the same (1e-9) and so is the stiffness (1e-6)
     pk, L, sigma = peaks
-    law4 = hertz_law(E_STAR)
+    law4 = hertz_law(E_STAR, pk.curvature)
 
-    def law3(w, kappa):
-        return law4(w, kappa)[:3]
+    def law3(w, index):
+        return law4(w, index)[:3]
 
     h = [sigma, 2 * sigma]
     a = interacting_interface(pk.x, pk.y, pk.height, pk.curvature, h, E_STAR, L)

@@ -101,3 +101,31 @@ def test_a_hardness_limited_route_needs_a_hardness(surface):
         routes.route_interface(surface, 1.25e-6, 1.25e-6, _surface_ds(surface),
                                {"kind": "boundary_elements", "limit": "hardness"}, bare,
                                _homogenization(), UNITS, {})
+
+
+def _with_peaks(z):
+    from asperity.surface.maps import map_peaks
+
+    return map_peaks(z, 1.25e-6, 1.25e-6).assign(
+        sigma=((), float(z.std()), {"units": "m", "long_name": "sigma"}))
+
+
+def test_the_interacting_route_by_each_law(surface):
+    """Every law writes the contract; on this Gaussian map the summits' own shape is closer
+    to the boundary elements' pressure than the sphere of their mean curvature, at every
+    separation from 1 to 2.5 sigma."""
+    z = surface
+    ds_map = _with_peaks(z)
+    bem = routes.route_interface(z, 1.25e-6, 1.25e-6, ds_map, {"kind": "boundary_elements"}, ALUMINUM,
+                                 _homogenization(), UNITS, {})
+    errors = {}
+    for law in routes.LAWS:
+        ds = routes.route_interface(z, 1.25e-6, 1.25e-6, ds_map, {"kind": "interacting", "law": law},
+                                    ALUMINUM, _homogenization(), UNITS, {})
+        for name, (unit, _) in routes.CONTRACT.items():
+            assert ds[name].attrs["units"] == unit, (law, name)
+        assert ds.attrs["law"] == law
+        p = ds["nominal_pressure"].values
+        assert np.all(np.isfinite(p)) and np.all(np.diff(p) < 0), law
+        errors[law] = np.abs(p / bem["nominal_pressure"].values - 1)
+    assert np.all(errors["shape"] < errors["hertz"]), errors

@@ -195,15 +195,16 @@ def hertz_displacement(r, radius, contact_modulus: float):
     return g, ga
 
 
-def hertz_law(contact_modulus: float):
-    """The Hertz force law of a peak (report 6.1) as ``law(w, curvature)`` ->
-    (force F = 4/3 E* R^1/2 w^3/2, area A = pi R w, dF/dw = 2 E* (R w)^1/2, dA/dw = pi R),
-    all zero at w <= 0; R = 1/curvature."""
+def hertz_law(contact_modulus: float, curvatures):
+    """The Hertz force law of the peaks of curvatures kappa_i = 1/R_i (report 6.1) as
+    ``law(w, index)`` -> (force F = 4/3 E* R^1/2 w^3/2, area A = pi R w,
+    dF/dw = 2 E* (R w)^1/2, dA/dw = pi R) of the peaks `index`, all zero at w <= 0."""
     estar = float(contact_modulus)
+    kappa = np.asarray(curvatures, dtype=float)
 
-    def law(w, curvature):
+    def law(w, index):
         w = np.asarray(w, dtype=float)
-        radius = 1.0 / np.asarray(curvature, dtype=float)
+        radius = 1.0 / kappa[index]
         wp = np.maximum(w, 0.0)
         a = np.sqrt(radius * wp)
         return (4.0 / 3.0 * estar * a * wp, np.pi * a * a, 2.0 * estar * a,
@@ -325,7 +326,8 @@ class InteractingAsperities:
     period : float or (float, float)
         Cell size (Lx, Ly) (m).
     law : callable, optional
-        ``law(w, curvature) -> (force, area, dforce_dw[, darea_dw])`` per asperity
+        ``law(w, index) -> (force, area, dforce_dw[, darea_dw])`` of the asperities
+        `index` (numbers into the arrays given) at interferences `w`
         (arrays; zero at w <= 0); Hertz (:func:`hertz_law`) by default.  Without
         ``darea_dw`` it is taken from the law by a central difference (step 1e-6 w),
         which only enters the Jacobian through the spots' near field.
@@ -356,7 +358,7 @@ class InteractingAsperities:
         self.contact_modulus = float(contact_modulus)
         self.period = _period(period)
         self.area = self.period[0] * self.period[1]
-        self.law = hertz_law(contact_modulus) if law is None else law
+        self.law = hertz_law(contact_modulus, self.kappa) if law is None else law
         self.kernel = PeriodicKernel(self.period, contact_modulus, kernel_points)
         dx, dy = self.kernel.minimum_image(self.x[:, None] - self.x[None, :],
                                            self.y[:, None] - self.y[None, :])
@@ -372,14 +374,14 @@ class InteractingAsperities:
         np.fill_diagonal(r, np.inf)  # no Hertz field of an asperity on itself
         self._inv_r = 1.0 / r
 
-    def _law(self, w, kappa):
-        out = self.law(w, kappa)
+    def _law(self, w, index):
+        out = self.law(w, index)
         force, area, dforce = (np.asarray(v, dtype=float) for v in out[:3])
         if len(out) > 3:
             darea = np.asarray(out[3], dtype=float)
         else:
             step = 1e-6 * np.abs(w)
-            darea = (np.asarray(self.law(w + step, kappa)[1]) - np.asarray(self.law(w - step, kappa)[1])) \
+            darea = (np.asarray(self.law(w + step, index)[1]) - np.asarray(self.law(w - step, index)[1])) \
                 / (2 * step)
         return force, area, dforce, darea
 
@@ -389,7 +391,7 @@ class InteractingAsperities:
         outputs on C."""
         w = np.asarray(w, dtype=float)
         c = np.flatnonzero(w > 0)
-        force, area, dforce, darea = self._law(w[c], self.kappa[c])
+        force, area, dforce, darea = self._law(w[c], c)
         radius = np.sqrt(area / np.pi)
         inv_r = self._inv_r[:, c]
         phi, dphi = _phi(radius[None, :] * inv_r, self.near_field)
@@ -468,7 +470,8 @@ def interacting_interface(x, y, heights, curvatures, separations, contact_modulu
     period : float or (float, float)
         The periodic cell (Lx, Ly) = (nx dx, ny dy) of the map (m).
     law : callable, optional
-        ``law(w, curvature) -> (force, area, dforce_dw[, darea_dw])``; Hertz if None.
+        ``law(w, index) -> (force, area, dforce_dw[, darea_dw])`` of the asperities
+        `index` at interferences `w`; Hertz at their curvatures if None.
     tolerance, max_iterations
         Newton stops at max |R_i| <= tolerance (max z - h) (:meth:`InteractingAsperities.solve`).
     near_field : {"edge", "hertz"}

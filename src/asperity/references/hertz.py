@@ -131,3 +131,62 @@ def hertz_asperities(heights, curvatures, interferences, E, nu) -> xr.Dataset:
         "poisson": float(nu),
     }
     return xr.Dataset(data_vars, coords=coords, attrs=attrs)
+
+
+def _eccentricity(ratio: np.ndarray) -> np.ndarray:
+    """e^2 of the contact ellipse of two principal curvatures whose ratio B/A >= 1 (Johnson,
+    *Contact Mechanics*, 1985, 4.2): B/A = ((a/b)^2 E(e) - K(e)) / (K(e) - E(e)), solved by
+    bisection on m = e^2 (60 halvings: to round-off)."""
+    from scipy.special import ellipe, ellipk
+
+    ratio = np.asarray(ratio, dtype=float)
+    lo, hi = np.zeros(ratio.shape), np.full(ratio.shape, 1.0 - 1e-15)
+    for _ in range(60):  # halvings of the bracket, all ellipses at once
+        m = 0.5 * (lo + hi)
+        k, e = ellipk(m), ellipe(m)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            value = (e / (1.0 - m) - k) / (k - e)
+        low = ~(value >= ratio)  # B/A grows with m from 1 at m = 0
+        lo, hi = np.where(low, m, lo), np.where(low, hi, m)
+    return np.where(ratio <= 1.0 + 1e-12, 0.0, 0.5 * (lo + hi))
+
+
+def elliptic_hertz(interference, curvature_1, curvature_2, contact_modulus) -> dict[str, np.ndarray]:
+    """Hertz's elliptic contact of a body with principal curvatures kappa_1, kappa_2 at its
+    tip on a rigid flat (Johnson, *Contact Mechanics*, 1985, 4.2, eqs. 4.35-4.40).
+
+    With A = kappa_small / 2 <= B = kappa_large / 2 and the pressure
+    p0 sqrt(1 - x^2/a^2 - y^2/b^2) on the ellipse of semi-axes a >= b, e^2 = 1 - b^2/a^2:
+
+        B / A = ((a/b)^2 E(e) - K(e)) / (K(e) - E(e)),
+        w = A e^2 a^2 K(e) / (K(e) - E(e)),   p0 = A E* e^2 a^2 / (b (K(e) - E(e))),
+        F = 2/3 pi a b p0,   contact area pi a b,   dF/dw = 3 F / (2 w),
+
+    K, E the complete elliptic integrals of the first and second kind (parameter e^2).
+    Equal curvatures give the circular Hertz of `hertz_response`.  Returns ``force``,
+    ``contact_area``, ``stiffness``, ``semi_axis_a``, ``semi_axis_b`` (arrays; zero at w <= 0).
+    """
+    from scipy.special import ellipe, ellipk
+
+    w = np.maximum(np.asarray(interference, dtype=float), 0.0)
+    k1, k2 = np.asarray(curvature_1, dtype=float), np.asarray(curvature_2, dtype=float)
+    if np.any(np.minimum(k1, k2) <= 0):
+        raise ValueError("elliptic Hertz needs positive principal curvatures at the tip")
+    small, large = np.minimum(k1, k2) / 2.0, np.maximum(k1, k2) / 2.0
+    m = _eccentricity(large / small)
+    k, e = ellipk(m), ellipe(m)
+    circle = m == 0.0
+    with np.errstate(divide="ignore", invalid="ignore"):
+        # w / a^2 for the ellipse; A (1/2R of the circle: w = a^2 / R = 2 A a^2) for the circle
+        factor = np.where(circle, 2.0 * small, small * m * k / (k - e))
+    a = np.sqrt(w / factor)
+    b = a * np.sqrt(1.0 - m)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        p0 = np.where(circle, 2.0 * contact_modulus * a * small * 2.0 / np.pi,
+                      small * contact_modulus * m * a * a / (b * (k - e)))
+    p0 = np.where(w > 0, p0, 0.0)
+    force = 2.0 / 3.0 * np.pi * a * b * p0
+    with np.errstate(divide="ignore", invalid="ignore"):
+        stiffness = np.where(w > 0, 1.5 * force / w, 0.0)
+    return {"force": force, "contact_area": np.pi * a * b, "stiffness": stiffness,
+            "semi_axis_a": a, "semi_axis_b": b}

@@ -106,19 +106,80 @@ def _persson(z, dx, dy, h, modulus, hardness, route_cfg) -> xr.Dataset:
                                      gamma=float(route_cfg.get("gamma", persson.DEFAULT_GAMMA)))
 
 
-def _interacting(z, dx, dy, h, modulus, surface_ds: xr.Dataset) -> xr.Dataset:
+#: the force laws of the interacting route's asperities (``route.law``)
+LAWS = ("shape", "elliptic", "hertz")
+#: the interacting route's Newton tolerance: the largest residual of its equations over
+#: the largest interference.  The equations are semismooth (the edge of each Hertz field,
+#: the segments of a tabulated law), and Newton can stall a little above round-off; 1e-4
+#: moves the force of the asperity it concerns by less than 0.2 %
+INTERACTING_TOLERANCE = 1e-4
+
+
+def principal_curvatures(surface_ds: xr.Dataset) -> tuple[np.ndarray, np.ndarray]:
+    """kappa_1 >= kappa_2 of the peaks of surface.nc, from their second derivatives
+    (positive at a summit; kappa_2 <= 0 where the peak is a ridge or saddle at this scale)."""
+    zxx, zyy, zxy = (surface_ds[k].values for k in ("z_xx", "z_yy", "z_xy"))
+    mean, half = -(zxx + zyy) / 2.0, np.sqrt(((zxx - zyy) / 2.0) ** 2 + zxy ** 2)
+    return mean + half, mean - half
+
+
+def asperity_law(kind: str, z, dx: float, dy: float, surface_ds: xr.Dataset, modulus: float):
+    """The force law ``law(w, index)`` of the map's asperities for
+    `asperity.homogenize.interacting` (`LAWS`):
+
+    * ``shape``: each summit's own shape below its tip, as the axisymmetric profile of its
+      watershed basin's bearing area (`asperity.surface.summits.summit_profiles`), pressed
+      by Sneddon's solution (`asperity.references.sneddon`); its tip the paraboloid of the
+      Gaussian curvature sqrt(kappa_1 kappa_2), which has the same bearing area as the
+      elliptic tip;
+    * ``elliptic``: Hertz's elliptic contact of the two principal curvatures (a ridge's
+      smaller curvature taken as 1/100 of the larger);
+    * ``hertz``: the sphere of the mean curvature, Hertz.
+    """
+    from asperity.homogenize.interacting import hertz_law
+    from asperity.references.hertz import elliptic_hertz
+    from asperity.references.sneddon import profile_law
+    from asperity.surface.summits import summit_profiles
+
+    if kind not in LAWS:
+        raise ValueError(f"route.law must be one of {', '.join(LAWS)}; got {kind!r}")
+    mean = surface_ds["curvature"].values
+    k1, k2 = principal_curvatures(surface_ds)
+    if kind == "hertz":
+        return hertz_law(modulus, mean)
+    if kind == "elliptic":
+        k2 = np.maximum(k2, k1 / 100.0)
+
+        def law(w, index):
+            out = elliptic_hertz(w, k1[index], k2[index], modulus)
+            with np.errstate(divide="ignore", invalid="ignore"):  # A grows in proportion to w
+                darea = np.where(w > 0, out["contact_area"] / np.where(w > 0, w, 1.0), 0.0)
+            return out["force"], out["contact_area"], out["stiffness"], darea
+
+        return law
+    tip = np.where(k2 > 0, np.sqrt(np.abs(k1 * k2)), mean)
+    radii, slopes = summit_profiles(z, dx, dy, surface_ds["row"].values, surface_ds["column"].values,
+                                    tip)
+    return profile_law(radii, slopes, modulus)
+
+
+def _interacting(z, dx, dy, h, modulus, surface_ds: xr.Dataset, route_cfg: Config) -> xr.Dataset:
     """The map's own asperities as the surface stage found them (surface.nc: the summits at
-    the scene's lateral scale, or the pixel's peaks), coupled on the map's period."""
+    the scene's lateral scale, or the pixel's peaks), each with its force law
+    (`asperity_law`), coupled on the map's period."""
     from asperity.homogenize.interacting import interacting_interface
 
     if "peak" not in surface_ds.dims or surface_ds.sizes["peak"] == 0:
         raise ValueError("the interacting route needs the map's peaks (surface.nc has none)")
     ny, nx = np.shape(z)
+    kind = route_cfg.get("law", "shape")
+    law = asperity_law(kind, z, dx, dy, surface_ds, modulus)
     out = interacting_interface(surface_ds["x"].values, surface_ds["y"].values,
                                 surface_ds["height"].values, surface_ds["curvature"].values, h,
-                                modulus, (nx * dx, ny * dy))
+                                modulus, (nx * dx, ny * dy), law=law, tolerance=INTERACTING_TOLERANCE)
     out.attrs["peaks"] = int(surface_ds.sizes["peak"])
     out.attrs["scale"] = float(surface_ds.attrs.get("scale", math.nan))
+    out.attrs["law"] = kind
     return out
 
 
@@ -143,7 +204,7 @@ def route_interface(z: np.ndarray, dx: float, dy: float, surface_ds: xr.Dataset,
     elif kind == "persson":
         out = _persson(z, dx, dy, h, modulus, hardness, route_cfg)
     else:
-        out = _interacting(z, dx, dy, h, modulus, surface_ds)
+        out = _interacting(z, dx, dy, h, modulus, surface_ds, route_cfg)
     for name, (units, long_name) in CONTRACT.items():
         if name not in out:
             out[name] = ("separation", np.full(h.size, np.nan))

@@ -92,7 +92,7 @@ from asperity.surface.filters import ALPHA, evaluation_margin, mean_line
 from asperity.surface.missing import defined_heights
 from asperity.units import attrs
 
-__all__ = ["neighbourhood_radius", "filter_sigma", "fit_parameters", "lowpass_map", "summit_fit_matrix",
+__all__ = ["summit_profiles", "neighbourhood_radius", "filter_sigma", "fit_parameters", "lowpass_map", "summit_fit_matrix",
            "map_summits", "default_scale", "DEFAULT_SCALE_PIXELS", "LEAST_SCALE_PIXELS", "DEFAULT_MIN_SUMMITS"]
 
 #: lambda_s of the default rule, in sampling intervals (see :func:`default_scale`)
@@ -405,3 +405,66 @@ def default_scale(dx: float, dy: float, z=None, *, defined=None, periodic: bool 
     if found < min_summits:
         text += f"; fewer than {min_summits}: summit statistics are uncertain (a larger map is needed)"
     return reduced, text
+
+
+def summit_profiles(z, dx: float, dy: float, rows, cols, curvatures, *, defined=None,
+                    tip_pixels: float = 2.0) -> tuple[np.ndarray, np.ndarray]:
+    """The axisymmetric profile of each summit, from the map's own shape below its tip.
+
+    Each summit's region is its watershed basin on `z` (the map as the routes see it;
+    `scipy.ndimage.watershed_ift` from markers at the summits' grid points `rows`,
+    `cols`).  Its bearing area A(d), the area of the basin within a depth d of the
+    summit's grid height, defines the radius r = sqrt(A / pi) of an axisymmetric
+    asperity with the same area at every depth, so f(r) is the depth at which the
+    basin's area reaches pi r^2.  Within `tip_pixels` grid steps of the tip, where the
+    grid cannot resolve an area, f is the fitted paraboloid kappa r^2 / 2 (kappa the
+    summit's mean curvature); beyond, the bearing profile continues from it.  Past the
+    basin's whole area the profile is a wall (its neighbours' basins begin).
+
+    Returns ``(radii, slopes)``: the common radial grid (m; a quarter of the smaller
+    grid step apart) and f'(r) of each summit on it, the input of
+    `asperity.references.sneddon.profile_law`.
+    """
+    from scipy import ndimage
+
+    zz = np.array(z, dtype=float)
+    mask = np.isfinite(zz) if defined is None else (np.asarray(defined, bool) & np.isfinite(zz))
+    low, high = float(np.min(zz[mask])), float(np.max(zz[mask]))
+    zz = np.where(mask, zz, low)
+    rows, cols = np.asarray(rows, dtype=int) % zz.shape[0], np.asarray(cols, dtype=int) % zz.shape[1]
+    kappa = np.asarray(curvatures, dtype=float)
+    n = rows.size
+    markers = np.zeros(zz.shape, dtype=np.int32)
+    markers[rows, cols] = np.arange(1, n + 1)
+    level = np.round((high - zz) / max(high - low, np.finfo(float).tiny) * 65534).astype(np.uint16)
+    basin = ndimage.watershed_ift(level, markers)
+    label = basin.ravel() - 1
+    keep = (label >= 0) & mask.ravel()
+    depth = np.maximum(zz[rows, cols][label[keep]] - zz.ravel()[keep], 0.0)
+    label = label[keep]
+    order = np.lexsort((depth, label))
+    label, depth = label[order], depth[order]
+    counts = np.bincount(label, minlength=n)
+    first = np.concatenate([[0], np.cumsum(counts)[:-1]])
+    rank = np.arange(label.size) - first[label]  # pixels of the basin within that depth, less one
+    cell = dx * dy
+    radius = np.sqrt((rank + 1) * cell / np.pi)
+    step = min(dx, dy) / 4.0
+    r_tip = tip_pixels * max(dx, dy)
+    grid = np.arange(0.0, np.sqrt(counts.max() * cell / np.pi) + 2 * step, step)
+    # f(r) of every summit on the grid: the bearing depth at radius r (rows side by side)
+    span = grid[-1] + 1.0
+    keys = radius + span * label
+    query = (grid[None, :] + span * np.arange(n)[:, None]).ravel()
+    at = np.clip(np.searchsorted(keys, query, side="left"), 0, label.size - 1).reshape(n, grid.size)
+    bearing = depth[at]
+    beyond = grid[None, :] > np.sqrt(counts * cell / np.pi)[:, None]
+    tip = 0.5 * kappa[:, None] * grid[None, :] ** 2
+    j_tip = min(int(np.searchsorted(grid, r_tip)), grid.size - 1)
+    profile = np.where(grid[None, :] <= grid[j_tip], tip,
+                       bearing - bearing[:, [j_tip]] + tip[:, [j_tip]])
+    profile = np.maximum.accumulate(profile, axis=1)
+    slopes = np.gradient(profile, step, axis=1)
+    wall = 20.0 * max(float(np.nanmax(slopes[~beyond])) if (~beyond).any() else 1.0, 1.0)
+    slopes = np.where(beyond, wall, np.maximum(slopes, 0.0))
+    return grid, slopes
