@@ -20,6 +20,7 @@ import subprocess
 import sys
 from pathlib import Path
 
+import numpy as np
 import yaml
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -102,6 +103,32 @@ def keys_page(schema: dict) -> str:
             out.append(f"\n### `{name}`\n\n{_cell(rows[0][3])}\n\n")
             out.append("| key | type | default | meaning |\n|---|---|---|---|\n")
             out.extend(f"| `{p}` | {_cell(t)} | {_cell(d)} | {_cell(m)} |\n" for p, t, d, m in rows)
+    return "".join(out)
+
+
+# --- the package, module by module ----------------------------------------------------
+
+def module_summaries() -> dict[str, str]:
+    """Every module of src/asperity and the first line of its docstring ('' if none), read
+    with `ast` (nothing imported)."""
+    import ast
+
+    root = ROOT / "src" / "asperity"
+    out = {}
+    for path in sorted(root.rglob("*.py")):
+        parts = list(path.relative_to(root).with_suffix("").parts)
+        parts = parts[:-1] if parts[-1] == "__init__" else parts
+        doc = ast.get_docstring(ast.parse(path.read_text())) or ""
+        out[".".join(["asperity", *parts])] = doc.strip().splitlines()[0] if doc.strip() else ""
+    return out
+
+
+def modules_page() -> str:
+    out = [GENERATED, "# Modules\n\n",
+           "The package by stage (DESIGN.md: the library, by stage), each module with the first "
+           "line of its docstring; the [Python API](api.md) has the functions a user calls.\n\n",
+           "| module | what it holds |\n|---|---|\n"]
+    out.extend(f"| `{name}` | {_cell(summary)} |\n" for name, summary in module_summaries().items())
     return "".join(out)
 
 
@@ -200,6 +227,66 @@ def _pct(value, signed: bool = True) -> str:
     return f"{100 * value:+.0f}" if signed else f"{100 * value:.3g}"
 
 
+def _scale_study(name: str) -> str:
+    """The table and figure of `benchmarks/scale_study.py`: what the lateral scale changes."""
+    d = _load(name)
+    if d is None:
+        return ""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, axes = plt.subplots(1, 3, figsize=(13, 3.8), layout="constrained")
+    text = ["\n## The lateral scale of the asperities\n\n",
+            "Each map low-passed at lambda_s = s max(dx, dy) (s = 0: the pixel's peaks, unfiltered), "
+            "its summits found and fitted there, and the routes run on it beside the elastic boundary "
+            "elements of the same prepared map (`python benchmarks/scale_study.py`). Per map and "
+            "scale: summits, their mean curvature, the boundary elements' cells per patch at the "
+            "lightest load, and each route's largest error (pressure at equal separation / area at "
+            "equal pressure, in per cent) over the separations 0.5-3 sigma where the boundary "
+            "elements resolve their patches.\n\n",
+            "![summit density, curvature and the interacting route's error against the scale]"
+            "(scale-study.png)\n\n"]
+    routes = sorted({r for rows in d["maps"].values() for row in rows for r in row["routes"]})
+    text.append("| map | s | summits | mean curvature (1/um) | cells / patch, lightest | "
+                + " | ".join(routes) + " |\n|" + "---|" * (5 + len(routes)) + "\n")
+    for label, rows in d["maps"].items():
+        s_ = [row["factor"] for row in rows]
+        axes[0].loglog([max(v, 1.0) for v in s_], [row["summit_density_per_m2"] * 1e-12 for row in rows],
+                       "o-", label=label)
+        axes[1].loglog([max(v, 1.0) for v in s_], [row["mean_curvature_per_m"] * 1e-6 for row in rows],
+                       "o-", label=label)
+        worst = []
+        for row in rows:
+            resolved = np.asarray(row["cells_per_patch"]) >= 10
+            cells = []
+            for route in routes:
+                r = row["routes"].get(route, {})
+                if "pressure_error" not in r:
+                    cells.append("failed")
+                    continue
+                pe = np.abs(np.asarray(r["pressure_error"], dtype=float))[resolved]
+                ae = np.abs(np.asarray(r["area_error"], dtype=float))[resolved]
+                pe, ae = pe[np.isfinite(pe)], ae[np.isfinite(ae)]
+                cells.append(f"{100 * pe.max():.0f} / {100 * ae.max():.0f}" if pe.size and ae.size else "-")
+            shape = row["routes"].get("interacting_shape", {})
+            pe = np.abs(np.asarray(shape.get("pressure_error", [np.nan]), dtype=float))
+            worst.append(np.nanmax(np.where(resolved, pe, np.nan)) if resolved.any() else np.nan)
+            text.append(f"| {label} | {row['factor']:g} | {row['summits']} | "
+                        f"{row['mean_curvature_per_m'] * 1e-6:.3g} | {row['cells_per_patch'][-1]:.3g} | "
+                        + " | ".join(cells) + " |\n")
+        axes[2].semilogx([max(v, 1.0) for v in s_], [100 * w for w in worst], "o-", label=label)
+    axes[0].set(xlabel="lambda_s / grid step (pixel at 1)", ylabel="summits per um^2")
+    axes[1].set(xlabel="lambda_s / grid step (pixel at 1)", ylabel="mean summit curvature (1/um)")
+    axes[2].set(xlabel="lambda_s / grid step (pixel at 1)",
+                ylabel="interacting (shape): largest |p error| (%)")
+    axes[0].legend()
+    fig.savefig(DOCS / "verification" / "scale-study.png", dpi=110)
+    plt.close(fig)
+    return "".join(text) + "\n" + _provenance(d, name)
+
+
 def verification_page() -> str:
     out = [GENERATED, "# Verification and cost\n\n",
            "What the project measured, read from the benchmark outputs of `benchmarks/results/` "
@@ -210,6 +297,7 @@ def verification_page() -> str:
     if routes:
         out.append("\n## Routes against the boundary elements\n")
         out.extend(_routes_table(n) for n in routes)
+    out.append(_scale_study("scale-study.json"))
     out.append("\n## What a run costs\n")
     out.extend(_scenes_table(n) for n in ("scenes-draft.json", "scenes-standard.json"))
     return "".join(out)
@@ -219,6 +307,7 @@ def main() -> int:
     pages = {
         DOCS / "reference" / "keys.md": keys_page(yaml.safe_load((ROOT / "config" / "schema.yaml").read_text())),
         DOCS / "reference" / "cli.md": cli_page(),
+        DOCS / "reference" / "modules.md": modules_page(),
         DOCS / "verification" / "index.md": verification_page(),
     }
     for path, text in pages.items():

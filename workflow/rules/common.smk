@@ -4,6 +4,7 @@
 # code that computes it included (asperity.versions).
 
 import os
+import re
 import sys
 import time
 from pathlib import Path
@@ -556,3 +557,32 @@ def reference_map(wildcards):
 
 # a target the scene does not make fails here, before any job (the rules check it too)
 check_targets(_named_targets())
+
+
+# --- routes (routes.smk) ----------------------------------------------------------------
+
+
+def _route_scenes():
+    """The scenes whose interface.nc comes from a route: the scene files with a `route`
+    section, and the routes with one of the reference scenes (read at parse time, so
+    that rule route_interface of routes.smk matches them alone; rule `interface` makes
+    every other one)."""
+    names = []
+    for path in sorted(SCENE_DIR.glob("*.yaml")):
+        try:
+            definition = yaml.safe_load(path.read_text()) or {}
+        except yaml.YAMLError:
+            continue  # reported with its file and line where the scene is loaded
+        if "route" in definition:
+            names.append(path.stem)
+        for name, part in (definition.get("routes") or {}).items():
+            if isinstance(part, dict) and "route" in part:
+                names.append(f"{path.stem}{ROUTE_SEPARATOR}{name}")
+    return names
+
+
+ROUTE_SCENES = _route_scenes()
+
+
+def route_map(wildcards):
+    return surface_inputs(wildcards)["data"]

@@ -52,52 +52,54 @@ def profile_tables(radii: np.ndarray, slopes: np.ndarray, contact_modulus: float
 
 def profile_law(radii: np.ndarray, slopes: np.ndarray, contact_modulus: float):
     """``law(w, index) -> (F, A, dF/dw, dA/dw)`` of the profiles (rows of `slopes` on the
-    grid `radii`, as `profile_tables`), for `asperity.homogenize.interacting`: a(w) by
-    linear interpolation of each profile's table (w(a) increases with a), F from the
-    table with dF/dw the slope of that interpolant (2 E* a, to the table's resolution), A =
-    pi a^2; zero at w <= 0; a flat punch beyond the table."""
-    w_tab, f_tab, a_tab = profile_tables(radii, slopes, contact_modulus)
+    grid `radii`, as `profile_tables`), for `asperity.homogenize.interacting`.
+
+    a(w) is each profile's table w(a) inverted, linear between its points; the force is
+    the integral of dF/dw = 2 E* a(w), so that F is continuously differentiable (Newton's
+    iterations see no kink) and equals Sneddon's to the table's resolution.  Within the
+    first radius of the table the tip is its paraboloid (a ~ w^1/2, F ~ w^3/2: no kink at
+    w = 0); past the table a flat punch (a constant).  A = pi a^2; all zero at w <= 0."""
+    w_tab, _, a_tab = profile_tables(radii, slopes, contact_modulus)
     w_tab = np.maximum.accumulate(w_tab, axis=1)
     n, m = w_tab.shape
+    estar = float(contact_modulus)
+    # F at the nodes: the tip's 4/3 E* a1 w1 at the first, then the integral of 2 E* a(w)
+    # with a linear between nodes (the trapezoid is exact for it)
+    pieces = estar * (a_tab[None, 1:-1] + a_tab[None, 2:]) * np.diff(w_tab[:, 1:], axis=1)
+    f_nodes = np.zeros((n, m))
+    f_nodes[:, 1] = 4.0 / 3.0 * estar * a_tab[1] * w_tab[:, 1]
+    f_nodes[:, 2:] = f_nodes[:, [1]] + np.cumsum(pieces, axis=1)
     span = float(w_tab[:, -1].max()) * 2.0 + 1.0
     keys = (w_tab + span * np.arange(n)[:, None]).ravel()  # rows side by side, sorted
-    estar = float(contact_modulus)
 
     def law(w, index):
         w = np.asarray(w, dtype=float)
         index = np.asarray(index, dtype=int)
         wp = np.maximum(w, 0.0)
         last = w_tab[index, -1]
-        inside = wp < last
         k = np.searchsorted(keys, np.minimum(wp, last) + span * index, side="right") - 1
-        j = np.clip(k - index * m, 0, m - 2)
+        j = np.clip(k - index * m, 1, m - 2)
         w0, w1 = w_tab[index, j], w_tab[index, j + 1]
         with np.errstate(divide="ignore", invalid="ignore"):
-            frac = np.clip(np.where(w1 > w0, (wp - w0) / (w1 - w0), 0.0), 0.0, 1.0)
-        a = np.where(inside, a_tab[j] + frac * (a_tab[j + 1] - a_tab[j]), a_tab[-1])
-        f_in = f_tab[index, j] + frac * (f_tab[index, j + 1] - f_tab[index, j])
-        force = np.where(inside, f_in, f_tab[index, -1] + 2.0 * estar * a_tab[-1] * (wp - last))
-        with np.errstate(divide="ignore", invalid="ignore"):
-            da_dw = np.where(inside & (w1 > w0), (a_tab[j + 1] - a_tab[j]) / (w1 - w0), 0.0)
-        with np.errstate(divide="ignore", invalid="ignore"):  # the interpolant's own slope
-            df_dw = np.where(inside & (w1 > w0), (f_tab[index, j + 1] - f_tab[index, j]) / (w1 - w0),
-                             2.0 * estar * a)
-        darea = 2.0 * np.pi * a * da_dw
-        # below the first radius of the table the tip is its paraboloid: Hertz, a ~ w^1/2 and
-        # F ~ w^3/2, so that the law starts smoothly (dF/dw = 0 at w = 0) and Newton's
-        # contacting set does not cycle on a kink
-        w_first, f_first = w_tab[index, 1], f_tab[index, 1]
+            slope = np.where(w1 > w0, (a_tab[j + 1] - a_tab[j]) / (w1 - w0), 0.0)
+        dw = np.minimum(wp, last) - w0
+        a = a_tab[j] + slope * dw
+        force = f_nodes[index, j] + 2.0 * estar * (a_tab[j] * dw + 0.5 * slope * dw * dw)
+        beyond = wp > last  # a flat punch of the table's largest radius
+        force = np.where(beyond, f_nodes[index, -1] + 2.0 * estar * a_tab[-1] * (wp - last), force)
+        a = np.where(beyond, a_tab[-1], a)
+        da_dw = np.where(beyond, 0.0, slope)
+        w_first = w_tab[index, 1]
         tip = wp < w_first
         with np.errstate(divide="ignore", invalid="ignore"):
             s = np.where(tip, wp / w_first, 1.0)
-        a = np.where(tip, a_tab[1] * np.sqrt(s), a)
-        force = np.where(tip, f_first * s ** 1.5, force)
-        with np.errstate(divide="ignore", invalid="ignore"):
-            df_dw = np.where(tip, 1.5 * f_first * np.sqrt(s) / w_first, df_dw)
-            darea = np.where(tip, np.pi * a_tab[1] ** 2 / w_first, darea)
+            a = np.where(tip, a_tab[1] * np.sqrt(s), a)
+            da_dw = np.where(tip, 0.5 * a_tab[1] / np.sqrt(np.where(tip, wp * w_first, 1.0)), da_dw)
+        force = np.where(tip, f_nodes[index, 1] * s ** 1.5, force)
         touching = w > 0
         a = np.where(touching, a, 0.0)
-        return (np.where(touching, force, 0.0), np.pi * a * a, np.where(touching, df_dw, 0.0),
-                np.where(touching, darea, 0.0))
+        with np.errstate(invalid="ignore"):
+            darea = np.where(touching, 2.0 * np.pi * a * da_dw, 0.0)
+        return (np.where(touching, force, 0.0), np.pi * a * a, 2.0 * estar * a, darea)
 
     return law

@@ -109,10 +109,12 @@ def _persson(z, dx, dy, h, modulus, hardness, route_cfg) -> xr.Dataset:
 #: the force laws of the interacting route's asperities (``route.law``)
 LAWS = ("shape", "elliptic", "hertz")
 #: the interacting route's Newton tolerance: the largest residual of its equations over
-#: the largest interference.  The equations are semismooth (the edge of each Hertz field,
-#: the segments of a tabulated law), and Newton can stall a little above round-off; 1e-4
-#: moves the force of the asperity it concerns by less than 0.2 %
-INTERACTING_TOLERANCE = 1e-4
+#: the largest interference
+INTERACTING_TOLERANCE = 1e-8
+#: where Newton stalls (the equations are semismooth: a neighbour's summit at the edge of
+#: a spot's field), the residual it accepts, over the largest interference; each
+#: separation's residual is in the file, and a warning names those above the tolerance
+INTERACTING_ACCEPT = 1e-2
 
 
 def principal_curvatures(surface_ds: xr.Dataset) -> tuple[np.ndarray, np.ndarray]:
@@ -176,7 +178,14 @@ def _interacting(z, dx, dy, h, modulus, surface_ds: xr.Dataset, route_cfg: Confi
     law = asperity_law(kind, z, dx, dy, surface_ds, modulus)
     out = interacting_interface(surface_ds["x"].values, surface_ds["y"].values,
                                 surface_ds["height"].values, surface_ds["curvature"].values, h,
-                                modulus, (nx * dx, ny * dy), law=law, tolerance=INTERACTING_TOLERANCE)
+                                modulus, (nx * dx, ny * dy), law=law, tolerance=INTERACTING_TOLERANCE,
+                                accept=INTERACTING_ACCEPT)
+    loose = out["residual"].values > INTERACTING_TOLERANCE * (float(surface_ds["height"].max())
+                                                              - out["separation"].values)
+    if loose.any():
+        log.warning("interacting route: Newton stalled at %d of %d separations (largest residual "
+                    "%.3g m of the interference equations; the file's `residual`)", int(loose.sum()),
+                    loose.size, float(out["residual"].values[loose].max()))
     out.attrs["peaks"] = int(surface_ds.sizes["peak"])
     out.attrs["scale"] = float(surface_ds.attrs.get("scale", math.nan))
     out.attrs["law"] = kind
