@@ -1,14 +1,17 @@
 """Logging of one pipeline job to its log file, with progress and failures.
 
 A job's log holds its progress lines (so long work is visible with
-``tail -f``) and, if it fails, the error and its traceback; the error is
-re-raised so the workflow manager sees the failure.
+``tail -f``) and, if it fails, the error and its traceback.  On the console the
+failure is one line (the error, and where its traceback is), and the job exits
+with status 1, so that the workflow manager sees it fail and the user sees no
+traceback; an interrupt is passed on as it is.
 """
 
 from __future__ import annotations
 
 import contextlib
 import logging
+import sys
 import time
 import warnings
 from pathlib import Path
@@ -34,6 +37,10 @@ def job_log(path: str | Path, name: str = "") -> Iterator[logging.Logger]:
         with warnings.catch_warnings():
             warnings.simplefilter("default")
             yield log
+    except Exception as err:
+        log.exception("failed %s: %s", name, err)
+        print(f"error: {name}: {err} (traceback in {path})", file=sys.stderr, flush=True)
+        raise SystemExit(1) from None
     except BaseException as err:
         log.exception("failed %s: %s", name, err)
         raise
