@@ -59,7 +59,7 @@ def one(z0, dx: float, dy: float, factor: float) -> dict:
     from asperity.references import persson
     from asperity.references.boundary_element import solve_map
     from asperity.homogenize.interacting import interacting_interface
-    from asperity.stages.routes import INTERACTING_TOLERANCE, LAWS, asperity_law
+    from asperity.stages.routes import INTERACTING_ACCEPT, INTERACTING_TOLERANCE, LAWS, asperity_law
     from asperity.surface.maps import map_peaks
     from asperity.surface.summits import lowpass_map, map_summits
 
@@ -70,6 +70,7 @@ def one(z0, dx: float, dy: float, factor: float) -> dict:
     else:
         z = np.array(z0, dtype=float)
         peaks = map_peaks(z, dx, dy)
+    peaks = peaks.isel(peak=np.flatnonzero(peaks["curvature"].values > 0))  # as the route does
     z = z - np.nanmean(z)
     sigma = float(np.nanstd(z))
     h = SEPARATIONS * sigma
@@ -88,7 +89,7 @@ def one(z0, dx: float, dy: float, factor: float) -> dict:
             ds = interacting_interface(peaks["x"].values, peaks["y"].values, peaks["height"].values,
                                        peaks["curvature"].values, h, MODULUS, (nx * dx, ny * dy),
                                        law=asperity_law(law, z, dx, dy, peaks, MODULUS),
-                                       tolerance=INTERACTING_TOLERANCE)
+                                       tolerance=INTERACTING_TOLERANCE, accept=INTERACTING_ACCEPT)
         except (RuntimeError, ValueError) as err:
             out["routes"][f"interacting_{law}"] = {"error": str(err)}
             continue

@@ -614,24 +614,24 @@ def test_viscoplastic_asperity_press_and_slide(caplog):
 
 @pytest.mark.slow
 def test_the_report_scene_slides_through_its_instabilities_at_draft():
-    """Report 9.2 at draft with the preset's 6 pressing steps: the hill pressed 0.125 um
-    in 1800 s, then slid 1 um in 2200 s with mu = 20, past the junction's critical
-    coefficient from the start of sliding (6.07).  At 0.065 um Newton fails at the full
-    step and at every cut of it; the step cut below the stall fraction of its cap is
-    taken through damped solves (12), touching nodes let go (the area falls from 0.96
-    to 0.78 um^2), and the run completes.  (Which steps need it depends on the mesh's
-    contact nodes: with the contact on the facets' vertices, before the P2 nodes, it was
-    the step at 0.083 um with 8 pressing steps, and the 6 converged in plain Newton at
-    the ninth cut; on the P2 nodes 8 pressing steps converge in plain Newton and 16 go
-    through the slip again.  Before `solve_through_slip` these runs failed with a
-    ConvergenceError.)
+    """Report 9.2 at draft with 5 pressing steps: the hill pressed 0.125 um in 1800 s,
+    then slid 1 um in 2200 s with mu = 20, past the junction's critical coefficient from
+    the start of sliding.  There Newton fails at a full step and at every cut of it; the
+    step cut below the stall fraction of its cap is taken through damped solves, touching
+    nodes let go, and the run completes.  Past the critical coefficient the quasi-static
+    path is not unique, so which step needs the slip depends on the mesh's contact nodes,
+    the number of pressing steps and even the round-off of the processor's BLAS kernels:
+    on the P2 nodes the preset's 6 steps went through the slip on one processor and not on
+    another (where 4, 7, 8 and 16 do not either, and 5 does).  Before
+    `solve_through_slip` these runs failed with a ConvergenceError.
     Every step, that one included, ends on the plain Newton solve of the model: an
     equilibrium of it, finite; and from there the junction slides on its touching
     points, F_T = 20 F_N (1e-6) with every touching vertex slipping at the end, as the
     report's full slip."""
     mot = FlatMotion.press_and_slide(0.125e-6, 1e-6, (0.0, 1800.0), (1800.0, 4000.0))
     law = FrictionLaw(ShearResistance.coulomb(20.0), 1e-8)
-    ds = solve_sliding(HILL, BodnerPartom.sae_1020(), mot, law, accuracy="draft")
+    ds = solve_sliding(HILL, BodnerPartom.sae_1020(), mot, law,
+                       accuracy={"base": "draft", "normal_steps": 5})
     assert ds.attrs["completed"] == 1 and ds.attrs["stop_reason"] == ""
     damped = ds["damped_solves"].values
     slide = ds["phase"].values == "sliding"

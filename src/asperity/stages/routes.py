@@ -173,6 +173,11 @@ def _interacting(z, dx, dy, h, modulus, surface_ds: xr.Dataset, route_cfg: Confi
 
     if "peak" not in surface_ds.dims or surface_ds.sizes["peak"] == 0:
         raise ValueError("the interacting route needs the map's peaks (surface.nc has none)")
+    flat = surface_ds["curvature"].values <= 0
+    if flat.any():  # pixel-scale peaks whose differences say they are no summit
+        log.warning("interacting route: %d of %d peaks without a positive mean curvature left out",
+                    int(flat.sum()), flat.size)
+        surface_ds = surface_ds.isel(peak=np.flatnonzero(~flat))
     ny, nx = np.shape(z)
     kind = route_cfg.get("law", "shape")
     law = asperity_law(kind, z, dx, dy, surface_ds, modulus)
