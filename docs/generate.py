@@ -287,6 +287,40 @@ def _scale_study(name: str) -> str:
     return "".join(text) + "\n" + _provenance(d, name)
 
 
+def _sliding_convergence(name: str) -> str:
+    """The 3-D sliding junction's force histories between accuracy presets
+    (`make time-sliding`): the largest relative difference of each force."""
+    d = _load(name)
+    if d is None:
+        return ""
+    rows = ["| presets | " + " | ".join(("F_N pressing", "F_N sliding", "F_T sliding"))
+            + " |\n|---|---|---|---|\n"]
+    for pair, c in d["comparisons"].items():
+        cells = [c.get(key, {}).get("largest_relative_difference") for key in
+                 ("normal_force_pressing", "normal_force_sliding", "tangential_force_sliding")]
+        rows.append(f"| {pair} | " + " | ".join("-" if v is None else f"{100 * v:.1f} %" for v in cells)
+                    + " |\n")
+    cost = ", ".join(f"`{k}` {v['cpu_time']:.0f} s" for k, v in d["presets"].items() if "cpu_time" in v)
+    return ("\n### One asperity slid in 3-D: the junction of report 9.2 sheared at the steel's "
+            "strength (`make time-sliding`)\n\n"
+            "The largest relative difference of each force history between two presets, the "
+            f"coarser interpolated at the finer one's times; CPU: {cost}.\n\n" + "".join(rows)
+            + "\n" + _provenance(d, name))
+
+
+def _surface_speed(name: str) -> str:
+    """Form removal, statistics and peaks of a large map, beside SurfaceTopography's."""
+    d = _load(name)
+    if d is None:
+        return ""
+    points = " x ".join(str(v) for v in d["map"]["points"])
+    rows = ["| step | CPU (s) | wall (s) |\n|---|---|---|\n"]
+    rows += [f"| {k} | {v['cpu_s']:.3g} | {v['wall_s']:.3g} |\n" for k, v in d["times"].items()]
+    return (f"\n### A measured map's statistics ({points} points, "
+            f"{100 * d['map']['undefined_share']:.0f} % undefined)\n\n" + "".join(rows) + "\n"
+            + _provenance(d, name))
+
+
 def verification_page() -> str:
     out = [GENERATED, "# Verification and cost\n\n",
            "What the project measured, read from the benchmark outputs of `benchmarks/results/` "
@@ -300,6 +334,8 @@ def verification_page() -> str:
     out.append(_scale_study("scale-study.json"))
     out.append("\n## What a run costs\n")
     out.extend(_scenes_table(n) for n in ("scenes-draft.json", "scenes-standard.json"))
+    out.append(_sliding_convergence("sliding-convergence-k280.json"))
+    out.append(_surface_speed("surface-speed.json"))
     return "".join(out)
 
 
