@@ -254,3 +254,29 @@ def test_law_without_area_derivative(peaks):
     b = interacting_interface(pk.x, pk.y, pk.height, pk.curvature, h, E_STAR, L, law=law3)
     np.testing.assert_allclose(b.nominal_pressure, a.nominal_pressure, rtol=1e-9)
     np.testing.assert_allclose(b.normal_stiffness, a.normal_stiffness, rtol=1e-6)
+
+
+def test_a_tabulated_law_of_hertz_asperities_is_hertz(peaks):
+    """Hertz responses tabulated on an interference grid (as finite element asperities come):
+    the law is Hertz at the grid's points (1e-12), between them within the linear
+    interpolation's error (1e-2 on this grid), its slopes those of its own segments (1e-6),
+    and the coupled interface within 1 % of Hertz's law."""
+    from asperity.homogenize.interacting import tabulated_law
+
+    pk, L, sigma = peaks
+    grid = np.concatenate([[0.0], np.geomspace(1e-4, 5.0, 240) * sigma])
+    exact = hertz_law(E_STAR, pk.curvature)
+    index = np.arange(pk.curvature.size)
+    force, area = (np.array([exact(np.full(index.size, w), index)[i] for w in grid]).T for i in (0, 1))
+    law = tabulated_law(grid, force, area)
+    at_nodes = law(np.full(index.size, grid[100]), index)
+    np.testing.assert_allclose(at_nodes[0], force[:, 100], rtol=1e-12)
+    w = np.full(index.size, 0.7 * sigma)
+    np.testing.assert_allclose(law(w, index)[0], exact(w, index)[0], rtol=1e-2)
+    step = 1e-7 * sigma
+    numeric = (law(w + step, index)[0] - law(w - step, index)[0]) / (2 * step)
+    np.testing.assert_allclose(law(w, index)[2], numeric, rtol=1e-6)
+    h = [sigma, 2 * sigma]
+    a = interacting_interface(pk.x, pk.y, pk.height, pk.curvature, h, E_STAR, L)
+    b = interacting_interface(pk.x, pk.y, pk.height, pk.curvature, h, E_STAR, L, law=law, accept=1e-2)
+    np.testing.assert_allclose(b.nominal_pressure, a.nominal_pressure, rtol=1e-2)

@@ -14,6 +14,7 @@ pytestmark = [pytest.mark.workflow, pytest.mark.slow]
 
 SCENE = "deterministic_reference"
 ARGS = ("--config", f"scenes=[{SCENE}]", "accuracy=draft", "studies=False")
+ROUTES = ("nayak_hertz", "nayak_fe", "peaks", "interacting", "persson", "interacting_j2")
 
 
 @pytest.fixture(scope="module")
@@ -26,7 +27,7 @@ def test_files_and_attributes(run):
         ds = result(run, SCENE, name)
         assert missing_attributes(ds) == [], name
     assert (run / "results" / SCENE / "figures" / "reference.png").stat().st_size > 10_000
-    for route in ("nayak_hertz", "nayak_fe", "peaks", "interacting", "persson"):
+    for route in ROUTES:
         assert (run / "results" / f"{SCENE}+{route}" / "interface.nc").exists()
 
 
@@ -38,7 +39,7 @@ def test_every_route_writes_the_same_contract(run):
     ref = result(run, SCENE, "reference.nc")
     units = {"nominal_pressure": "Pa", "contact_area_ratio": "1", "normal_stiffness": "Pa/m",
              "contact_count": "1/m^2"}
-    for route in ("nayak_hertz", "nayak_fe", "peaks", "interacting", "persson"):
+    for route in ROUTES:
         ds = result(run, f"{SCENE}+{route}", "interface.nc")
         assert missing_attributes(ds) == [], route
         for name, unit in units.items():
@@ -46,6 +47,9 @@ def test_every_route_writes_the_same_contract(run):
         assert {"valid", "validity"} <= set(ds.data_vars), route
         np.testing.assert_allclose(ds["separation"].values, ref["separation"].values, rtol=1e-12)
     cmp_ = result(run, SCENE, "comparison.nc")
+    # the J2 asperities against the boundary elements limited by the hardness, the rest elastic
+    assert dict(zip(cmp_["route"].values, cmp_["reference_limit"].values)) == {
+        route: "hardness" if route == "interacting_j2" else "elastic" for route in ROUTES}
     both = np.isfinite(cmp_["pressure_error"]) & np.isfinite(cmp_["area_error"])
     worst = np.fmax(np.abs(cmp_["pressure_error"]), np.abs(cmp_["area_error"])).where(both)
     for k, best in enumerate(cmp_["recommended_route"].values):

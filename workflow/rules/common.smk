@@ -584,5 +584,11 @@ def _route_scenes():
 ROUTE_SCENES = _route_scenes()
 
 
-def route_map(wildcards):
-    return surface_inputs(wildcards)["data"]
+def route_inputs(wildcards):
+    """The map and surface.nc of a route scene, and its finite element asperities where
+    its interacting route takes their law (route.law: fe)."""
+    out = f"{RESULTS}/{wildcards.scene}"
+    inputs = {"map": surface_inputs(wildcards)["data"], "surface": f"{out}/surface.nc"}
+    if SCENES[wildcards.scene]["route"].get("law") == "fe":
+        inputs["asperities"] = f"{out}/asperities.nc"
+    return inputs

@@ -11,8 +11,7 @@ rule route_interface:
     """The interface law of the scene's map by its route: depends on the map, its
     preparation (form, filter, lateral scale), the material, the route and the separations."""
     input:
-        map=route_map,
-        surface=f"{RESULTS}/{{scene}}/surface.nc",
+        unpack(route_inputs),
     output:
         f"{RESULTS}/{{scene}}/interface.nc",
     log:
@@ -30,6 +29,7 @@ rule route_interface:
         material=scene_part("material"),
         homogenization=scene_part("homogenization"),
         validity=scene_part("validity"),
+        effects=scene_part("effects"),
         units=scene_part("units"),
     script:
         "../scripts/route_interface.py"

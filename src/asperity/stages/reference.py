@@ -199,7 +199,9 @@ def recommended(names, pressure_error: np.ndarray, area_error: np.ndarray, resol
 
 def comparison_dataset(reference: xr.Dataset, interfaces: Mapping[str, xr.Dataset],
                        agreement: float) -> xr.Dataset:
-    """Each statistical route's error against the elastic boundary-element solution.
+    """Each route's error against the boundary-element solution: the elastic one, or the
+    one limited by the hardness for a route that models plasticity (its interface's
+    attribute ``limit``: ``hardness``; the ``reference_limit`` of each route).
 
     Per route and separation: the pressure error p_route / p_BEM - 1 at the same
     separation; the contact area error A_route / A_BEM - 1 at the same nominal
@@ -221,10 +223,15 @@ def comparison_dataset(reference: xr.Dataset, interfaces: Mapping[str, xr.Datase
     shape = (len(names), h.size)
     vals = {k: np.full(shape, np.nan) for k in ("nominal_pressure", "contact_area_ratio",
                                                  "pressure_error", "area_error", "contact_count_ratio")}
+    limits = [interfaces[n].attrs.get("limit", "elastic") if interfaces[n].attrs.get("limit")
+              in reference["limit"].values else "elastic" for n in names]
     for i, name in enumerate(names):
         ds = interfaces[name]
         if "branch" in ds.dims:
             ds = ds.sel(branch=ds["branch"].values[0])
+        against = reference.sel(limit=limits[i])
+        p_ref = against["nominal_pressure"].values
+        a_ref = against["contact_area_ratio"].values
         hs = ds["separation"].values
         p, a, n = (_interp_semilog(h, hs, ds[k].values)
                    for k in ("nominal_pressure", "contact_area_ratio", "contact_count"))
@@ -236,6 +243,8 @@ def comparison_dataset(reference: xr.Dataset, interfaces: Mapping[str, xr.Datase
             vals["area_error"][i] = np.where(a_ref > 0, a_at_p / a_ref - 1, np.nan)
             vals["contact_count_ratio"][i] = np.where(el["contact_count"].values > 0,
                                                       n / el["contact_count"].values, np.nan)
+    p_ref = el["nominal_pressure"].values
+    a_ref = el["contact_area_ratio"].values
     cells = el["cells_per_patch"].values
     with np.errstate(invalid="ignore"):
         resolved = ~(cells < MIN_CELLS_PER_PATCH)  # NaN (no contact) is not judged
@@ -253,9 +262,11 @@ def comparison_dataset(reference: xr.Dataset, interfaces: Mapping[str, xr.Datase
     }
     out = xr.Dataset(
         {k: (("route", "separation"), v, attrs(*meta[k])) for k, v in vals.items()},
-        coords={"route": ("route", names, attrs("1", "statistical route (scene <reference>+<route>)")),
+        coords={"route": ("route", names, attrs("1", "route (scene <reference>+<route>)")),
                 "separation": ("separation", h, dict(reference["separation"].attrs))},
     )
+    out["reference_limit"] = ("route", np.array(limits, dtype=object), attrs(
+        "1", "the boundary elements each route is held against: elastic, or limited by the hardness"))
     out["reference_pressure"] = ("separation", p_ref, attrs("Pa", "nominal pressure, elastic boundary elements"))
     out["reference_area_ratio"] = ("separation", a_ref, attrs("1", "real contact area ratio, elastic boundary elements"))
     out["reference_resolved"] = ("separation", resolved, attrs(

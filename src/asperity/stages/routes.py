@@ -106,8 +106,9 @@ def _persson(z, dx, dy, h, modulus, hardness, route_cfg) -> xr.Dataset:
                                      gamma=float(route_cfg.get("gamma", persson.DEFAULT_GAMMA)))
 
 
-#: the force laws of the interacting route's asperities (``route.law``)
-LAWS = ("shape", "elliptic", "hertz")
+#: the force laws of the interacting route's asperities (``route.law``); ``fe``: the
+#: finite element asperities the scene plans (asperities.nc)
+LAWS = ("shape", "elliptic", "hertz", "fe")
 #: the interacting route's Newton tolerance: the largest residual of its equations over
 #: the largest interference
 INTERACTING_TOLERANCE = 1e-8
@@ -125,7 +126,27 @@ def principal_curvatures(surface_ds: xr.Dataset) -> tuple[np.ndarray, np.ndarray
     return mean + half, mean - half
 
 
-def asperity_law(kind: str, z, dx: float, dy: float, surface_ds: xr.Dataset, modulus: float):
+def fe_law(asperities: xr.Dataset, surface_ds: xr.Dataset):
+    """The law of each summit from the scene's finite element asperities (asperities.nc on
+    height, curvature, interference): force and contact area interpolated at the summit's
+    height and mean curvature on the table's interference grid (linear, as the
+    homogenization does: `asperity.homogenize.integrate`), `tabulated_law` between."""
+    from asperity.homogenize.integrate import _interp_points, _table
+    from asperity.homogenize.interacting import tabulated_law
+
+    table = _table(asperities[["force", "contact_area"]])
+    grid = table.interference
+    if grid[0] < 0:
+        raise ValueError("route.law fe: asperities with attraction before contact (adhesion) "
+                         "are not coupled by the interacting route")
+    z = surface_ds["height"].values[:, None]
+    k = surface_ds["curvature"].values[:, None]
+    values = _interp_points(table, z, k, grid[None, :])  # (summits, levels, [force, area])
+    return tabulated_law(grid, values[..., 0], values[..., 1])
+
+
+def asperity_law(kind: str, z, dx: float, dy: float, surface_ds: xr.Dataset, modulus: float,
+                 asperities: xr.Dataset | None = None):
     """The force law ``law(w, index)`` of the map's asperities for
     `asperity.homogenize.interacting` (`LAWS`):
 
@@ -136,7 +157,9 @@ def asperity_law(kind: str, z, dx: float, dy: float, surface_ds: xr.Dataset, mod
       elliptic tip;
     * ``elliptic``: Hertz's elliptic contact of the two principal curvatures (a ridge's
       smaller curvature taken as 1/100 of the larger);
-    * ``hertz``: the sphere of the mean curvature, Hertz.
+    * ``hertz``: the sphere of the mean curvature, Hertz;
+    * ``fe``: the scene's finite element asperities at the summit's mean curvature
+      (`fe_law`; elastic, J2 or Bodner-Partom as the scene's effects and material say).
     """
     from asperity.homogenize.interacting import hertz_law
     from asperity.references.hertz import elliptic_hertz
@@ -149,6 +172,11 @@ def asperity_law(kind: str, z, dx: float, dy: float, surface_ds: xr.Dataset, mod
     k1, k2 = principal_curvatures(surface_ds)
     if kind == "hertz":
         return hertz_law(modulus, mean)
+    if kind == "fe":
+        if asperities is None:
+            raise ValueError("route.law fe needs the scene's finite element asperities "
+                             "(asperity: {model: fe, ...} and a population)")
+        return fe_law(asperities, surface_ds)
     if kind == "elliptic":
         k2 = np.maximum(k2, k1 / 100.0)
 
@@ -165,7 +193,8 @@ def asperity_law(kind: str, z, dx: float, dy: float, surface_ds: xr.Dataset, mod
     return profile_law(radii, slopes, modulus)
 
 
-def _interacting(z, dx, dy, h, modulus, surface_ds: xr.Dataset, route_cfg: Config) -> xr.Dataset:
+def _interacting(z, dx, dy, h, modulus, surface_ds: xr.Dataset, route_cfg: Config,
+                 asperities: xr.Dataset | None = None) -> xr.Dataset:
     """The map's own asperities as the surface stage found them (surface.nc: the summits at
     the scene's lateral scale, or the pixel's peaks), each with its force law
     (`asperity_law`), coupled on the map's period."""
@@ -180,7 +209,7 @@ def _interacting(z, dx, dy, h, modulus, surface_ds: xr.Dataset, route_cfg: Confi
         surface_ds = surface_ds.isel(peak=np.flatnonzero(~flat))
     ny, nx = np.shape(z)
     kind = route_cfg.get("law", "shape")
-    law = asperity_law(kind, z, dx, dy, surface_ds, modulus)
+    law = asperity_law(kind, z, dx, dy, surface_ds, modulus, asperities)
     out = interacting_interface(surface_ds["x"].values, surface_ds["y"].values,
                                 surface_ds["height"].values, surface_ds["curvature"].values, h,
                                 modulus, (nx * dx, ny * dy), law=law, tolerance=INTERACTING_TOLERANCE,
@@ -199,7 +228,8 @@ def _interacting(z, dx, dy, h, modulus, surface_ds: xr.Dataset, route_cfg: Confi
 
 def route_interface(z: np.ndarray, dx: float, dy: float, surface_ds: xr.Dataset, route_cfg: Config,
                     material_cfg: Config, homogenization_cfg: Config, units_cfg: Config,
-                    validity_cfg: Config | None = None) -> xr.Dataset:
+                    validity_cfg: Config | None = None, asperities: xr.Dataset | None = None,
+                    effects=()) -> xr.Dataset:
     """The interface of the map `z` (m, ``z[i, j] = z(x = j dx, y = i dy)``, prepared as the
     surface stage prepares it) by the route of `route_cfg` (``kind``: one of `KINDS`), on
     the scene's separations, in the contract of ``interface.nc``, with ``valid`` and
@@ -218,13 +248,17 @@ def route_interface(z: np.ndarray, dx: float, dy: float, surface_ds: xr.Dataset,
     elif kind == "persson":
         out = _persson(z, dx, dy, h, modulus, hardness, route_cfg)
     else:
-        out = _interacting(z, dx, dy, h, modulus, surface_ds, route_cfg)
+        out = _interacting(z, dx, dy, h, modulus, surface_ds, route_cfg, asperities)
     for name, (units, long_name) in CONTRACT.items():
         if name not in out:
             out[name] = ("separation", np.full(h.size, np.nan))
         out[name].attrs = {**attrs(units, long_name), **{k: v for k, v in out[name].attrs.items()
                                                         if k not in ("units", "long_name")}}
-    out.attrs.update({"route": kind, "limit": route_cfg.get("limit", "elastic"),
+    # what the route models: elastic, or plastic (limited by the hardness, or inelastic FE
+    # asperities); the reference comparison holds each against the boundary elements alike
+    plastic = (route_cfg.get("limit") == "hardness"
+               or (route_cfg.get("law") == "fe" and "plasticity" in set(effects)))
+    out.attrs.update({"route": kind, "limit": "hardness" if plastic else "elastic",
                       "contact_modulus": modulus, "separation_definition":
                       "height of the flat above the mean plane of the prepared map; periodic, "
                       "zero-mean displacement: the mean gap of an elastic contact"})
