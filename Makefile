@@ -123,7 +123,7 @@ compare-results: $(STAMP)
 	$(BIN)/python benchmarks/compare_results.py results $(REFERENCE)
 
 # The figures shown in the README, copied from a full run.
-README_FIGURES := profile_quasirandom/figures/surface.png expectation_unit/figures/expectation.png \
+README_FIGURES := steel_glass_bead/figures/interface.png profile_quasirandom/figures/surface.png expectation_unit/figures/expectation.png \
 	greenwood_williamson/figures/interface.png map_hertz/figures/surface.png steel_hertz/figures/interface.png \
 	profiles_anisotropic/figures/surface.png hertz/figures/verification.png \
 	asperity_shape/figures/interface.png asperity_shape/figures/asperities.png \

@@ -22,7 +22,8 @@ def finish(fig: plt.Figure, axes, fontsize: int = 8) -> plt.Figure:
     """Legend and major and minor grid on every panel, then the titles fitted
     (`asperity.plots.layout.fit`; the figure has the constrained layout)."""
     for ax in axes:
-        ax.legend(fontsize=fontsize)
+        if ax.get_legend_handles_labels()[1]:  # a panel with nothing labelled has no legend
+            ax.legend(fontsize=fontsize)
         ax.grid(True, which="both", alpha=0.3)
     return fit(fig)
 
