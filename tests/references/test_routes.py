@@ -9,11 +9,19 @@ import pytest
 from asperity.references.boundary_element import solve_map
 from asperity.stages import routes
 from asperity.surface.synthetic import gaussian_map
-from tests.scene_defaults import filled
+from tests.scene_defaults import filled, filled_scene
 
 UNITS = {"length": "um", "pressure": "MPa"}
 ALUMINUM = filled("material", {"youngs_modulus": 70000.0, "poisson": 0.33, "yield_stress": 280.0})
 BARE = filled("material", {"youngs_modulus": 70000.0, "poisson": 0.33})
+VALIDITY = filled("validity", {})
+
+
+def route(**section):
+    """A scene's route section with the schema's defaults (in a scene with the map and
+    material a route needs)."""
+    return filled_scene({"route": section, "material": {"youngs_modulus": 1.0, "poisson": 0.3},
+                         "surface": {"map": {"file": "map.npy"}}})["route"]
 
 
 @pytest.fixture(scope="module")
@@ -40,8 +48,8 @@ def test_the_boundary_element_route_stiffness_is_the_derivative_of_its_own_press
     enters or leaves the contact within the step moves the difference, not the stiffness)."""
     z = surface
     ds = routes.route_interface(z, 1.25e-6, 1.25e-6, _surface_ds(z),
-                                {"kind": "boundary_elements", "tolerance": 1e-9}, ALUMINUM,
-                                _homogenization(), UNITS, {})
+                                route(kind="boundary_elements", tolerance=1e-9), ALUMINUM,
+                                _homogenization(), UNITS, VALIDITY)
     h = ds["separation"].values
     modulus = ds.attrs["contact_modulus"]
     step = 1e-4 * float(z.std())
@@ -55,8 +63,8 @@ def test_the_boundary_element_route_stiffness_is_the_derivative_of_its_own_press
 def test_every_route_writes_the_interface_contract(surface):
     z = surface
     for kind in ("boundary_elements", "persson"):
-        ds = routes.route_interface(z, 1.25e-6, 1.25e-6, _surface_ds(z), {"kind": kind}, ALUMINUM,
-                                    _homogenization(), UNITS, {})
+        ds = routes.route_interface(z, 1.25e-6, 1.25e-6, _surface_ds(z), route(kind=kind), ALUMINUM,
+                                    _homogenization(), UNITS, VALIDITY)
         for name, (unit, _) in routes.CONTRACT.items():
             assert ds[name].attrs["units"] == unit, (kind, name)
             assert ds[name].attrs["long_name"], (kind, name)
@@ -70,8 +78,8 @@ def test_every_route_writes_the_interface_contract(surface):
 def test_an_elastic_route_without_hardness_is_not_called_valid(surface):
     z = surface
     bare = BARE
-    ds = routes.route_interface(z, 1.25e-6, 1.25e-6, _surface_ds(z), {"kind": "persson"}, bare,
-                                _homogenization(), UNITS, {})
+    ds = routes.route_interface(z, 1.25e-6, 1.25e-6, _surface_ds(z), route(kind="persson"), bare,
+                                _homogenization(), UNITS, VALIDITY)
     assert not ds["valid"].values.any()
     assert set(ds["validity"].values) == {"unchecked_yield: no hardness or yield stress in the "
                                           "scene's material"}
@@ -83,8 +91,8 @@ def test_the_boundary_elements_judge_their_own_resolution(surface):
     nothing (zero force, valid)."""
     z = gaussian_map(128, 1.25e-6, 1e-6, 5e-6, 3)
     z = z - z.mean()
-    ds = routes.route_interface(z, 1.25e-6, 1.25e-6, _surface_ds(z), {"kind": "boundary_elements"},
-                                ALUMINUM, _homogenization(1.0, 4.5, 15), UNITS, {})
+    ds = routes.route_interface(z, 1.25e-6, 1.25e-6, _surface_ds(z), route(kind="boundary_elements"),
+                                ALUMINUM, _homogenization(1.0, 4.5, 15), UNITS, VALIDITY)
     cells = ds["cells_per_patch"].values
     low = np.isfinite(cells) & (cells < routes.MIN_CELLS_PER_PATCH)
     assert low.any()
@@ -99,8 +107,8 @@ def test_a_hardness_limited_route_needs_a_hardness(surface):
     bare = BARE
     with pytest.raises(ValueError, match="route.limit: hardness"):
         routes.route_interface(surface, 1.25e-6, 1.25e-6, _surface_ds(surface),
-                               {"kind": "boundary_elements", "limit": "hardness"}, bare,
-                               _homogenization(), UNITS, {})
+                               route(kind="boundary_elements", limit="hardness"), bare,
+                               _homogenization(), UNITS, VALIDITY)
 
 
 def _with_peaks(z):
@@ -116,12 +124,12 @@ def test_the_interacting_route_by_each_law(surface):
     separation from 1 to 2.5 sigma."""
     z = surface
     ds_map = _with_peaks(z)
-    bem = routes.route_interface(z, 1.25e-6, 1.25e-6, ds_map, {"kind": "boundary_elements"}, ALUMINUM,
-                                 _homogenization(), UNITS, {})
+    bem = routes.route_interface(z, 1.25e-6, 1.25e-6, ds_map, route(kind="boundary_elements"), ALUMINUM,
+                                 _homogenization(), UNITS, VALIDITY)
     errors = {}
     for law in ("shape", "elliptic", "hertz"):  # fe: tests/workflow/test_deterministic_reference
-        ds = routes.route_interface(z, 1.25e-6, 1.25e-6, ds_map, {"kind": "interacting", "law": law},
-                                    ALUMINUM, _homogenization(), UNITS, {})
+        ds = routes.route_interface(z, 1.25e-6, 1.25e-6, ds_map, route(kind="interacting", law=law),
+                                    ALUMINUM, _homogenization(), UNITS, VALIDITY)
         for name, (unit, _) in routes.CONTRACT.items():
             assert ds[name].attrs["units"] == unit, (law, name)
         assert ds.attrs["law"] == law
@@ -130,8 +138,8 @@ def test_the_interacting_route_by_each_law(surface):
         errors[law] = np.abs(p / bem["nominal_pressure"].values - 1)
     assert np.all(errors["shape"] < errors["hertz"]), errors
     with pytest.raises(ValueError, match="route.law fe needs the scene's finite element asperities"):
-        routes.route_interface(z, 1.25e-6, 1.25e-6, ds_map, {"kind": "interacting", "law": "fe"},
-                               ALUMINUM, _homogenization(), UNITS, {})
+        routes.route_interface(z, 1.25e-6, 1.25e-6, ds_map, route(kind="interacting", law="fe"),
+                               ALUMINUM, _homogenization(), UNITS, VALIDITY)
 
 
 @pytest.mark.slow

@@ -36,6 +36,8 @@ from asperity import scene
 from asperity.homogenize import validity
 from asperity.population.density import height_scale
 from asperity.references.hertz import plane_strain_modulus
+# the fewest contacting cells per patch at which the boundary elements resolve the contact
+from asperity.stages.reference import MIN_CELLS_PER_PATCH
 # the map as the surface stage reads and prepares it: the script of the route rule calls
 # this module only
 from asperity.stages.surface import prepared_roughness, reading  # noqa: F401
@@ -47,9 +49,6 @@ Config = Mapping[str, Any]
 
 #: the routes a scene's ``route.kind`` names
 KINDS = ("interacting", "persson", "boundary_elements")
-#: fewest contacting cells per patch at which the boundary elements resolve the contact
-#: (the same limit as the reference's, `asperity.stages.reference.MIN_CELLS_PER_PATCH`)
-MIN_CELLS_PER_PATCH = 10.0
 
 #: the interface variables every route writes: units and long names
 CONTRACT = {
@@ -79,7 +78,7 @@ def contact_modulus_and_hardness(material_cfg: Config, units_cfg: Config) -> tup
 
 def _hardness_for(route_cfg: Config, hardness: float) -> float | None:
     """The cap of a route limited by the hardness (None: elastic)."""
-    if route_cfg.get("limit", "elastic") != "hardness":
+    if route_cfg["limit"] != "hardness":
         return None
     if not math.isfinite(hardness):
         raise ValueError("route.limit: hardness needs material.hardness or material.yield_stress "
@@ -92,8 +91,8 @@ def _boundary_elements(z, dx, dy, h, modulus, hardness, route_cfg) -> xr.Dataset
 
     cap = _hardness_for(route_cfg, hardness)
     ds = solve_map(z, dx, dy, h, modulus, hardness=cap, boundary="periodic",
-                   yield_pressure=hardness if cap is None and math.isfinite(hardness) else None, tolerance=float(route_cfg.get("tolerance", 1e-6)),
-                   max_iterations=int(route_cfg.get("max_iterations", 5000)))
+                   yield_pressure=hardness if cap is None and math.isfinite(hardness) else None,
+                   tolerance=float(route_cfg["tolerance"]), max_iterations=int(route_cfg["max_iterations"]))
     ds.attrs["route_cpu_time"] = ds.attrs.pop("cpu_time", math.nan)
     return ds
 
@@ -103,7 +102,7 @@ def _persson(z, dx, dy, h, modulus, hardness, route_cfg) -> xr.Dataset:
 
     q, C = persson.isotropic_spectrum(z, dx, dy)
     return persson.persson_interface(q, C, modulus, h, hardness=_hardness_for(route_cfg, hardness),
-                                     gamma=float(route_cfg.get("gamma", persson.DEFAULT_GAMMA)))
+                                     gamma=float(route_cfg["gamma"]))
 
 
 #: the force laws of the interacting route's asperities (``route.law``); ``fe``: the
@@ -208,7 +207,7 @@ def _interacting(z, dx, dy, h, modulus, surface_ds: xr.Dataset, route_cfg: Confi
                     int(flat.sum()), flat.size)
         surface_ds = surface_ds.isel(peak=np.flatnonzero(~flat))
     ny, nx = np.shape(z)
-    kind = route_cfg.get("law", "shape")
+    kind = route_cfg["law"]
     law = asperity_law(kind, z, dx, dy, surface_ds, modulus, asperities)
     out = interacting_interface(surface_ds["x"].values, surface_ds["y"].values,
                                 surface_ds["height"].values, surface_ds["curvature"].values, h,
@@ -228,7 +227,7 @@ def _interacting(z, dx, dy, h, modulus, surface_ds: xr.Dataset, route_cfg: Confi
 
 def route_interface(z: np.ndarray, dx: float, dy: float, surface_ds: xr.Dataset, route_cfg: Config,
                     material_cfg: Config, homogenization_cfg: Config, units_cfg: Config,
-                    validity_cfg: Config | None = None, asperities: xr.Dataset | None = None,
+                    validity_cfg: Config, asperities: xr.Dataset | None = None,
                     effects=()) -> xr.Dataset:
     """The interface of the map `z` (m, ``z[i, j] = z(x = j dx, y = i dy)``, prepared as the
     surface stage prepares it) by the route of `route_cfg` (``kind``: one of `KINDS`), on
@@ -256,8 +255,8 @@ def route_interface(z: np.ndarray, dx: float, dy: float, surface_ds: xr.Dataset,
                                                         if k not in ("units", "long_name")}}
     # what the route models: elastic, or plastic (limited by the hardness, or inelastic FE
     # asperities); the reference comparison holds each against the boundary elements alike
-    plastic = (route_cfg.get("limit") == "hardness"
-               or (route_cfg.get("law") == "fe" and "plasticity" in set(effects)))
+    plastic = (route_cfg["limit"] == "hardness"
+               or (kind == "interacting" and route_cfg["law"] == "fe" and "plasticity" in set(effects)))
     out.attrs.update({"route": kind, "limit": "hardness" if plastic else "elastic",
                       "contact_modulus": modulus, "separation_definition":
                       "height of the flat above the mean plane of the prepared map; periodic, "
@@ -265,7 +264,7 @@ def route_interface(z: np.ndarray, dx: float, dy: float, surface_ds: xr.Dataset,
     log.info("route %s (%s): %d separations, largest A/A0 %.3g, largest p %.4g Pa", kind,
              out.attrs["limit"], h.size, float(np.nanmax(out["contact_area_ratio"].values)),
              float(np.nanmax(out["nominal_pressure"].values)))
-    return assess_route(out, kind, hardness, validity_cfg or {})
+    return assess_route(out, kind, hardness, validity_cfg)
 
 
 def assess_route(out: xr.Dataset, kind: str, hardness: float, validity_cfg: Config) -> xr.Dataset:
@@ -292,7 +291,7 @@ def assess_route(out: xr.Dataset, kind: str, hardness: float, validity_cfg: Conf
             fail(contact & (cells < MIN_CELLS_PER_PATCH), np.array(
                 [f"unresolved_contacts {c:.3g} cells per patch < {MIN_CELLS_PER_PATCH:g}" for c in cells],
                 dtype=object))
-    limit = float(validity_cfg.get("merged_load_fraction", 0.5))
+    limit = float(validity_cfg["merged_load_fraction"])
     if "merged_load_fraction" in out:
         merged = out["merged_load_fraction"].values
         with np.errstate(invalid="ignore"):
@@ -303,7 +302,7 @@ def assess_route(out: xr.Dataset, kind: str, hardness: float, validity_cfg: Conf
         fail(contact, "unchecked_yield: no hardness or yield stress in the scene's material")
     elif elastic and "yielded_fraction" in out:
         share = out["yielded_fraction"].values
-        cap = float(validity_cfg.get("yielded_fraction", 0.5))
+        cap = float(validity_cfg["yielded_fraction"])
         with np.errstate(invalid="ignore"):
             fail(contact & (share > cap), np.array([f"yielded_fraction {v:.3g} > {cap:.3g}" for v in share],
                                                    dtype=object))
