@@ -282,6 +282,7 @@ def _scale_study(name: str) -> str:
     axes[2].set(xlabel="lambda_s / grid step (pixel at 1)",
                 ylabel="interacting (shape): largest |p error| (%)")
     axes[0].legend()
+    (DOCS / "verification").mkdir(exist_ok=True)  # generated pages only: absent in a clone
     fig.savefig(DOCS / "verification" / "scale-study.png", dpi=110)
     plt.close(fig)
     return "".join(text) + "\n" + _provenance(d, name)
