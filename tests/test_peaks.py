@@ -8,13 +8,8 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from scipy import integrate
 
-from asperity.peaks import (
-    FixedCurvatureDensity,
-    JointDensity,
-    SampledDensity,
-    _eta_factor,
-    francis_density,
-)
+from asperity.peaks import FixedCurvatureDensity, JointDensity, SampledDensity, francis_density
+from asperity.peaks.isotropic import _eta_factor
 
 # report 2.6.2 (with the errata of DESIGN.md for Fig. 2.12b)
 SIGMA, SIGMA_SLOPE, SIGMA_CURV = 1.1620, 0.59221, 0.49315
@@ -156,7 +151,7 @@ def test_support_contains_region_and_is_tight(threshold):
     (zl, zh), (kl, kh) = d.to_dimensional(np.array([xs[0], xs[-1]]), np.array([es[0], es[-1]]))
     assert z0 <= zl and zh <= z1 and k0 <= kl and kh <= k1
     # tight: padded by one step of the support grid plus the reference grid's step
-    from asperity.peaks import _radius_bound
+    from asperity.peaks.isotropic import _radius_bound
 
     step = 2 * _radius_bound(threshold, d.beta) / (resolution - 1)
     slack = step + 24 / 4000
