@@ -44,7 +44,7 @@ def test_plan_and_per_sample_response_agree_with_gathered():
 
 
 def test_synthetic_map_statistics():
-    gen = {"points": 128, "spacing": 1.0, "sigma": 2.0, "correlation_length": 8.0, "seed": 3}
+    gen = {"points": 128, "spacing": 1.0, "sigma": 2.0, "correlation_length": 8.0, "seed": 3, "aspect": 1.0}
     z = surface_stage.synthetic_map(gen)
     assert z.shape == (128, 128)
     assert z.std() == pytest.approx(2.0, rel=1e-12)
@@ -55,7 +55,7 @@ def test_map_peak_density_matches_nayak():
     """A Gaussian isotropic map with autocorrelation exp(-r^2/l^2) has m2 = 2 sigma^2/l^2,
     m4 = 12 sigma^2/l^4, so D_p = m4/(6 pi sqrt3 m2) = 1/(pi sqrt3 l^2) (2.3.1).
     ~490 peaks: the Poisson spread is 4.5 %; bound 10 %."""
-    gen = {"points": 512, "spacing": 2.0, "sigma": 1.0, "correlation_length": 20.0, "seed": 7}
+    gen = {"points": 512, "spacing": 2.0, "sigma": 1.0, "correlation_length": 20.0, "seed": 7, "aspect": 1.0}
     ds = surface_stage.surface_from_data(surface_stage.synthetic_map(gen), (2.0, 2.0), {"map": {"generate": gen}},
                                          {"length": "m"})
     expected = 1.0 / (np.pi * np.sqrt(3) * 20.0**2)

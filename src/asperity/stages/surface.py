@@ -69,7 +69,7 @@ def synthetic_profile(generate: Config) -> tuple[np.ndarray, np.ndarray]:
 def synthetic_map(generate: Config) -> np.ndarray:
     """The Gaussian random height map of a scene (scene units), :func:`surface.gaussian_map`."""
     return surface.gaussian_map(generate["points"], generate["spacing"], generate["sigma"],
-                                generate["correlation_length"], generate["seed"])
+                                generate["correlation_length"], generate["seed"], generate["aspect"])
 
 
 def profile_file_name(direction_deg: float) -> str:

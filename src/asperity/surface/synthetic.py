@@ -178,18 +178,19 @@ def directional_profiles(components: int, seed: int, aspect: float, spacing: flo
 
 
 def gaussian_map(points: int, spacing: float, sigma: float, correlation_length: float,
-                 seed: int) -> np.ndarray:
+                 seed: int, aspect: float = 1.0) -> np.ndarray:
     """A Gaussian random height map with a Gaussian autocorrelation.
 
-    White noise filtered in Fourier space by exp(-k^2 l^2 / 8), which gives
-    the autocorrelation exp(-r^2 / l^2) (l: ``correlation_length``), scaled
-    to the standard deviation ``sigma`` (population, 1/n).  Periodic, so the
-    eight-neighbour peak rule of 2.4.3 sees no edge effects.
+    White noise filtered in Fourier space by exp(-(aspect^2 kx^2 + ky^2) l^2 / 8),
+    which gives the autocorrelation exp(-(x / (aspect l))^2 - (y / l)^2) (l:
+    ``correlation_length``, along y; ``aspect`` > 1 stretches the surface along x, its
+    lay), scaled to the standard deviation ``sigma`` (population, 1/n).  Periodic, so
+    the eight-neighbour peak rule of 2.4.3 sees no edge effects.  Rows are y, columns x.
     """
     rng = np.random.default_rng(seed)
     noise = rng.standard_normal((points, points))
     k = 2 * np.pi * np.fft.fftfreq(points, d=spacing)
-    k2 = k[:, None] ** 2 + k[None, :] ** 2
+    k2 = k[:, None] ** 2 + (float(aspect) * k[None, :]) ** 2
     z = np.fft.ifft2(np.fft.fft2(noise) * np.exp(-k2 * correlation_length**2 / 8)).real
     z -= z.mean()
     return z * (sigma / z.std())
