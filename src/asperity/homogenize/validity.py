@@ -241,22 +241,27 @@ def with_indicators(asperities: xr.Dataset, plasticity: Plasticity | None) -> xr
     return out
 
 
-def peak_statistics(density, bounds, cells: int = 200) -> tuple[float, float]:
+def peak_statistics(density, bounds=None, cells: int = 200) -> tuple[float, float]:
     """(sigma_p, R): the standard deviation of the peak heights [m] and the radius of the
     mean peak curvature, 1 / E(kappa) [m], over the peak density on `bounds` (eq. 2.7:
-    Gauss cells; a map's peaks themselves)."""
+    Gauss cells; a map's peaks themselves; an anisotropic density's own quadrature, its
+    kappa the mean curvature (kappa_1 + kappa_2) / 2)."""
     from asperity.homogenize.integrate import expectation
     from asperity.peaks import SampledDensity
+    from asperity.peaks.anisotropic import AnisotropicDensity
 
     def moments(z, k):
         z, k = np.broadcast_arrays(z, k)
         return np.stack([z, z * z, k], axis=-1)
 
-    if isinstance(density, SampledDensity):
-        m = expectation(moments, density, rule="peaks").expectation
+    if isinstance(density, AnisotropicDensity):
+        mean, square, kappa = (density.expectation(fn) for fn in (
+            lambda z, k1, k2: z, lambda z, k1, k2: z * z, lambda z, k1, k2: 0.5 * (k1 + k2)))
+    elif isinstance(density, SampledDensity):
+        mean, square, kappa = (float(v) for v in expectation(moments, density, rule="peaks").expectation)
     else:
-        m = expectation(moments, density, bounds, cells=(cells, cells), rule="gauss").expectation
-    mean, square, kappa = (float(v) for v in m)
+        mean, square, kappa = (float(v) for v in expectation(moments, density, bounds, cells=(cells, cells),
+                                                             rule="gauss").expectation)
     return math.sqrt(max(square - mean * mean, 0.0)), 1.0 / kappa
 
 
