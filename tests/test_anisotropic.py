@@ -182,3 +182,37 @@ def test_gaussian_map_with_an_aspect_has_the_directional_moments():
     assert float(stats["m20"]) == pytest.approx(2.0 / 48.0**2, rel=0.1)
     assert float(stats["m02"]) == pytest.approx(2.0 / 12.0**2, rel=0.1)
     assert abs(float(stats["m11"])) < 0.1 * math.sqrt(float(stats["m20"] * stats["m02"]))
+
+
+def test_the_anisotropic_route_writes_the_contract_and_its_validity():
+    """route.kind anisotropic on a map's moments (asperity.stages.routes): the interface
+    contract with units, the elliptic law by default, a pressure falling with the
+    separation, equal to the route called directly (1e-12), the validity of independent
+    asperities (yield checked against the aluminum's hardness) and a one-line error for a
+    law the route does not have."""
+    from asperity.stages import routes
+    from asperity.surface import map_statistics
+    from asperity.surface.synthetic import gaussian_map
+    from tests.references.test_routes import ALUMINUM, UNITS, VALIDITY, _homogenization, route
+
+    z = gaussian_map(256, 1.25e-6, 1e-6, 10e-6, 4, aspect=4.0)
+    surface_ds = map_statistics(z, 1.25e-6, 1.25e-6)
+    ds = routes.route_interface(z, 1.25e-6, 1.25e-6, surface_ds, route(kind="anisotropic"), ALUMINUM,
+                                _homogenization(), UNITS, VALIDITY)
+    for name, (unit, _) in routes.CONTRACT.items():
+        assert ds[name].attrs["units"] == unit and ds[name].attrs["long_name"], name
+    assert ds.attrs["route"] == "anisotropic" and ds.attrs["law"] == "elliptic"
+    p = ds["nominal_pressure"].values
+    assert np.all(np.diff(p) < 0)
+    direct = anisotropic_interface(AnisotropicDensity.from_surface(surface_ds),
+                                   elliptic_law(ds.attrs["contact_modulus"]), ds["separation"].values)
+    np.testing.assert_allclose(p, direct["nominal_pressure"].values, rtol=1e-12)
+    # elastic summits of curvature radius ~ l^2 / sigma = 100 um pressed by ~1 um carry a
+    # mean Hertz pressure ~ 4 E* sqrt(w / R) / (3 pi) ~ 3 GPa, ten times the aluminum's
+    # yield pressure: (nearly) every contact has yielded, and no separation is valid
+    assert np.all(ds["yielded_fraction"].values > 0.9)
+    assert not ds["valid"].values.any()
+    assert all(str(v).startswith("yielded_fraction") for v in ds["validity"].values)
+    with pytest.raises(ValueError, match="route.law of the anisotropic route"):
+        routes.route_interface(z, 1.25e-6, 1.25e-6, surface_ds, route(kind="anisotropic", law="shape"),
+                               ALUMINUM, _homogenization(), UNITS, VALIDITY)

@@ -48,7 +48,7 @@ log = logging.getLogger("asperity")
 Config = Mapping[str, Any]
 
 #: the routes a scene's ``route.kind`` names
-KINDS = ("interacting", "persson", "boundary_elements")
+KINDS = ("interacting", "persson", "boundary_elements", "anisotropic")
 
 #: the interface variables every route writes: units and long names
 CONTRACT = {
@@ -192,6 +192,34 @@ def asperity_law(kind: str, z, dx: float, dy: float, surface_ds: xr.Dataset, mod
     return profile_law(radii, slopes, modulus)
 
 
+def _anisotropic(h, surface_ds: xr.Dataset, route_cfg: Config, material_cfg: Config, units_cfg: Config,
+                 validity_cfg: Config, effects) -> xr.Dataset:
+    """The summits of the Gaussian anisotropic surface of the map's spectral moments (its
+    derivative covariances at the scene's lateral scale, surface.nc), each an elliptic
+    Hertz contact (``law: elliptic``) or the sphere of its mean curvature (``hertz``),
+    independent (report 2.4.2, 2.5.2: `asperity.homogenize.anisotropic`), with the
+    validity of independent asperities (`asperity.homogenize.validity.assess`: yield,
+    contact area, interaction, plasticity index, Gaussian heights)."""
+    from asperity.homogenize import anisotropic
+    from asperity.homogenize.validity import peak_statistics, plasticity_of
+    from asperity.peaks.anisotropic import AnisotropicDensity
+
+    kind = route_cfg["law"] or "elliptic"
+    if kind not in anisotropic.LAWS:
+        raise ValueError(f"route.law of the anisotropic route must be one of {', '.join(anisotropic.LAWS)}; "
+                         f"got {kind!r}")
+    density = AnisotropicDensity.from_surface(surface_ds)
+    units = scene.Units.from_section(units_cfg)
+    plastic = plasticity_of(scene.Material.from_scene(material_cfg, units), effects or ())
+    modulus = plastic.plane_strain_modulus
+    law = anisotropic.elliptic_law(modulus) if kind == "elliptic" else anisotropic.mean_curvature_law(modulus)
+    out = anisotropic.anisotropic_interface(density, law, h, plastic.yield_pressure)
+    out.attrs.update({"law": kind, "scale": float(surface_ds.attrs.get("scale", math.nan))})
+    heights = tuple(float(surface_ds[k]) for k in ("skewness", "kurtosis")) \
+        if "skewness" in surface_ds and "kurtosis" in surface_ds else None
+    return validity.assess(out, plastic, peak_statistics(density), validity.Limits(**validity_cfg), heights)
+
+
 def _interacting(z, dx, dy, h, modulus, surface_ds: xr.Dataset, route_cfg: Config,
                  asperities: xr.Dataset | None = None) -> xr.Dataset:
     """The map's own asperities as the surface stage found them (surface.nc: the summits at
@@ -207,7 +235,7 @@ def _interacting(z, dx, dy, h, modulus, surface_ds: xr.Dataset, route_cfg: Confi
                     int(flat.sum()), flat.size)
         surface_ds = surface_ds.isel(peak=np.flatnonzero(~flat))
     ny, nx = np.shape(z)
-    kind = route_cfg["law"]
+    kind = route_cfg["law"] or "shape"
     law = asperity_law(kind, z, dx, dy, surface_ds, modulus, asperities)
     out = interacting_interface(surface_ds["x"].values, surface_ds["y"].values,
                                 surface_ds["height"].values, surface_ds["curvature"].values, h,
@@ -246,6 +274,8 @@ def route_interface(z: np.ndarray, dx: float, dy: float, surface_ds: xr.Dataset,
         out = _boundary_elements(z, dx, dy, h, modulus, hardness, route_cfg)
     elif kind == "persson":
         out = _persson(z, dx, dy, h, modulus, hardness, route_cfg)
+    elif kind == "anisotropic":
+        out = _anisotropic(h, surface_ds, route_cfg, material_cfg, units_cfg, validity_cfg, effects)
     else:
         out = _interacting(z, dx, dy, h, modulus, surface_ds, route_cfg, asperities)
     for name, (units, long_name) in CONTRACT.items():
@@ -264,6 +294,8 @@ def route_interface(z: np.ndarray, dx: float, dy: float, surface_ds: xr.Dataset,
     log.info("route %s (%s): %d separations, largest A/A0 %.3g, largest p %.4g Pa", kind,
              out.attrs["limit"], h.size, float(np.nanmax(out["contact_area_ratio"].values)),
              float(np.nanmax(out["nominal_pressure"].values)))
+    if kind == "anisotropic":  # independent summits, assessed as every statistical route (_anisotropic)
+        return out
     return assess_route(out, kind, hardness, validity_cfg)
 
 
