@@ -11,6 +11,7 @@ import numpy as np
 import xarray as xr
 
 from asperity import units
+from asperity.friction import at_pressure
 from asperity.plots.layout import fit, subplots
 from asperity.plots.validity import shade_invalid
 
@@ -23,28 +24,51 @@ LAW_STYLE = {"oden_martins": dict(color="C1", label="Oden-Martins (10.42)"),
 def friction_figure(friction: xr.Dataset, others: dict[str, xr.Dataset] | None = None,
                     pressure_unit: str = "Pa", length_unit: str = "m") -> plt.Figure:
     """mu versus nominal pressure (shear, interlocking, total; measured values and the
-    report's estimate) and versus separation; compared scenes' mu dotted."""
+    report's estimate) and versus separation; compared scenes' mu dotted.
+
+    With a sliding direction (dim ``direction``) the totals are drawn at the
+    directions of the smallest and the largest mu_interlocking given; with a sweep a
+    third panel draws mu_interlocking and mu at a few pressures against the
+    direction (`_direction_panel`)."""
     ps = units.pressure_scale(pressure_unit)
     ls = units.length_scale(length_unit)
     p = friction["nominal_pressure"].values / ps
     h = friction["separation"].values / ls
-    shear, total = friction["mu_shear"].values, friction["mu"].values
-    mu_i = float(friction["mu_interlocking"])
-    fig, axes = subplots(1, 2, figsize=(12, 4.4))
+    shear = friction["mu_shear"].values
+    directed = "direction" in friction.dims
+    sweep = directed and friction.sizes["direction"] > 1
+    fig, axes = subplots(1, 3 if sweep else 2, figsize=(17, 4.4) if sweep else (12, 4.4))
     ax = axes[0]
     ok = np.isfinite(shear) & (p > 0)
     ax.semilogx(p[ok], shear[ok], "o-", ms=3, color="C0", label="shearing τ_s A_c / F (9.41)")
-    if mu_i > 0:
-        ax.semilogx(p[ok], np.full(ok.sum(), mu_i), "--", color="C0", lw=1, label=f"interlocking {mu_i:.3g}")
-        ax.semilogx(p[ok], total[ok], "o-", ms=3, color="k", label="total μ")
+    if directed:
+        mu_dir = friction["mu_interlocking"].values
+        picks = sorted({int(np.argmin(mu_dir)), int(np.argmax(mu_dir))})
+        curves = [(float(mu_dir[k]), friction["mu"].values[:, k],
+                   f" at θ = {np.degrees(float(friction['direction'][k])):.4g}°") for k in picks]
+    else:
+        curves = [(float(friction["mu_interlocking"]), friction["mu"].values, "")]
+    for j, (mu_i, total, at) in enumerate(curves):
+        if mu_i > 0:
+            color, style = ("k", "o-") if j == 0 else ("0.45", "s-")
+            ax.semilogx(p[ok], np.full(ok.sum(), mu_i), "--", color=color if j else "C0", lw=1,
+                        label=f"interlocking {mu_i:.3g}{at}")
+            ax.semilogx(p[ok], total[ok], style, ms=3, color=color, label=f"total μ{at}")
     axes[1].plot(h[ok], shear[ok], "o-", ms=3, color="C0", label="shearing")
-    if mu_i > 0:
-        axes[1].plot(h[ok], total[ok], "o-", ms=3, color="k", label="total")
+    for j, (mu_i, total, at) in enumerate(curves):
+        if mu_i > 0:
+            axes[1].plot(h[ok], total[ok], "o-" if j == 0 else "s-", ms=3, color="k" if j == 0 else "0.45",
+                         label=f"total{at}")
     for i, (name, other) in enumerate((others or {}).items()):
         po = other["nominal_pressure"].values / ps
-        mo = other["mu"].values
+        mo = other["mu"]
+        at = ""
+        if "direction" in mo.dims:  # a compared scene with a direction: its first
+            at = f", θ = {np.degrees(float(other['direction'][0])):.4g}°"
+            mo = mo.isel(direction=0)
+        mo = mo.values
         oko = np.isfinite(mo) & (po > 0)
-        style = dict(ls=":", marker="s", ms=3, color=f"C{i + 3}", label=f"{name} (total)")
+        style = dict(ls=":", marker="s", ms=3, color=f"C{i + 3}", label=f"{name} (total{at})")
         ax.semilogx(po[oko], mo[oko], **style)
         axes[1].plot(other["separation"].values[oko] / ls, mo[oko], **style)
     if "measurement" in friction.dims:
@@ -72,11 +96,48 @@ def friction_figure(friction: xr.Dataset, others: dict[str, xr.Dataset] | None =
     axes[1].set(xlabel=f"separation [{length_unit}]", ylabel="coefficient of friction μ",
                 title="versus separation (approach grows to the left)")
     shade_invalid(axes, [p, h], friction)
+    if sweep:
+        _direction_panel(axes[2], friction, pressure_unit)
     for a in axes:
         a.set_ylim(bottom=0)
         a.grid(True, which="both", alpha=0.3)
         a.legend(fontsize=7)
     return fit(fig)
+
+
+def _direction_panel(ax, friction: xr.Dataset, pressure_unit: str) -> None:
+    """mu_interlocking and mu against the sliding direction [deg]: mu at the tests'
+    pressures (those inside the computed range), else at the smallest, a middle and
+    the largest computed positive pressure (mu_shear interpolated in log p,
+    `asperity.friction.at_pressure`); the lay and the steepest direction dotted."""
+    ps = units.pressure_scale(pressure_unit)
+    deg = np.degrees(friction["direction"].values)
+    p = friction["nominal_pressure"].values
+    shear = friction["mu_shear"].values
+    mu_i = friction["mu_interlocking"].values
+    ax.plot(deg, mu_i, "--", color="C0", label="interlocking")
+    ok = np.flatnonzero(np.isfinite(shear) & (p > 0))
+    targets = np.array([])
+    if "measured_nominal_pressure" in friction:
+        mp = friction["measured_nominal_pressure"].values
+        targets = np.unique(mp[np.isfinite(at_pressure(p, shear, mp))])
+    if targets.size == 0 and ok.size:
+        order = ok[np.argsort(p[ok])]
+        targets = np.unique(p[order[[0, order.size // 2, -1]]])
+    for j, target in enumerate(targets[:4]):
+        total = at_pressure(p, shear, target)[0] + mu_i
+        ax.plot(deg, total, "o-", ms=3, color=f"C{j + 1}", label=f"total μ at {target / ps:.3g} {pressure_unit}")
+    lo, hi = deg.min(), deg.max()
+    for key, style, what in (("lay_direction", ":", "lay"), ("steepest_direction", "-.", "steepest")):
+        if key in friction.attrs:
+            base = np.degrees(float(friction.attrs[key]))
+            marks = base + 180.0 * np.arange(np.floor((lo - base) / 180.0), np.ceil((hi - base) / 180.0) + 1)
+            marks = marks[(marks >= lo) & (marks <= hi)]
+            for k, mark in enumerate(marks):
+                ax.axvline(mark, color="0.3", ls=style, lw=1, label=f"{what} {base:.3g}°" if k == 0 else None)
+    flat = "" if np.ptp(mu_i) > 0 else " (flat: no direction dependence)"
+    ax.set(xlabel="sliding direction θ from x [deg]", ylabel="coefficient of friction μ",
+           title=f"versus sliding direction{flat}")
 
 
 def laws_figure(laws: xr.Dataset, pressure_unit: str = "Pa", length_unit: str = "m") -> plt.Figure:

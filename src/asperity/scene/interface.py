@@ -9,6 +9,7 @@ from typing import Any, Mapping
 import numpy as np
 
 from asperity import units as units_
+from asperity.scene.checks import SceneError
 from asperity.scene.population import curvature_range, length_range
 from asperity.scene.units import Units, parses
 
@@ -87,12 +88,16 @@ class FrictionEstimate:
 class Friction:
     """The static coefficient of friction (9.1): junction_shear_strength tau_s [Pa]
     (None: from the yield stress), interlocking (``mean_absolute_slope``,
-    ``rms_slope``, ``none`` or a value), measured coefficients, and the report's."""
+    ``rms_slope``, ``none`` or a value), measured coefficients, the report's, and
+    the sliding direction(s) [rad from the x axis of the surface] (None: the
+    direction-free average; one value, or the ``count`` values of a sweep from
+    ``start`` to ``stop``, both included)."""
 
     junction_shear_strength: float | None
     interlocking: str | float
     measured: tuple[Measurement, ...]
     report: FrictionEstimate | None
+    direction: tuple[float, ...] | None = None
 
     @classmethod
     @parses("friction")
@@ -107,6 +112,7 @@ class Friction:
 
         tau = section.get("junction_shear_strength")
         report = section.get("report")
+        direction = sliding_directions(section.get("direction"))
         return cls(
             junction_shear_strength=pressure(tau),
             interlocking=section["interlocking"],
@@ -119,7 +125,45 @@ class Friction:
                 total=number(report.get("total")),
                 nominal_pressure=pressure(report.get("nominal_pressure")),
                 source=str(report["source"])),
+            direction=direction,
         )
+
+
+def sliding_directions(value: Any) -> tuple[float, ...] | None:
+    """``friction.direction`` in radians: None (absent);
+    a number of degrees; or ``{start, stop, count}`` in degrees, ``count`` >= 1
+    directions equally spaced from start to stop, both included (numpy.linspace).
+    A non-finite angle, a count below 1 or a sweep of several directions with
+    stop == start is a `SceneError` naming the key."""
+    key = "friction.direction"
+    if value is None:
+        return None
+    if isinstance(value, Mapping):
+        missing = [k for k in ("start", "stop", "count") if k not in value]
+        if missing:
+            raise SceneError(key, f"a sweep needs start, stop and count; {', '.join(missing)} missing")
+        try:
+            start, stop = float(value["start"]), float(value["stop"])
+            count_f = float(value["count"])
+        except (TypeError, ValueError):
+            raise SceneError(key, f"start, stop and count must be numbers; got {dict(value)}") from None
+        if not (np.isfinite(start) and np.isfinite(stop)):
+            raise SceneError(key, f"start {start} and stop {stop} must be finite (degrees)")
+        if not np.isfinite(count_f) or count_f != int(count_f) or count_f < 1:
+            raise SceneError(key, f"count {value['count']} must be a whole number >= 1")
+        count = int(count_f)
+        if count > 1 and start == stop:
+            raise SceneError(key, f"a sweep of {count} directions needs stop != start (both {start})")
+        return tuple(float(t) for t in np.radians(np.linspace(start, stop, count)))
+    if isinstance(value, bool):
+        raise SceneError(key, f"{value!r}: give degrees, or {{start, stop, count}}")
+    try:
+        angle = float(value)
+    except (TypeError, ValueError):
+        raise SceneError(key, f"{value!r}: give degrees, or {{start, stop, count}}") from None
+    if not np.isfinite(angle):
+        raise SceneError(key, f"{angle} degrees: the direction must be finite")
+    return (float(np.radians(angle)),)
 
 
 #: the laws a scene may fit (section 10)
