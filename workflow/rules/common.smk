@@ -242,8 +242,8 @@ PRODUCT_NEEDS = {
     "unloading.nc": ["population", "unloading"],
     "figures/unloading.png": ["population", "unloading"],
     "figures/adhesion.png": ["population", "adhesion"],
-    "friction.nc": ["population", "friction"],
-    "figures/friction.png": ["population", "friction"],
+    "friction.nc": ["law", "friction"],
+    "figures/friction.png": ["law", "friction"],
     "laws.nc": ["population", "laws"],
     "figures/laws.png": ["population", "laws"],
     "verification.nc": ["verification"],
@@ -364,11 +364,17 @@ def scene_targets(name):
     targets = [f"{out}/surface.nc", f"{out}/figures/surface.png"]
     if "reference" in SCENES[name]:
         targets += [f"{out}/reference.nc", f"{out}/comparison.nc", f"{out}/figures/reference.png"]
+        for route, part in (SCENES[name].get("routes") or {}).items():
+            if "friction" in part:  # friction of that route's interface law
+                routed = f"{RESULTS}/{name}{ROUTE_SEPARATOR}{route}"
+                targets += [f"{routed}/friction.nc", f"{routed}/figures/friction.png"]
     gen = generated(name)
     if gen and gen.get("convergence_spacings"):
         targets.append(f"{out}/convergence.nc")
     if "route" in SCENES[name]:  # a route beyond independent asperities (routes.smk)
         targets += [f"{out}/interface.nc", f"{out}/figures/interface.png"]
+        if "friction" in SCENES[name]:
+            targets += [f"{out}/friction.nc", f"{out}/figures/friction.png"]
     if model(name) == "constant":
         targets += [f"{out}/expectation.nc", f"{out}/figures/expectation.png"]
     elif model(name) is not None:

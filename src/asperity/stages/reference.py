@@ -47,15 +47,15 @@ ROUTE_SEPARATOR = "+"
 #: is no reference, and no route is said to hold there
 MIN_CELLS_PER_PATCH = 10.0
 #: what a route's scene takes from the route; the rest is the reference scene's
-ROUTE_PARTS = ("population", "asperity", "homogenization", "effects", "route")
+ROUTE_PARTS = ("population", "asperity", "homogenization", "effects", "route", "friction")
 
 
 def route_scene(name: str, definition: Config, route: str, results: str) -> dict:
     """The scene of statistical route `route` of reference scene `name`.
 
     The reference scene's units, material and surface, its reference
-    separations as the route's, and the route's population, asperity and
-    homogenization.  A generated map is read from the reference scene's
+    separations as the route's, and the route's population, asperity,
+    homogenization, effects, route and friction.  A generated map is read from the reference scene's
     own file (``<results>/<name>/input/map.npy``), so every route and the
     boundary-element solve see the same heights.
     """
