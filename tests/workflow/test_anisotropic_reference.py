@@ -1,0 +1,92 @@
+"""Scene anisotropic_reference at draft, end to end through Snakemake: a Gaussian map with
+a lay (correlation lengths 4 to 1), the boundary-element contact of it beside the
+anisotropic route of report 2.4.2 / 2.5.2, the isotropic routes on the same map, and the
+friction of the anisotropic route against the sliding direction (9.1)."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from asperity.io.netcdf import missing_attributes
+
+from .conftest import result, run_scenes
+
+pytestmark = [pytest.mark.workflow, pytest.mark.slow]
+
+SCENE = "anisotropic_reference"
+ARGS = ("--config", f"scenes=[{SCENE}]", "accuracy=draft", "studies=False")
+ROUTES = ("anisotropic", "anisotropic_spheres", "nayak_hertz", "interacting", "persson")
+
+
+@pytest.fixture(scope="module")
+def run(tmp_path_factory):
+    return run_scenes(tmp_path_factory, "anisotropic", *ARGS)
+
+
+def test_every_route_writes_the_contract(run):
+    ref = result(run, SCENE, "reference.nc")
+    for route in ROUTES:
+        ds = result(run, f"{SCENE}+{route}", "interface.nc")
+        assert missing_attributes(ds) == [], route
+        assert {"valid", "validity"} <= set(ds.data_vars), route
+        np.testing.assert_allclose(ds["separation"].values, ref["separation"].values, rtol=1e-12)
+    ds = result(run, f"{SCENE}+anisotropic", "interface.nc")
+    assert ds.attrs["route"] == "anisotropic" and ds.attrs["law"] == "elliptic"
+    assert result(run, f"{SCENE}+anisotropic_spheres", "interface.nc").attrs["law"] == "hertz"
+    assert (run / "results" / SCENE / "figures" / "reference.png").stat().st_size > 10_000
+
+
+def test_the_map_has_its_lay(run):
+    """The generated map's slope variances: m20 = 2 sigma^2 / (4 l)^2 along the lay and
+    m02 = 2 sigma^2 / l^2 across it (sigma 1 um, l = 14.577 um), within 10 % (one
+    realization of 512^2 points, about 300 correlation areas: a spread of about 8 %)."""
+    s = result(run, SCENE, "surface.nc")
+    l, sigma = 14.577e-6, 1e-6
+    assert float(s["m20"]) == pytest.approx(2 * sigma**2 / (4 * l) ** 2, rel=0.1)
+    assert float(s["m02"]) == pytest.approx(2 * sigma**2 / l**2, rel=0.1)
+
+
+def test_the_anisotropic_route_is_closer_than_the_isotropic_one(run):
+    """Where the boundary elements resolve their contacts and their area ratio lies between
+    0.1 % and 10 %, the anisotropic route's pressure error (equal mean gap) and area error
+    (equal pressure) are smaller than those of the isotropic Nayak-Hertz route on the same
+    moments (the issue's goal), in their largest magnitude and in their rms over the band
+    (at the lightest load, A/A0 = 0.13 %, the two pressure errors are of equal size and
+    opposite sign, +45 and -43 %), and within the envelope measured at draft, 50 % in
+    pressure and 40 % in area (45 % and 37 % measured; the table of the docs,
+    benchmarks/routes.py, holds the numbers)."""
+    cmp_ = result(run, SCENE, "comparison.nc")
+    a = cmp_["reference_area_ratio"].values
+    band = (a >= 1e-3) & (a <= 0.1) & cmp_["reference_resolved"].values.astype(bool)
+    assert band.sum() >= 5
+    for name, envelope in (("pressure_error", 0.5), ("area_error", 0.4)):
+        mine = cmp_[name].sel(route="anisotropic").values[band]
+        theirs = cmp_[name].sel(route="nayak_hertz").values[band]
+        ok = np.isfinite(mine)
+        assert ok.sum() >= 5, name
+        assert np.abs(mine[ok]).max() < np.abs(theirs[ok]).max(), (name, mine, theirs)
+        assert np.sqrt(np.mean(mine[ok] ** 2)) < np.sqrt(np.mean(theirs[ok] ** 2)), (name, mine, theirs)
+        assert np.all(np.abs(mine[ok]) < envelope), (name, mine)
+
+
+def test_friction_against_the_sliding_direction(run):
+    """mu_interlocking along 13 directions from 0 to 180 degrees: equal under a half turn
+    (1e-12), smallest along the lay (x) and largest across it, in the ratio
+    sqrt(m(90 deg) / m(0)) = sqrt(m02 / m20) of the map's slope covariance (1e-12), the
+    lay found within 2 degrees of x (the map's m11 turns it by a fraction of a degree),
+    and mu = mu_shear + mu_interlocking on (separation, direction)."""
+    f = result(run, f"{SCENE}+anisotropic", "friction.nc")
+    s = result(run, SCENE, "surface.nc")
+    assert missing_attributes(f) == []
+    theta = f["direction"].values
+    np.testing.assert_allclose(np.degrees(theta), np.linspace(0, 180, 13), atol=1e-12)
+    mu_i = f["mu_interlocking"].values
+    assert mu_i[0] == pytest.approx(mu_i[-1], rel=1e-12)
+    assert np.argmin(mu_i) in (0, 12) and np.argmax(mu_i) == 6
+    assert mu_i[6] / mu_i[0] == pytest.approx(math.sqrt(float(s["m02"]) / float(s["m20"])), rel=1e-12)
+    lay = math.degrees(float(f.attrs["lay_direction"]))
+    assert min(lay, 180.0 - lay) < 2.0
+    np.testing.assert_allclose(f["mu"].values, f["mu_shear"].values[:, None] + mu_i[None, :], rtol=1e-14)
