@@ -221,6 +221,29 @@ def _routes_table(name: str) -> str:
     return "".join(text) + "\n" + _provenance(d, name)
 
 
+def _band_summary(name: str, low: float = 1e-3, high: float = 0.1) -> str:
+    """Per map and route of `benchmarks/routes.py`'s file `name`: the range of the pressure
+    and area errors over the separations where the boundary elements resolve their
+    contacts and their area ratio lies in [low, high]."""
+    d = _load(name)
+    if d is None:
+        return ""
+    text = [f"\n| map | route | pressure error (%) | area error (%) |\n|---|---|---|---|\n"]
+    for label, record in d["maps"].items():
+        c = record.get("comparison")
+        if not c:
+            continue
+        band = [k for k, a in enumerate(c["reference_area_ratio"])
+                if a is not None and low <= a <= high and c["reference_resolved"][k]]
+        for i, route in enumerate(c["routes"]):
+            cells = []
+            for key in ("pressure_error", "area_error"):
+                values = [c[key][i][k] for k in band if c[key][i][k] is not None]
+                cells.append(f"{_pct(min(values))} to {_pct(max(values))}" if values else "-")
+            text.append(f"| {label} | {route} | {cells[0]} | {cells[1]} |\n")
+    return "".join(text)
+
+
 def _pct(value, signed: bool = True) -> str:
     if value is None or value != value or (not signed and value == 0):
         return "-"
@@ -332,6 +355,15 @@ def verification_page() -> str:
     if routes:
         out.append("\n## Routes against the boundary elements\n")
         out.extend(_routes_table(n) for n in routes)
+    if (RESULTS / "routes-anisotropic-draft.json").exists():
+        out.append("\n## Anisotropic surfaces\n\n"
+                   "Scene `anisotropic_reference` (a Gaussian map with correlation lengths in ratio 4) "
+                   "beside `deterministic_reference` (isotropic, the same rms gradient): each route's "
+                   "errors against the elastic boundary elements (a J2 route against those limited by the hardness) where their contact area ratio lies "
+                   "between 0.1 and 10 % and they resolve their patches, then the full tables "
+                   "([theory](../theory/anisotropic.md)).\n")
+        out.append(_band_summary("routes-anisotropic-draft.json"))
+        out.append(_routes_table("routes-anisotropic-draft.json"))
     out.append(_scale_study("scale-study.json"))
     out.append("\n## What a run costs\n")
     out.extend(_scenes_table(n) for n in ("scenes-draft.json", "scenes-standard.json"))
