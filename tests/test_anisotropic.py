@@ -216,3 +216,31 @@ def test_the_anisotropic_route_writes_the_contract_and_its_validity():
     with pytest.raises(ValueError, match="route.law of the anisotropic route"):
         routes.route_interface(z, 1.25e-6, 1.25e-6, surface_ds, route(kind="anisotropic", law="shape"),
                                ALUMINUM, _homogenization(), UNITS, VALIDITY)
+
+
+def test_the_anisotropic_route_on_a_measured_map():
+    """The AFM map di-3.di, prepared as afm_reference prepares it (tilt removed, the lateral
+    scale `auto`): the route runs on the moments of a user's map, its pressure and area
+    finite and falling with the separation, and it is not called valid anywhere: the map's
+    heights are not Gaussian (kurtosis 5), which the density assumes (an elastic body
+    without a yield stress, so that yield is not the first limit to fail)."""
+    from pathlib import Path
+
+    from asperity.io.topography import read_measurement
+    from asperity.stages import routes
+    from asperity.stages.surface import surface_from_data
+    from tests.references.test_routes import BARE, UNITS, VALIDITY, _homogenization, route
+    from tests.scene_defaults import filled_scene
+
+    path = Path(__file__).resolve().parents[1] / "data" / "topographies" / "di-3.di"
+    scene = filled_scene({"surface": {"form": "tilt", "scale": "auto", "map": {"file": str(path)}},
+                          "material": {"youngs_modulus": 1.0, "poisson": 0.3}})
+    m = read_measurement(path, "map")
+    surface_ds = surface_from_data(m.heights, (m.dx, m.dy), scene["surface"], UNITS, defined=m.defined)
+    z = np.zeros((8, 8))  # the route reads the moments, not the heights
+    ds = routes.route_interface(z, m.dx, m.dy, surface_ds, route(kind="anisotropic"), BARE,
+                                _homogenization(1.5, 3.0, 6), UNITS, VALIDITY)
+    p, a = ds["nominal_pressure"].values, ds["contact_area_ratio"].values
+    assert np.all(np.isfinite(p)) and np.all(np.diff(p) < 0) and np.all(np.diff(a) < 0)
+    assert not ds["valid"].values.any()
+    assert all(str(v).startswith("gaussian_heights") for v in ds["validity"].values), ds["validity"].values
