@@ -359,7 +359,8 @@ def verification_page() -> str:
         out.append("\n## Anisotropic surfaces\n\n"
                    "Scene `anisotropic_reference` (a Gaussian map with correlation lengths in ratio 4) "
                    "beside `deterministic_reference` (isotropic, the same rms gradient): each route's "
-                   "errors against the elastic boundary elements (a J2 route against those limited by the hardness) where their contact area ratio lies "
+                   "errors against the elastic boundary elements (a J2 route against those "
+                   "limited by the hardness) where their contact area ratio lies "
                    "between 0.1 and 10 % and they resolve their patches, then the full tables "
                    "([theory](../theory/anisotropic.md)).\n")
         out.append(_band_summary("routes-anisotropic-draft.json"))
