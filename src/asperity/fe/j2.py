@@ -18,9 +18,16 @@ with the consistent tangent
     D = K I x I + 2 G theta P_dev - 2 G theta_bar N x N,
     theta = 1 - 3 G dp / q_tr,  theta_bar = 3G / (3G + H) - 3 G dp / q_tr,
 
-N = s_tr / |s_tr|.  Arrays as in `asperity.fe.material` and
-`asperity.fe.bodner_partom`: strains / stresses (4, *shape), tangents
-(4, 4, *shape), tensor shear components; vectorized over all points.
+N = s_tr / |s_tr|, P_dev = I - (1/3) 1 x 1 (Simo and Hughes, *Computational
+Inelasticity*, 1998, 3.3, boxes 3.1-3.2).  The return is done in Mandel
+components (shears times sqrt 2), where the tensor norm is the Euclidean one,
+and the tangent converted back.  Arrays as in `asperity.fe.material` and
+`asperity.fe.bodner_partom`: strains / stresses (n, *shape), tangents
+(n, n, *shape), tensor shear components; n = 4, (11, 22, 33, 12) for the
+axisymmetric and plane-strain bodies, or n = 6, (11, 22, 33, 12, 13, 23) for
+the three-dimensional one (`solid3d`; ``initial_state(shape, components=6)``),
+the same equations with the identity and P_dev of 6 components (those of
+`bodner_partom`'s 6-component path); vectorized over all points.
 """
 
 from __future__ import annotations
@@ -30,15 +37,13 @@ from dataclasses import dataclass, fields
 
 import numpy as np
 
-from .bodner_partom import IDENTITY, from_mandel, tangent_from_mandel, to_mandel
+from .bodner_partom import COMPONENTS, from_mandel, identity_of, tangent_from_mandel, to_mandel
 from .material import IsotropicElasticity
-
-_I = IDENTITY[:, None]
 
 
 @dataclass
 class J2State:
-    """Plastic state over the point shape: vectors (4, *shape), scalars (*shape)."""
+    """Plastic state over the point shape: vectors (4 or 6, *shape), scalars (*shape)."""
 
     strain: np.ndarray
     stress: np.ndarray
@@ -112,9 +117,13 @@ class J2Plasticity(IsotropicElasticity):
         return np.where(e <= ey, self.E * e,
                         self.yield_stress + self.E * self.H / (self.E + self.H) * (e - ey))
 
-    def initial_state(self, shape=()) -> J2State:
+    def initial_state(self, shape=(), components: int = 4) -> J2State:
+        """Unstrained state at `shape` points with `components` (4, or 6 for 3-D)
+        tensor components."""
         shape = tuple(shape) if np.iterable(shape) else (int(shape),)
-        z4 = np.zeros((4,) + shape)
+        if components not in COMPONENTS:
+            raise ValueError(f"components must be 4 or 6, got {components!r}")
+        z4 = np.zeros((components,) + shape)
         z = np.zeros(shape)
         return J2State(strain=z4.copy(), stress=z4.copy(), inelastic_strain=z4.copy(),
                        alpha=z.copy(), plastic_work=z.copy(),
@@ -125,8 +134,14 @@ class J2Plasticity(IsotropicElasticity):
         """Radial return.  Returns (stress, tangent or None, new_state)."""
         shape = state.shape
         N = max(int(np.prod(shape)), 1)
-        eps = to_mandel(np.asarray(strain, float).reshape(4, N))
-        epsp = to_mandel(state.inelastic_strain.reshape(4, N))
+        n = int(np.shape(strain)[0])
+        if n != state.inelastic_strain.shape[0]:
+            raise ValueError(f"strain has {n} components but the state "
+                             f"{state.inelastic_strain.shape[0]}")
+        identity = identity_of(n)
+        _I = identity[:, None]
+        eps = to_mandel(np.asarray(strain, float).reshape(n, N))
+        epsp = to_mandel(state.inelastic_strain.reshape(n, N))
         alpha = state.alpha.reshape(N)
         G, K, H = self.G, self.K, self.H
         ee = eps - epsp
@@ -145,9 +160,9 @@ class J2Plasticity(IsotropicElasticity):
         epsp_new = epsp + math.sqrt(1.5) * dp * Nn
         q = q_tr - 3.0 * G * dp
         new = J2State(
-            strain=from_mandel(eps).reshape((4,) + shape),
-            stress=from_mandel(sig).reshape((4,) + shape),
-            inelastic_strain=from_mandel(epsp_new).reshape((4,) + shape),
+            strain=from_mandel(eps).reshape((n,) + shape),
+            stress=from_mandel(sig).reshape((n,) + shape),
+            inelastic_strain=from_mandel(epsp_new).reshape((n,) + shape),
             alpha=(alpha + dp).reshape(shape),
             plastic_work=state.plastic_work + (q * dp).reshape(shape),
             hardness=(sy + H * dp).reshape(shape),
@@ -156,12 +171,12 @@ class J2Plasticity(IsotropicElasticity):
         stress = new.stress
         if not tangent:
             return stress, None, new
-        C = self.elastic_mandel()
-        P = np.eye(4) - np.outer(IDENTITY, IDENTITY) / 3.0
+        C = self.elastic_mandel(n)
+        P = np.eye(n) - np.outer(identity, identity) / 3.0
         theta = ratio
         theta_bar = np.where(plastic, 3.0 * G / (3.0 * G + H) - (1.0 - ratio), 0.0)
-        D = (K * np.outer(IDENTITY, IDENTITY)[:, :, None]
+        D = (K * np.outer(identity, identity)[:, :, None]
              + 2.0 * G * theta[None, None, :] * P[:, :, None]
              - 2.0 * G * theta_bar[None, None, :] * Nn[:, None, :] * Nn[None, :, :])
         D = np.where(plastic[None, None, :], D, C[:, :, None])
-        return stress, tangent_from_mandel(D).reshape((4, 4) + shape), new
+        return stress, tangent_from_mandel(D).reshape((n, n) + shape), new
