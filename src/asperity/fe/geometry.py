@@ -16,6 +16,11 @@ an elastic body, whose free surface only sinks under a compressive load).
 
 All profiles are non-increasing in r; points where the profile has a kink
 (`kinks`) are kept as mesh vertices.
+
+The three-dimensional model (`solid3d`) reads the surface over the plane,
+``surface_xy(x, y)`` (and ``body_surface_xy``, ``gap_offset_xy``): the profile at
+r = hypot(x, y) for the bodies of revolution, the surface itself for the
+`EllipticParaboloid`, which only that model takes.
 """
 
 from __future__ import annotations
@@ -82,6 +87,21 @@ class Profile:
     def gap_offset(self, r) -> np.ndarray:
         """surface - body_surface: the part of the profile carried by the gap."""
         return self.surface(r) - self.body_surface(r)
+
+    # --- the surface over the plane (the 3-D model, `solid3d`) ------------------
+    def surface_xy(self, x, y) -> np.ndarray:
+        """Height of the undeformed top surface at (x, y) above the apex [m]: the
+        profile at r = hypot(x, y) for a body of revolution (overridden by
+        `EllipticParaboloid`)."""
+        return self.surface(np.hypot(x, y))
+
+    def body_surface_xy(self, x, y) -> np.ndarray:
+        """Height of the top of the meshed body at (x, y) above the apex [m]."""
+        return self.body_surface(np.hypot(x, y))
+
+    def gap_offset_xy(self, x, y) -> np.ndarray:
+        """surface_xy - body_surface_xy: the part of the surface carried by the gap."""
+        return self.gap_offset(np.hypot(x, y))
 
     def slope(self, r) -> np.ndarray:
         """d surface / d r."""
@@ -243,6 +263,81 @@ class Paraboloid(Profile):
 
     def _hill_slope(self, r):
         return -r / self.radius
+
+
+@dataclass(frozen=True)
+class EllipticParaboloid(Profile):
+    """The elliptic paraboloid z = -(kappa_1 x^2 + kappa_2 y^2) / 2 (three-dimensional
+    model only, `solid3d`): the tip of a body with principal curvatures kappa_1 along x
+    and kappa_2 along y, the shape of Hertz's elliptic contact (Johnson, *Contact
+    Mechanics*, 1985, 4.2).  Its principal axes are x and y, so y = 0 stays a plane of
+    symmetry of the half model.
+
+    By default (``shallow=True``) Hertz's idealization, as `Paraboloid`: the body is the
+    block under the tangent plane at the apex and the paraboloid is the initial gap to
+    the flat.  With ``shallow=False`` the body has the paraboloid's shape down to the
+    height h = cap_ratio^2 / (2 kappa_min) of `Paraboloid`'s cap (cap_ratio R with R =
+    1 / kappa_min along the long axis), on a block flat at that height: the footprint is
+    the ellipse of semi-axes sqrt(2 h / kappa_1), sqrt(2 h / kappa_2).
+
+    The profile of r (`surface`, `intersection_radius`, `extent`, `height`) is the
+    section along the axis of the smaller curvature kappa_min, the long axis of the
+    contact ellipse: `intersection_radius` is the long semi-axis of the ellipse where the
+    undeformed surface meets the flat, and `extent` the footprint's long semi-axis.  The
+    3-D model reads the surface over the plane, `surface_xy`, `body_surface_xy` and
+    `gap_offset_xy`.  (The axisymmetric and plane-strain drivers read only the profile of
+    r: they would model the long axis's section, not this body.)
+    """
+
+    curvature_1: float
+    curvature_2: float
+    cap_ratio: float = 0.5
+    shallow: bool = True
+    axisymmetric: ClassVar[bool] = False
+    kind: ClassVar[str] = "elliptic_paraboloid"
+
+    def __post_init__(self):
+        _check_positive(curvature_1=self.curvature_1, curvature_2=self.curvature_2,
+                        cap_ratio=self.cap_ratio)
+
+    @property
+    def curvature_min(self) -> float:
+        return min(self.curvature_1, self.curvature_2)
+
+    @property
+    def extent(self) -> float:
+        return self.cap_ratio / self.curvature_min
+
+    def _hill(self, r):
+        return -0.5 * self.curvature_min * r**2
+
+    def _hill_slope(self, r):
+        return -self.curvature_min * r
+
+    def contact_semi_axes(self, long_semi_axis: float) -> tuple[float, float]:
+        """The semi-axes (along x, along y) of the Hertz contact ellipse whose long
+        semi-axis is `long_semi_axis`: its aspect b / a = sqrt(1 - e^2) depends only on
+        kappa_2 / kappa_1 (Johnson 1985, 4.2, eq. 4.39; `references.hertz`), the long
+        axis along the smaller curvature."""
+        from asperity.references.hertz import _eccentricity
+
+        ratio = max(self.curvature_1, self.curvature_2) / self.curvature_min
+        short = float(long_semi_axis) * math.sqrt(1.0 - float(_eccentricity(ratio)))
+        long_ = float(long_semi_axis)
+        return (long_, short) if self.curvature_1 <= self.curvature_2 else (short, long_)
+
+    def surface_xy(self, x, y) -> np.ndarray:
+        x, y = np.asarray(x, dtype=float), np.asarray(y, dtype=float)
+        z = -0.5 * (self.curvature_1 * x**2 + self.curvature_2 * y**2)
+        return np.maximum(z, -self.height)
+
+    def body_surface_xy(self, x, y) -> np.ndarray:
+        if self.shallow:
+            return np.zeros(np.broadcast_shapes(np.shape(x), np.shape(y)))
+        return self.surface_xy(x, y)
+
+    def gap_offset_xy(self, x, y) -> np.ndarray:
+        return self.surface_xy(x, y) - self.body_surface_xy(x, y)
 
 
 @dataclass(frozen=True)

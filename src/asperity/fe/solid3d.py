@@ -1,7 +1,10 @@
 """Three-dimensional asperity pressed and slid by a rigid flat (report 3.3, 3.4, 9.2).
 
 Body.  A hill z = surface(r) (a `geometry.Profile`, e.g. the `CosineHill`
-of report 9.2, 2 um high and 10 um across its base) standing on a block.
+of report 9.2, 2 um high and 10 um across its base) standing on a block, or
+an elliptic paraboloid z = -(kappa_1 x^2 + kappa_2 y^2) / 2
+(`geometry.EllipticParaboloid`, principal axes along x and y): the model
+reads the surface over the plane, ``surface_xy(x, y)``.
 The sliding direction is x, so the plane y = 0 is a plane of symmetry and
 only the half y >= 0 is modelled (u_y = 0 on y = 0; the reported forces
 are twice those of the half).  Support (3.3.1): u = 0 on the cut-off
@@ -21,11 +24,13 @@ at a time).  The quadratic (10-node) mesh is then mapped
 onto the body, vertices and edge midpoints alike (isoparametric P2
 elements, curved faces):
 
-    Z = foot + z + (body_surface(r) - foot) (1 + z / D),
+    Z = foot + z + (body_surface_xy(x, y) - foot) (1 + z / D),
 
 so the reference top z = 0 becomes the hill's surface exactly at the nodes
 and the bottom z = -D stays flat (foot = the height of the hill's foot
-relative to the apex).  Displacements are P2 (`ElementTetP2`), four
+relative to the apex; body_surface_xy(x, y) = body_surface(hypot(x, y)) for
+a body of revolution, the surface itself for an `EllipticParaboloid`, whose
+principal axes are x and y).  Displacements are P2 (`ElementTetP2`), four
 quadrature points per element (degree 2), with the volumetric strain
 replaced by its element mean (B-bar, the P2/P0 mixed element;
 ``volumetric="mean"``): with the full volumetric strain at four points
@@ -40,8 +45,8 @@ at each time step the equilibrium
     R(u) = int B^T sigma(eps(u); state_n, dt) dV - int N^T t(u) ds = 0
 
 is solved by Newton with the material's consistent tangent at the
-quadrature points (`BodnerPartom.update` with 6 strain components, or a
-linear elastic body), plus the contact tangent alpha_ij of (3.26, 3.27)
+quadrature points (`BodnerPartom.update` or `J2Plasticity.update` with 6
+strain components, or a linear elastic body), plus the contact tangent alpha_ij of (3.26, 3.27)
 (`sliding.contact_tangent`).  Strains are [e11, e22, e33, e12, e13, e23]
 (tensor shears, work product weights 1, 1, 1, 2, 2, 2).
 
@@ -159,7 +164,7 @@ from .errors import ContactZoneError, StepFailed
 from .material import METRIC6, equivalent_strain, von_mises
 from .nonlinear import (Pace, Problem, ResidualSearch, StepCuts, check_local_update, next_time,
                         strain_limited)
-from .outputs import INELASTIC_THRESHOLD, dataset, describe
+from .outputs import INELASTIC_THRESHOLD, VARIABLES, dataset, describe
 from .presets import resolve
 from .sliding import FrictionLaw, ShearResistance, contact_tangent, drag_anchor
 from asperity.io.run_report import StepProgress
@@ -230,6 +235,16 @@ class MeshSpec:
     grows as tip_size + sqrt((grading rho)^2 + (g_z z)^2), rho the lateral
     distance beyond the disc and z the depth: the contact surface resolved
     finely without filling the volume below it at the same size.
+    refine_radius_y: None, the region is round; a length, its semi-axis along
+    y, ``refine_radius`` being the one along x (an elliptic contact with its
+    principal axes along x and y, `geometry.EllipticParaboloid`): the disc
+    becomes the ellipse of these semi-axes (the ball the ellipsoid with the
+    smaller of them along z), and the distance beyond it is taken as
+    (s - 1) / |grad s|, s = hypot((x - x_s) / r_x, y / r_y (, z / r_z)) the
+    ellipse's scale through the point: s is convex and 1-homogeneous, so
+    s(q) >= s(p) + grad s(p) . (q - p) and this is a lower bound of the
+    distance to the ellipse (exact on its axes); the grading is at least as
+    fine as the spec asks.
     """
 
     half_width: float
@@ -241,6 +256,7 @@ class MeshSpec:
     refine_x1: float = 0.0
     refine_radius: float = 0.0
     depth_grading: float | None = None
+    refine_radius_y: float | None = None
 
     def __post_init__(self):
         for k in ("half_width", "depth", "coarse_size", "tip_size", "grading"):
@@ -254,18 +270,30 @@ class MeshSpec:
         if self.depth_grading is not None and not (math.isfinite(self.depth_grading)
                                                    and self.depth_grading > 0):
             raise ValueError(f"mesh depth_grading must be positive, got {self.depth_grading!r}")
+        if self.refine_radius_y is not None and not (math.isfinite(self.refine_radius_y)
+                                                     and self.refine_radius_y > 0
+                                                     and self.refine_radius > 0):
+            raise ValueError("refine_radius_y needs positive refine_radius and refine_radius_y, "
+                             f"got {self.refine_radius!r} and {self.refine_radius_y!r}")
 
     @classmethod
     def for_hill(cls, geometry, contact_radius: float, preset: dict | None = None) -> "MeshSpec":
         """Default block of a hill: L = 1.4 x its footprint radius, D = its
         footprint radius, the finest elements within the preset's
         ``refine_fraction`` x the contact radius estimate of the apex (a ball,
-        or a disc on the surface if the preset has a ``depth_grading``)."""
+        or a disc on the surface if the preset has a ``depth_grading``).  For an
+        elliptic paraboloid the contact radius is the ellipse's long semi-axis: the
+        region is the Hertz ellipse's shape (``refine_radius_y``), the tip size the
+        fraction of its short semi-axis."""
         p = resolve("sliding", "standard") if preset is None else preset
         ext = float(geometry.extent)
+        rx = ry = float(contact_radius)
+        if hasattr(geometry, "contact_semi_axes"):
+            rx, ry = geometry.contact_semi_axes(contact_radius)
         return cls(half_width=1.4 * ext, depth=ext, coarse_size=p["coarse_fraction"] * ext,
-                   tip_size=p["tip_fraction"] * contact_radius, grading=p["grading"],
-                   refine_radius=p["refine_fraction"] * contact_radius,
+                   tip_size=p["tip_fraction"] * min(rx, ry), grading=p["grading"],
+                   refine_radius=p["refine_fraction"] * rx,
+                   refine_radius_y=None if rx == ry else p["refine_fraction"] * ry,
                    depth_grading=p["depth_grading"])
 
 
@@ -287,7 +315,9 @@ def _refine(m: MeshTet, spec: MeshSpec, max_rounds: int = 80) -> MeshTet:
                     axis=0)
         c = p[:, t].mean(axis=1)
         xs = np.clip(c[0], spec.refine_x0, spec.refine_x1)
-        if spec.depth_grading is None:
+        if spec.refine_radius_y is not None:
+            size = _elliptic_size(c, xs, spec)
+        elif spec.depth_grading is None:
             d = np.maximum(np.sqrt((c[0] - xs) ** 2 + c[1] ** 2 + c[2] ** 2) - spec.refine_radius,
                            0.0)
             size = spec.tip_size + spec.grading * d
@@ -299,6 +329,26 @@ def _refine(m: MeshTet, spec: MeshSpec, max_rounds: int = 80) -> MeshTet:
             return m
         m = m.refined(marked)
     raise RuntimeError("mesh refinement did not finish; check tip_size and grading")
+
+
+def _elliptic_size(c, xs, spec: MeshSpec) -> np.ndarray:
+    """The longest edge allowed at the centroids c (3, ne) about the elliptic region of
+    ``refine_radius`` (x) and ``refine_radius_y`` (y) (`MeshSpec`): the distance beyond
+    it (s - 1) / |grad s|, s the region's scale through the centroid."""
+    rx, ry = spec.refine_radius, spec.refine_radius_y
+    rmin = min(rx, ry)
+    q = [(c[0] - xs) / rx, c[1] / ry]
+    r = [rx, ry]
+    if spec.depth_grading is None:
+        q.append(c[2] / rmin)
+        r.append(rmin)
+    q, r = np.array(q), np.array(r)[:, None]
+    s = np.sqrt((q**2).sum(axis=0))
+    grad = np.sqrt(((q / r) ** 2).sum(axis=0)) / np.maximum(s, 1e-300)   # |grad s|
+    d = np.where(s > 1.0, (s - 1.0) / np.maximum(grad, 1e-300), 0.0)
+    if spec.depth_grading is None:
+        return spec.tip_size + spec.grading * d
+    return spec.tip_size + np.hypot(spec.grading * d, spec.depth_grading * c[2])
 
 
 def build_mesh(geometry, spec: MeshSpec) -> HalfModelMesh:
@@ -326,8 +376,7 @@ def _build_mesh(geometry, spec: MeshSpec) -> HalfModelMesh:
     ref2 = MeshTet2.from_mesh(m)
     X = np.array(ref2.doflocs, dtype=float)
     foot = float(geometry.body_surface(np.array([geometry.extent]))[0])
-    r = np.hypot(X[0], X[1])
-    top = np.asarray(geometry.body_surface(r), float)
+    top = np.asarray(geometry.body_surface_xy(X[0], X[1]), float)
     Z = foot + X[2] + (top - foot) * (1.0 + X[2] / D)
     phys = X.copy()
     phys[2] = Z
@@ -599,8 +648,7 @@ class HalfModel:
         self.cw = np.asarray(fb.dx)                              # (nf, nq)
         X = np.array(fb.global_coordinates())                    # (3, nf, nq)
         self.cX = X
-        r = np.hypot(X[0], X[1])
-        self.cz0 = X[2] + self.geometry.gap_offset(r)
+        self.cz0 = X[2] + self.geometry.gap_offset_xy(X[0], X[1])
         area = self.cw.sum(axis=1)
         self.facet_size = np.sqrt(4.0 * area / math.sqrt(3.0))
         mref = self.hm.reference
@@ -1145,10 +1193,10 @@ class _Step(Problem):
         return full
 
 
-def _snapshot(model: HalfModel, u, state) -> dict:
+def _snapshot(model: HalfModel, u, state, tn=None) -> dict:
     nd = model.node_displacements(u)[:, model.plane_nodes]
     ep = model.nodal_average(equivalent_strain(state.inelastic_strain))[model.plane_nodes]
-    return dict(ux=nd[0], uz=nd[2], ep=ep)
+    return dict(ux=nd[0], uz=nd[2], ep=ep, **({} if tn is None else dict(tn=np.array(tn))))
 
 
 def step_caps(motion: FlatMotion, preset: dict) -> list:
@@ -1187,7 +1235,8 @@ def solve_sliding(geometry, material, motion: FlatMotion, friction: FrictionLaw,
                   volumetric: str = "mean",
                   max_steps: int = 100_000, stall_steps: int = STALL_STEPS,
                   stall_fraction: float = STALL_FRACTION,
-                  snapshots: dict | None = None, progress=None) -> xr.Dataset:
+                  snapshots: dict | None = None, contact_section: bool = False,
+                  progress=None) -> xr.Dataset:
     """A 3-D asperity pressed and slid by the rigid flat (report 9.2).
 
     Parameters
@@ -1197,7 +1246,7 @@ def solve_sliding(geometry, material, motion: FlatMotion, friction: FrictionLaw,
         across; or a shallow `Paraboloid` for the Hertz check); its
         ``axisymmetric`` flag is ignored (the model is 3-D).
     material
-        `BodnerPartom` (6-component update) or `LinearElastic`.
+        `BodnerPartom` or `J2Plasticity` (6-component updates) or `LinearElastic`.
     motion
         `FlatMotion`: approach and tangential displacement versus time.
     friction
@@ -1224,6 +1273,10 @@ def solve_sliding(geometry, material, motion: FlatMotion, friction: FrictionLaw,
     snapshots
         {name: time}: the displacements and inelastic strain on the
         symmetry plane at these times (default: end of pressing and end).
+    contact_section
+        also the normal pressure at the contact nodes at these times (dims
+        ``snapshot``, ``contact_node``), with the nodes' x, y and weights: the
+        contact's shape (`press_3d`).
     progress
         optional callable(str) for progress lines.
 
@@ -1292,7 +1345,8 @@ def solve_sliding(geometry, material, motion: FlatMotion, friction: FrictionLaw,
                      wall_time=0.0))
     for k, ts in snap_times.items():
         if ts <= t:
-            snap[k] = (t, _snapshot(model, u, state), {})
+            snap[k] = (t, _snapshot(model, u, state, out0["contact"]["tn"] if contact_section
+                                    else None), {})
     dt = caps[motion.segment(t)] / 2.0
     # a progress line every ~5 s of a run past ~5 s (the job's log; logging only)
     ticker = StepProgress(log, "sliding: ")
@@ -1362,7 +1416,8 @@ def solve_sliding(geometry, material, motion: FlatMotion, friction: FrictionLaw,
             if k not in snap and t >= ts * (1 - 1e-12):
                 a_max = max(r["contact_area"] for r in rows)
                 a_ref = math.sqrt(a_max / math.pi) if a_max > 0 else model.contact_radius / 2.5
-                snap[k] = (t, _snapshot(model, u, state),
+                snap[k] = (t, _snapshot(model, u, state, out["contact"]["tn"] if contact_section
+                                        else None),
                            _largest_deformation(model, u, w, state, a_ref))
         ticker.update(n, (t - motion.start) / (motion.end - motion.start),
                       f"t = {t:.4g} of {motion.end:.4g} s ({phase}), approach {w:.4g} m, "
@@ -1415,10 +1470,14 @@ def solve_sliding(geometry, material, motion: FlatMotion, friction: FrictionLaw,
     if not stop_reason and not completed:
         stop_reason = f"max_steps ({max_steps}) reached at t = {t:.6g} s"
     if "end" in snap_times and "end" not in snap:  # a run stopped early: its last state
-        snap["end"] = (t, _snapshot(model, u, state), {})
+        snap["end"] = (t, _snapshot(model, u, state, out_last["contact"]["tn"]
+                                    if contact_section else None), {})
     total = time.perf_counter() - t_start
     head = dataset({name: np.array([r[name] for r in rows]) for name in OUTPUTS}, geometry,
                    material, accuracy, preset, "time step index")
+    for name in OUTPUTS:     # forces and areas of the 3-D body, whatever the profile's flag
+        units, long_name = VARIABLES[name]
+        head[name].attrs.update(units=units, long_name=long_name)
     return _sliding_dataset(head, rows, model, sm, u, w, state, snap, dict(
         friction=describe(friction.resistance),
         slip_regularization=float(friction.slip_regularization),
@@ -1439,6 +1498,37 @@ def solve_sliding(geometry, material, motion: FlatMotion, friction: FrictionLaw,
         factorizations=int(sm.linear.factorizations), krylov_solves=int(sm.linear.krylov_solves),
         completed=int(completed), stop_reason=stop_reason,
         mesh_wall_time=t_mesh, total_wall_time=total))
+
+
+def press_3d(geometry, material, approach, accuracy="standard", mesh: MeshSpec | None = None,
+             contact_radius: float | None = None, penalty_factor: float = PENALTY_FACTOR_3D,
+             progress=None) -> xr.Dataset:
+    """The flat pressed onto the 3-D asperity without sliding or friction: `solve_sliding`
+    with the flat moving only normally, w(t) through 0 and the approaches of `approach`
+    (a number or increasing sequence [m]) at t = 1, 2, ... s, each segment in the
+    preset's ``normal_steps`` steps, and a frictionless law (t_x = t_y = 0, report
+    3.3.2).  The steps land on the knots (`step_grid`), so each approach is a row, and a
+    snapshot ``approach i`` with the contact section (``contact_pressure`` at the contact
+    nodes ``contact_x``, ``contact_y``: the contact's shape).
+
+    Returns `solve_sliding`'s Dataset with ``normal_stiffness`` dF/dw [N/m] added: the
+    derivative of the force history, second-order differences on the non-uniform steps
+    (`numpy.gradient`), one-sided at the ends."""
+    w = np.atleast_1d(np.asarray(approach, float))
+    if w.ndim != 1 or not (np.all(np.isfinite(w)) and w[0] > 0 and np.all(np.diff(w) > 0)):
+        raise ValueError(f"approach must be positive and increasing, got {approach!r}")
+    times = tuple(float(t) for t in range(w.size + 1))
+    motion = FlatMotion(times, (0.0,) + tuple(w), (0.0,) * (w.size + 1))
+    scale = contact_radius if contact_radius is not None else float(
+        geometry.intersection_radius(w[-1:])[0])
+    ds = solve_sliding(geometry, material, motion, FrictionLaw(ShearResistance(), 1e-3 * scale),
+                       accuracy=accuracy, mesh=mesh, contact_radius=contact_radius,
+                       penalty_factor=penalty_factor, progress=progress, contact_section=True,
+                       snapshots={f"approach {i}": t for i, t in enumerate(times[1:])})
+    f, wd = ds["normal_force"].values, ds["normal_displacement"].values
+    ds["normal_stiffness"] = ("step", np.gradient(f, wd), dict(
+        units="N/m", long_name="normal contact stiffness dF/dw (differences of the force history)"))
+    return ds
 
 
 def _direction(motion: FlatMotion, d_knots, t: float) -> float:
@@ -1513,6 +1603,18 @@ def _sliding_dataset(ds: xr.Dataset, rows, model: HalfModel, sm: SlidingModel, u
                                      "averaged at the nodes)")):
             ds[var] = (("snapshot", "plane_node"), np.array([snap[n][1][key] for n in names]),
                        dict(units=units, long_name=f"{ln} on the symmetry plane y = 0"))
+        if "tn" in snap[names[0]][1]:
+            ds["contact_pressure"] = (("snapshot", "contact_node"),
+                                      np.array([snap[n][1]["tn"] for n in names]), dict(
+                units="Pa", long_name="normal pressure t_N at the contact node (penalty)"))
+            for var, val, units, ln in (
+                    ("contact_x", model.vX[0], "m", "x of the contact node (weighted, undeformed)"),
+                    ("contact_y", model.vX[1], "m", "y of the contact node (weighted, undeformed)"),
+                    ("contact_weight", model.vw, "m^2", "weight int phi_i ds of the contact node "
+                     "(half model)")):
+                ds[var] = ("contact_node", val, dict(units=units, long_name=ln))
+            ds = ds.assign_coords(contact_node=("contact_node", np.arange(model.vw.size), dict(
+                units="1", long_name="contact node (P2 node of a top facet)")))
     ds["plane_x"] = ("plane_node", X[0], dict(units="m", long_name="x of the node (undeformed)"))
     ds["plane_z"] = ("plane_node", X[2], dict(units="m", long_name="z of the node above the apex (undeformed)"))
     ds["plane_triangles"] = (("plane_triangle", "corner"), model.plane_triangles.T.astype(np.int32),
