@@ -98,7 +98,8 @@ def test_area_linear_in_load_at_small_area():
     towards it as the grid is refined (README).  Asserted over A/A0 from 2 to 10 % (about
     90 contacts and more on this 32 x 32 correlation-length map): the literature bracket,
     and linearity, kappa within 15 % over the range."""
-    gen = {"points": 512, "spacing": 1.0, "sigma": 1.0, "correlation_length": 16.0, "seed": 2}
+    gen = {"points": 512, "spacing": 1.0, "sigma": 1.0, "correlation_length": 16.0, "seed": 2,
+           "aspect": 1.0}
     dx = 1.0e-6
     z = surface_stage.synthetic_map(gen) * 1e-6
     h = np.array([1.75, 1.5, 1.25, 1.0]) * float(z.std())
@@ -132,7 +133,8 @@ def test_hardness_caps_pressure_and_area_tends_to_load_over_hardness():
 def test_hardness_loading_path_on_a_rough_map():
     """Rough periodic map with a hardness: pressure capped at H at every separation, more
     load never less area, and the plastic interface carries less than the elastic one."""
-    gen = {"points": 64, "spacing": 1.0, "sigma": 1.0, "correlation_length": 8.0, "seed": 5}
+    gen = {"points": 64, "spacing": 1.0, "sigma": 1.0, "correlation_length": 8.0, "seed": 5,
+           "aspect": 1.0}
     z = surface_stage.synthetic_map(gen) * 1e-6
     h = np.array([2.0, 1.0, 0.5]) * 1e-6
     hardness = 2.0e6

@@ -35,13 +35,13 @@ from .adhesion import LennardJones
 from .adhesive import interpolate_adhesive, smooth_aluminum_curves, solve_asperity_adhesive
 from .bodner_partom import BodnerPartom
 from .errors import ContactZoneError, ConvergenceError, RuptureError, StepFailed
-from .geometry import CosineHill, Cylinder, Paraboloid, Profile, Sphere, TruncatedV
+from .geometry import CosineHill, Cylinder, EllipticParaboloid, Paraboloid, Profile, Sphere, TruncatedV
 from .inelastic import History, solve_asperity_history
 from .j2 import J2Plasticity
 from .material import IsotropicElasticity, LinearElastic
 from .presets import ACCURACY
 from .sliding import FrictionLaw, ShearResistance
-from .solid3d import FlatMotion, solve_sliding
+from .solid3d import FlatMotion, press_3d, solve_sliding
 from .solve import hertz, penalty_error, solve_asperity
 
 __all__ = [
@@ -51,6 +51,7 @@ __all__ = [
     "ConvergenceError",
     "CosineHill",
     "Cylinder",
+    "EllipticParaboloid",
     "FlatMotion",
     "FrictionLaw",
     "History",
@@ -68,6 +69,7 @@ __all__ = [
     "hertz",
     "interpolate_adhesive",
     "penalty_error",
+    "press_3d",
     "smooth_aluminum_curves",
     "solve_asperity",
     "solve_asperity_adhesive",
