@@ -19,7 +19,7 @@ import yaml
 
 from asperity.population import samples as population
 from asperity.population.gather import _curves, loading_branch
-from asperity.population.geometry import aspect_jobs, aspect_weights
+from asperity.population.plan import aspect_jobs, aspect_weights
 from asperity.references import hertz
 from asperity.stages import population as stage
 from asperity.stages import surface

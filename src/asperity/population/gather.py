@@ -24,6 +24,8 @@ from typing import Mapping
 import numpy as np
 import xarray as xr
 
+from asperity.population.plan import aspect_weights
+
 log = logging.getLogger("asperity")
 
 #: the share of the computed range whose step slopes continue a curve beyond its end
@@ -450,8 +452,6 @@ def aspect_check(plan: xr.Dataset, by_key: Mapping[str, xr.Dataset]) -> dict[str
     kj = plan["key"].values[fam]
     order = np.argsort(qj)
     qj, kj = qj[order], kj[order]
-    from asperity.population.geometry import aspect_weights
-
     j, t = aspect_weights(np.array([q]), qj)
     j, t = int(j[0]), float(t[0])
     lb = loading_branch(job)

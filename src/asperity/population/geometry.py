@@ -18,7 +18,7 @@ Sphere, paraboloid and the representative hill respond to the interference alone
 one job per (height, curvature), or, with ``scaling: self_similar``, a family of
 aspects: its shape in units of 1/kappa depends on the aspect q = kappa z_p = (k C)^2
 alone, so a few jobs at aspects q_j give every sample by the scaling of 8.2.2 and an
-interpolation in log q (`aspect_jobs`, `aspect_weights`). An FE job computes the
+interpolation in log q (`asperity.population.plan.aspect_jobs`, `aspect_weights`). An FE job computes the
 interferences up to the largest the geometry admits (`max_interference`).
 """
 
@@ -154,38 +154,6 @@ def unloading_levels(top: float, asperity: Asperity) -> tuple[np.ndarray, float]
     check = math.sqrt(levels[1] * levels[2]) if asperity.unloading_check and count >= 3 \
         else math.nan
     return levels, check
-
-
-def aspect_jobs(aspects: np.ndarray, count: int, check: bool) -> tuple[np.ndarray, float]:
-    """The aspects q_j of the family's FE jobs and the left-out check aspect (NaN: none).
-
-    `count` aspects geometrically spaced over the range of the samples' `aspects`
-    (q = kappa z_p, the ends exact), and with `check` the geometric mean of the two
-    middle ones (an aspect halfway between two jobs in log q, where the interpolation
-    error is largest).
-    """
-    aspects = np.asarray(aspects, float)
-    lo, hi = float(np.min(aspects)), float(np.max(aspects))
-    if not 0 < lo:
-        raise ValueError(f"aspects of coupled hills must be positive, got {lo:g}")
-    if count < 2:
-        raise ValueError(f"an aspect family needs at least 2 jobs, got {count}")
-    hi = hi if hi > lo else 2.0 * lo  # a single aspect: a second job above it
-    jobs = geometric_levels(lo, hi, count)  # the same numbers on every CPU: they enter the keys
-    middle = (jobs.size - 1) // 2
-    checked = math.sqrt(jobs[middle] * jobs[middle + 1]) if check else math.nan
-    return jobs, checked
-
-
-def aspect_weights(aspects: np.ndarray, jobs: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """For every aspect the index j of its lower neighbouring job and the weight t of
-    the upper one in log q: q = q_j^(1 - t) q_(j+1)^t, t in [0, 1] (0 at a job)."""
-    aspects = np.asarray(aspects, float)
-    jobs = np.asarray(jobs, float)
-    j = np.clip(np.searchsorted(jobs, aspects, side="right") - 1, 0, jobs.size - 2)
-    t = np.log(aspects / jobs[j]) / np.log(jobs[j + 1] / jobs[j])
-    t = np.where(aspects == jobs[j], 0.0, np.clip(t, 0.0, 1.0))
-    return j, t
 
 
 def aspect_job_range(geometry, asperity: Asperity, grid: np.ndarray) -> tuple[float, float]:

@@ -20,6 +20,7 @@ from typing import Any, Callable, Mapping
 import numpy as np
 import xarray as xr
 
+
 def spec_json(spec: Mapping[str, Any]) -> str:
     """A job spec as canonical JSON (sorted keys; floats round-trip exactly)."""
 
@@ -91,6 +92,38 @@ def sample_grid(lo: float, hi: float, count: int, positive: bool = False) -> np.
     if positive and lo <= 0:
         lo = hi / (2.0 * (count - 1))
     return np.linspace(lo, hi, count)
+
+
+def aspect_jobs(aspects: np.ndarray, count: int, check: bool) -> tuple[np.ndarray, float]:
+    """The aspects q_j of the family's FE jobs and the left-out check aspect (NaN: none).
+
+    `count` aspects geometrically spaced over the range of the samples' `aspects`
+    (q = kappa z_p, the ends exact), and with `check` the geometric mean of the two
+    middle ones (an aspect halfway between two jobs in log q, where the interpolation
+    error is largest).
+    """
+    aspects = np.asarray(aspects, float)
+    lo, hi = float(np.min(aspects)), float(np.max(aspects))
+    if not 0 < lo:
+        raise ValueError(f"aspects of coupled hills must be positive, got {lo:g}")
+    if count < 2:
+        raise ValueError(f"an aspect family needs at least 2 jobs, got {count}")
+    hi = hi if hi > lo else 2.0 * lo  # a single aspect: a second job above it
+    jobs = geometric_levels(lo, hi, count)  # the same numbers on every CPU: they enter the keys
+    middle = (jobs.size - 1) // 2
+    checked = math.sqrt(jobs[middle] * jobs[middle + 1]) if check else math.nan
+    return jobs, checked
+
+
+def aspect_weights(aspects: np.ndarray, jobs: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """For every aspect the index j of its lower neighbouring job and the weight t of
+    the upper one in log q: q = q_j^(1 - t) q_(j+1)^t, t in [0, 1] (0 at a job)."""
+    aspects = np.asarray(aspects, float)
+    jobs = np.asarray(jobs, float)
+    j = np.clip(np.searchsorted(jobs, aspects, side="right") - 1, 0, jobs.size - 2)
+    t = np.log(aspects / jobs[j]) / np.log(jobs[j + 1] / jobs[j])
+    t = np.where(aspects == jobs[j], 0.0, np.clip(t, 0.0, 1.0))
+    return j, t
 
 
 def make_plan(
@@ -219,8 +252,8 @@ def make_aspect_plan(
     jobs at a few aspects (8.2.2's self-similar scaling, one job per aspect).
 
     A sample of peak height z_p and tip curvature kappa is the hill of amplitude z_p
-    and aspect q = kappa z_p; `aspects` jobs (`asperity.population.geometry.
-    aspect_jobs`) compute the hills of aspects q_j spread over the samples' range, each
+    and aspect q = kappa z_p; `aspects` jobs (`aspect_jobs`) compute the hills of aspects q_j
+    spread over the samples' range, each
     of tip curvature `reference_curvature` and amplitude q_j / reference_curvature. A
     sample is derived from its two neighbouring jobs (``key`` the lower, ``upper_key``
     the upper, ``aspect_weight`` t of the upper in log q; t = 0 at a job). With `check`
@@ -232,8 +265,6 @@ def make_aspect_plan(
     (``sample_height`` the amplitude, ``sample_curvature`` the reference). `job_spec`
     as for `make_plan`.
     """
-    from asperity.population.geometry import aspect_jobs, aspect_weights
-
     heights = np.asarray(heights, float)
     curvatures = np.asarray(curvatures, float)
     hh, kk = np.meshgrid(heights, curvatures, indexing="ij")
