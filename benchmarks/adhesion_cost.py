@@ -72,7 +72,8 @@ from benchmarks.workflow_copy import SNAKEMAKE, copy_workflow  # noqa: E402
 from asperity.population import samples  # noqa: E402
 from asperity.fe import ConvergenceError  # noqa: E402
 from asperity.fe import LennardJones, LinearElastic, Paraboloid, adhesive  # noqa: E402
-from asperity.fe.adhesive import jkr_jump_off, maugis_pull_off, smooth_aluminum_curves  # noqa: E402
+from asperity.fe.adhesive import smooth_aluminum_curves  # noqa: E402
+from asperity.references.adhesion import jkr_jump_off, maugis_pull_off  # noqa: E402
 
 SCENE = "smooth_aluminum_adhesion"
 RESULTS = Path(__file__).with_name("results")

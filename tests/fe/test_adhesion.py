@@ -15,7 +15,8 @@ from scipy.integrate import quad
 
 from asperity.fe import LennardJones, LinearElastic, Paraboloid, solve_asperity_adhesive
 from asperity.fe.adhesion import adhesion_zone, composite_gauss, derjaguin_force
-from asperity.fe.adhesive import adhesive_model, adhesive_path, interpolate_adhesive, jkr_jump_off
+from asperity.fe.adhesive import adhesive_model, adhesive_path, interpolate_adhesive
+from asperity.references.adhesion import jkr_jump_off, maugis_pull_off
 
 D = 0.3e-9
 R = 15e-6
@@ -345,10 +346,9 @@ def test_large_steps_in_contact_are_not_halved_and_land_on_the_branch():
 
 
 def test_maugis_pull_off_spans_dmt_to_jkr():
-    """The Maugis-Dugdale pull-off over pi W R (`adhesive.maugis_pull_off`): DMT's 2 as
+    """The Maugis-Dugdale pull-off over pi W R (`references.adhesion.maugis_pull_off`): DMT's 2 as
     lam -> 0 and JKR's 3/2 as lam -> infinity (the JKR curve P = A^3 - sqrt(6 A^3) has
     its minimum -3/2), falling in between."""
-    from asperity.fe.adhesive import maugis_pull_off
 
     assert maugis_pull_off(1e-4) == pytest.approx(2.0, rel=1e-3)
     assert maugis_pull_off(1e3) == pytest.approx(1.5, rel=1e-6)

@@ -15,7 +15,7 @@ import pytest
 
 from asperity.fe import ConvergenceError, LennardJones, LinearElastic, Paraboloid
 from asperity.fe import solve_asperity_adhesive
-from asperity.fe.adhesive import jkr_jump_off
+from asperity.references.adhesion import jkr_jump_off
 
 D = 0.3e-9
 R = 15e-6
