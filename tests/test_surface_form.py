@@ -12,7 +12,7 @@ import pytest
 
 from asperity import surface as S
 from asperity.scene.surface import SurfaceScene
-from asperity.stages import surface as stage
+from asperity.surface.prepare import prepare
 
 UM = 1e-6
 
@@ -235,9 +235,9 @@ def test_profile_too_short_after_filtering_is_a_clear_error():
     scene = SurfaceScene.from_config({"profile": {"file": "p.txt"}, "form": "tilt",
                                       "filter": {"lambda_c": 150.0}}, {"length": "um"})
     with pytest.raises(ValueError, match=r"profile too short after filtering: 400 points .*surface.filter"):
-        stage.prepare(z, dx, scene)
+        prepare(z, dx, scene)
     fits = SurfaceScene.from_config({"profile": {"file": "p.txt"}, "filter": {"lambda_c": 50.0}},
                                     {"length": "um"})
-    prep = stage.prepare(z, dx, fits)  # 200 - 100 points dropped: 300 left, 150 um > lambda_c
+    prep = prepare(z, dx, fits)  # 200 - 100 points dropped: 300 left, 150 um > lambda_c
     assert prep.region == (slice(50, 350),)
     assert math.isnan(prep.roughness[10]) and np.isfinite(prep.roughness[200])
