@@ -28,9 +28,10 @@ import numpy as np
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))  # run as a script: `benchmarks` importable
 from benchmarks.scenes import _commit  # noqa: E402
 
-from asperity.fe import LennardJones, LinearElastic, Paraboloid  # noqa: E402
+from asperity.fe import BodnerPartom, LennardJones, LinearElastic, Paraboloid  # noqa: E402
 from asperity.fe import adhesive  # noqa: E402
 
+ALLOY = BodnerPartom.aluminum_6061_t4()  # the aluminum of Fig. 7.6 (report 6.3.1)
 RESULTS = Path(__file__).with_name("results")
 
 
@@ -60,7 +61,7 @@ def main(argv: list[str] | None = None) -> int:
     law = LennardJones(1.0, 0.3e-9)
     t0 = time.process_time()
     ds = adhesive.solve_asperity_adhesive(
-        Paraboloid(args.radius * 1e-6), LinearElastic(adhesive.ALUMINUM_E, adhesive.ALUMINUM_NU),
+        Paraboloid(args.radius * 1e-6), LinearElastic(ALLOY.E, ALLOY.nu),
         law, w_max=args.w_max * 1e-9, accuracy=args.accuracy)
     cpu = time.process_time() - t0
     adhesive.AdhesiveModel.midpoint = midpoint

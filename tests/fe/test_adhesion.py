@@ -305,7 +305,7 @@ def test_plane_strain_rigid_cylinder_against_quadrature():
 
 
 def test_smooth_aluminum_curves_stack_radii():
-    from asperity.fe import smooth_aluminum_curves
+    from asperity.fe import BodnerPartom, smooth_aluminum_curves
 
     radii = (1e-6, 2e-6)  # small radii keep the test quick (mu = 1.9, 2.4)
     ds = smooth_aluminum_curves(radii=radii, w_max=2e-9, accuracy="draft")
@@ -315,8 +315,10 @@ def test_smooth_aluminum_curves_stack_radii():
     valid = ds.valid.values
     assert np.all(np.isfinite(ds.force.values[valid])) and np.all(np.isnan(ds.force.values[~valid]))
     mu = ds.tabor_parameter.values
+    alloy = BodnerPartom.aluminum_6061_t4()  # the alloy of report 6.3.1: E = 65 GPa, nu = 0.33
+    assert (alloy.E, alloy.nu) == (65e9, 0.33)
     np.testing.assert_allclose(mu, LennardJones(1.0, 0.3e-9).tabor_parameter(
-        np.asarray(radii), 65e9 / (1 - 0.09)), rtol=1e-12)
+        np.asarray(radii), 65e9 / (1 - 0.33**2)), rtol=1e-12)
     P = ds.pull_off_force.values
     assert np.all(P > ds.pull_off_force_jkr.values) and np.all(P < ds.pull_off_force_dmt.values)
     assert np.all(np.isfinite(ds.jump_off_interference.values))
@@ -349,7 +351,6 @@ def test_maugis_pull_off_spans_dmt_to_jkr():
     """The Maugis-Dugdale pull-off over pi W R (`references.adhesion.maugis_pull_off`): DMT's 2 as
     lam -> 0 and JKR's 3/2 as lam -> infinity (the JKR curve P = A^3 - sqrt(6 A^3) has
     its minimum -3/2), falling in between."""
-
     assert maugis_pull_off(1e-4) == pytest.approx(2.0, rel=1e-3)
     assert maugis_pull_off(1e3) == pytest.approx(1.5, rel=1e-6)
     lams = [0.01, 0.1, 0.3, 1.0, 3.0, 10.0, 30.0]

@@ -13,12 +13,13 @@ the jump).
 import numpy as np
 import pytest
 
-from asperity.fe import LennardJones, LinearElastic, Paraboloid, adhesive, solve_asperity_adhesive
-from asperity.fe.adhesive import ALUMINUM_E, ALUMINUM_NU, on_levels
+from asperity.fe import BodnerPartom, LennardJones, LinearElastic, Paraboloid, adhesive, solve_asperity_adhesive
+from asperity.fe.adhesive import on_levels
 
 D = 0.3e-9
 LAW = LennardJones(1.0, D)
-MAT = LinearElastic(ALUMINUM_E, ALUMINUM_NU)
+ALLOY = BodnerPartom.aluminum_6061_t4()  # Fig. 7.6's aluminum (report 6.3.1)
+MAT = LinearElastic(ALLOY.E, ALLOY.nu)
 W_MAX = 10e-9
 
 

@@ -163,8 +163,9 @@ from .adhesion import LennardJones, adhesion_zone
 from .assembly import CondensedStiffness, Discretization
 from .contact import PENALTY_FACTOR, C1Penalty, ContactZone, contact_edge
 from .errors import ContactZoneError, ConvergenceError, StepFailed
-from .geometry import CosineHill, Profile
-from .material import equivalent_strain, von_mises
+from .bodner_partom import BodnerPartom
+from .geometry import CosineHill, Paraboloid, Profile
+from .material import LinearElastic, equivalent_strain, von_mises
 from .mesh import AsperityMesh, MeshSpec
 from .newton import ROUNDOFF_FACTOR
 from .nonlinear import EnergySearch, Problem
@@ -1721,11 +1722,6 @@ def interpolate_adhesive(ds: xr.Dataset, grid, branch: str = "approach",
 
 
 # --- Fig. 7.6 ----------------------------------------------------------------------------
-#: aluminum 6061-T4 of report 6.3.1 / 7.3: E = 65.0 GPa (the tension test), nu = 0.3
-ALUMINUM_E = 65.0e9
-ALUMINUM_NU = 0.3
-
-
 def stack_runs(runs, coord: str, values, coord_attrs: dict) -> xr.Dataset:
     """Adhesive runs on dims (coord, step), padded to the longest path.
 
@@ -1770,13 +1766,13 @@ def stack_runs(runs, coord: str, values, coord_attrs: dict) -> xr.Dataset:
 
 
 def smooth_aluminum_curves(radii=(15.4e-6, 30e-6, 60e-6), d: float = 0.3e-9,
-                           dgamma: float = 1.0, E: float = ALUMINUM_E, nu: float = ALUMINUM_NU,
+                           dgamma: float = 1.0, E: float | None = None, nu: float | None = None,
                            w_max: float = 10e-9, accuracy="draft",
                            cutoff: float | None = None) -> xr.Dataset:
     """Load-deflection curves of elastic aluminum asperities with adhesion (Fig. 7.6).
 
-    Report 7.3: very smooth 6061-T4 aluminum (E = 65.0 GPa of the tension
-    test, 6.3.1; nu = 0.3), asperity tip radii 15 to 300 um, dgamma =
+    Report 7.3: very smooth 6061-T4 aluminum (E and nu of
+    `BodnerPartom.aluminum_6061_t4`, 6.3.1, unless given), asperity tip radii 15 to 300 um, dgamma =
     1 J/m^2 (DESIGN errata), d = 0.3-0.5 nm, elastic.  Each radius is a
     shallow paraboloid (`Paraboloid`: the half space with a paraboloidal
     gap; the contact radius stays below 3 % of R here, where sphere and
@@ -1794,10 +1790,8 @@ def smooth_aluminum_curves(radii=(15.4e-6, 30e-6, 60e-6), d: float = 0.3e-9,
     them are measured by `make time-adhesion` (README "Adhesion").  With
     d = 0.5 nm, mu is 0.6 times smaller.
     """
-    from .geometry import Paraboloid
-    from .material import LinearElastic
-
-    mat = LinearElastic(E, nu)
+    alloy = BodnerPartom.aluminum_6061_t4()
+    mat = LinearElastic(alloy.E if E is None else E, alloy.nu if nu is None else nu)
     law = LennardJones(dgamma, d) if cutoff is None else LennardJones(dgamma, d, cutoff)
     radii = np.asarray(radii, dtype=float)
     runs = [solve_asperity_adhesive(Paraboloid(float(R)), mat, law, w_max=w_max,
