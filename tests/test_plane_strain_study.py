@@ -35,7 +35,7 @@ from asperity.fe.analytic import hertz_line_half_width
 from asperity.fe.bodner_partom import BodnerPartom
 from asperity.fe.geometry import Cylinder, TruncatedV
 from asperity.fe.material import LinearElastic
-from asperity.plane_strain import levels, plane_strain_study
+from asperity.studies.plane_strain import levels, plane_strain_study
 from asperity.scene.plane_strain import PlaneStrain
 
 from .scene_defaults import SCHEMA, filled_scene

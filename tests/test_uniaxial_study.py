@@ -21,7 +21,7 @@ from asperity.io.netcdf import missing_attributes, read_dataset, write_dataset
 from asperity.uniaxial.point import uniaxial_flow_stress
 from asperity.scene import Units
 from asperity.scene.uniaxial import IntegratorStudy, UniaxialTest
-from asperity.uniaxial.scene import accuracy_study, run_uniaxial_scene, uniaxial_reference
+from asperity.studies.uniaxial import accuracy_study, run_uniaxial_scene, uniaxial_reference
 from tests.scene_defaults import filled, filled_config
 
 from .test_uniaxial import _creep_ode

@@ -1,5 +1,5 @@
 """Figures of the plane-strain asperities (report 6.3.2, Figs. 6.15 to 6.18; 6.3.3, Figs.
-6.19 to 6.23), from plane_strain.nc only (`asperity.plane_strain` writes it).
+6.19 to 6.23), from plane_strain.nc only (`asperity.studies.plane_strain` writes it).
 
 Files hold SI; the figure shows the interference in the scene's length unit and forces
 per unit length in kN/m (= N/mm).

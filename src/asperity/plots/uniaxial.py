@@ -1,6 +1,6 @@
 """Figures of the uniaxial material-point scenes and of the integrators' accuracy study.
 
-Drawn from the result Datasets only (`asperity.uniaxial.scene` writes them):
+Drawn from the result Datasets only (`asperity.studies.uniaxial` writes them):
 ``uniaxial_figure`` from ``results/<scene>/uniaxial.nc`` (panels like the
 report's Figs. 5.1 to 5.4, 6.14 and 8.13), ``uniaxial_accuracy_figure`` from
 ``results/accuracy/bodner_partom.nc``.  Files hold SI; figures show MPa,

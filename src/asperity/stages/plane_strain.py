@@ -9,7 +9,7 @@ from typing import Any, Callable, Mapping
 
 import xarray as xr
 
-from asperity.plane_strain import plane_strain_study
+from asperity.studies.plane_strain import plane_strain_study
 from asperity.plots import plane_strain as plane_strain_plots
 from asperity.scene.plane_strain import PlaneStrain
 
