@@ -8,7 +8,7 @@ CORES ?= 2
 export OPENBLAS_NUM_THREADS = 1
 export OMP_NUM_THREADS = 1
 
-.PHONY: all reproduce test test-fast docs bench time-scenes time-jobs time-adhesion time-plane-strain time-reference time-surface time-sliding time-remesh time-edge-band time-finite-strain compare-results figures clean-results
+.PHONY: all reproduce test test-fast docs bench compare-results figures clean-results
 
 all: reproduce
 
@@ -44,76 +44,16 @@ docs: $(STAMP)
 	$(BIN)/python docs/generate.py
 	$(BIN)/mkdocs build --strict --quiet
 
-# Speed measurements; writes benchmarks/out/results.json and prints a table.
+# Speed and cost measurements, one entry point (benchmarks/run.py): CASE=kernels (the
+# default) times the kernels against the issues' targets (benchmarks/out/results.json);
+# CASE=list names the others (scenes, adhesion, sliding, routes, ...), each writing its
+# JSON to benchmarks/results/. ARGS replaces a case's default arguments, e.g.
+#   make bench CASE=scenes ARGS="--accuracy draft --scenes profile_cosine hertz"
+CASE ?= kernels
+ARGS ?=
+export CORES
 bench: $(STAMP)
-	$(BIN)/python benchmarks/run.py
-
-# Wall time of each scene from an empty copy, then of the whole default run
-# (the README's scene times); writes benchmarks/results/scenes-$(ACCURACY).json.
-# A subset: make time-scenes ACCURACY=draft SCENES="profile_cosine hertz" FULL=
-ACCURACY ?= standard
-SCENES ?=
-FULL ?= --full
-time-scenes: $(STAMP)
-	$(BIN)/python benchmarks/scenes.py --accuracy $(ACCURACY) --cores $(CORES) $(if $(SCENES),--scenes $(SCENES)) $(FULL)
-
-# What a job pays before it computes: Snakemake per script job, and each
-# script's imports; writes benchmarks/results/job-overhead.json.
-time-jobs: $(STAMP)
-	$(BIN)/python benchmarks/job_overhead.py --cores $(CORES)
-
-# CPU time of the adhesive jobs (the adhesion scene at draft and standard, R = 100 um,
-# Fig. 7.6's curves); writes benchmarks/results/adhesion-cost.json.
-time-adhesion: $(STAMP)
-	$(BIN)/python benchmarks/adhesion_cost.py
-
-# Numbers and CPU time of the plane-strain scenes (aluminum_cylinder, truncated_v) at
-# draft, standard and fine, at draft with the dimension the report does not give doubled,
-# with finite strain and with unloading; writes benchmarks/results/plane-strain.json.
-time-plane-strain: $(STAMP)
-	$(BIN)/python benchmarks/plane_strain.py --sensitivity --finite-strain --unloading
-
-# The deterministic_reference scene at draft: its wall time and each route's, and the
-# routes' errors against the boundary-element solution; writes
-# benchmarks/results/reference-draft.json.
-time-reference: $(STAMP)
-	$(BIN)/python benchmarks/reference_cost.py --accuracy draft --cores $(CORES)
-
-# The sliding study (asperity_sliding, report 9.2) at draft, standard and fine, one core
-# each (fine alone takes hours): force histories compared between presets, the mean
-# tangential traction; writes benchmarks/results/sliding-convergence.json.
-# Fewer presets or a time limit: make time-sliding SLIDING_ARGS="--presets draft standard"
-SLIDING_ARGS ?=
-time-sliding: $(STAMP)
-	$(BIN)/python benchmarks/sliding_convergence.py $(SLIDING_ARGS)
-
-# Inelastic histories on meshes that follow the contact (issue #14): the J2 sphere to
-# 50 times its critical interference at standard and fine, the viscoplastic hill of
-# make bench, each with remeshing on and off (CPU time, areas, forces, steps); fine
-# takes minutes. Writes benchmarks/results/remesh.json.
-# A subset: make time-remesh REMESH_ARGS="--cases j2_sphere --presets standard"
-REMESH_ARGS ?= --remesh on off
-time-remesh: $(STAMP)
-	$(BIN)/python benchmarks/remesh.py $(REMESH_ARGS)
-
-# A scene's FE jobs without and with the band the plastic contact edge sweeps
-# (asperity.edge_band): kinks of force and area, CPU. About 20 minutes at standard.
-# Writes benchmarks/results/edge-band-<scene>-<preset>.json and its figure.
-EDGE_BAND_ARGS ?= --scene steel_glass_bead --accuracy standard
-time-edge-band: $(STAMP)
-	$(BIN)/python benchmarks/edge_band_scene.py $(EDGE_BAND_ARGS)
-
-# Finite against small strain (a J2 sphere at 2 % strain, the steepest coupled steel
-# hill pressed to its amplitude) at draft and standard: CPU, force, area, strain.
-# Writes benchmarks/results/finite-strain.json.
-time-finite-strain: $(STAMP)
-	$(BIN)/python benchmarks/finite_strain.py
-
-# Form removal, statistics and peaks of a 2048 x 2048 map with 10 % undefined points,
-# beside SurfaceTopography's rms height, gradient and curvature of the same map;
-# writes benchmarks/results/surface-speed.json.
-time-surface: $(STAMP)
-	$(BIN)/python benchmarks/surface_speed.py
+	$(BIN)/python benchmarks/run.py $(CASE) $(ARGS)
 
 # results/ against another results tree REFERENCE, bit for bit, timings aside: what a
 # change that computes nothing new must leave alone, e.g. after an upgrade

@@ -1,4 +1,4 @@
-"""CPU time of the adhesive asperity jobs (`make time-adhesion`).
+"""CPU time of the adhesive asperity jobs (`make bench CASE=adhesion`).
 
 The README's adhesion section quotes what the adhesive solver costs; this
 script measures it (CPU time of this process, `time.process_time`):

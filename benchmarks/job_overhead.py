@@ -1,4 +1,4 @@
-"""What each Snakemake job pays before it computes anything (`make time-jobs`).
+"""What each Snakemake job pays before it computes anything (`make bench CASE=jobs`).
 
 The README explains why the draft run misses its 2-minute target by what
 the 188 jobs of the default run cost as processes.  This script measures

@@ -1,4 +1,4 @@
-"""Numbers and CPU cost of the plane-strain scenes (`make time-plane-strain`).
+"""Numbers and CPU cost of the plane-strain scenes (`make bench CASE=plane-strain`).
 
 Runs the stage of scenes `aluminum_cylinder` (report 6.3.2) and `truncated_v` (6.3.3) in
 this process, each at the presets asked for, from the scene files validated against

@@ -1,6 +1,7 @@
 """The `deterministic_reference` scene (or another scene with a reference, ``--scene``: the
 measured map of `afm_reference`): its wall time and each route's, side by side, and the
-statistical routes' error against the boundary-element solution (`make time-reference`).
+statistical routes' error against the boundary-element solution
+(`make bench CASE=reference`).
 
 Each measurement runs in its own fresh copy of the workflow (benchmarks.workflow_copy),
 Snakemake's start-up included, with

@@ -1,15 +1,20 @@
-"""Speed measurements of the targets the issues set (`make bench`).
+"""The one entry point of the benchmarks: `make bench CASE=<case> ARGS="..."`.
 
-Each case is timed as the best of several repeats (wall clock, this
-machine), printed as a table and written to benchmarks/out/results.json.
-Targets are stated beside each case; a miss is printed, not raised: speed
-is measured here, never asserted in the unit tests.
+``kernels`` (the default) times the kernels the issues set targets for, each as the
+best of several repeats (wall clock, this machine), printed as a table and written to
+benchmarks/out/results.json; ARGS picks kernels by part of their name.  Targets are
+stated beside each case; a miss is printed, not raised: speed is measured here, never
+asserted in the unit tests.  Every other case runs its script in benchmarks/ with
+ARGS, or with the arguments of `STUDIES` when ARGS is empty; ``make bench CASE=list``
+lists them.
 """
 
 from __future__ import annotations
 
 import json
+import os
 import platform
+import subprocess
 import sys
 import time
 from pathlib import Path
@@ -137,6 +142,55 @@ CASES = [
 ]
 
 
+#: case -> (script in benchmarks/, its arguments when ARGS is empty, what it measures);
+#: CORES (the Makefile's) is the number of cores of the workflow runs
+_CORES = os.environ.get("CORES", "2")
+STUDIES = {
+    "scenes": ("scenes.py", ["--accuracy", "standard", "--cores", _CORES, "--full"],
+               "wall time of each scene from an empty copy, then of the whole default run"),
+    "jobs": ("job_overhead.py", ["--cores", _CORES],
+             "what a job pays before it computes: Snakemake per script job, each script's imports"),
+    "adhesion": ("adhesion_cost.py", [], "CPU time of the adhesive jobs"),
+    "plane-strain": ("plane_strain.py", ["--sensitivity", "--finite-strain", "--unloading"],
+                     "numbers and CPU time of the plane-strain scenes at every preset"),
+    "reference": ("reference_cost.py", ["--accuracy", "draft", "--cores", _CORES],
+                  "the deterministic_reference scene: wall time, the routes' errors"),
+    "routes": ("routes.py", [], "every route's error on every map against the boundary elements"),
+    "scale": ("scale_study.py", [], "summits and the routes' error against the lateral scale"),
+    "sliding": ("sliding_convergence.py", [], "the sliding study at draft, standard and fine"),
+    "remesh": ("remesh.py", ["--remesh", "on", "off"],
+               "inelastic histories on meshes that follow the contact"),
+    "edge-band": ("edge_band_scene.py", ["--scene", "steel_glass_bead", "--accuracy", "standard"],
+                  "a scene's FE jobs without and with the plastic edge band"),
+    "finite-strain": ("finite_strain.py", [], "finite against small strain: CPU, force, area"),
+    "surface": ("surface_speed.py", [], "a 2048^2 map's statistics beside SurfaceTopography's"),
+    "validity": ("validity_numbers.py", [], "how much of the FE scenes rests on extrapolation"),
+    "coupled": ("coupled_numbers.py", [], "the coupled hill family beside the representative hill"),
+    "adhesion-scene": ("adhesion_numbers.py", [], "the adhesive scene beside its elastic twin"),
+    "adhesion-secant": ("adhesion_secant.py", [], "the adhesive step test in contact"),
+}
+
+
+def run_case(case: str, args: list[str]) -> int:
+    """Run one case (module docstring); the exit code of its script."""
+    if case == "kernels":
+        main(args)
+        return 0
+    if case == "list":
+        print(f"{'kernels':<14s} the kernels' speed against the issues' targets (default)")
+        for name, (_, _, what) in STUDIES.items():
+            print(f"{name:<14s} {what}")
+        return 0
+    if case not in STUDIES:
+        print(f"make bench: no case {case!r} (key CASE); one of kernels, {', '.join(STUDIES)}",
+              file=sys.stderr)
+        return 2
+    script, default, _ = STUDIES[case]
+    command = [sys.executable, str(Path(__file__).with_name(script)), *(args or default)]
+    print(" ".join(command), flush=True)
+    return subprocess.call(command)
+
+
 def main(names=None):
     OUT.mkdir(exist_ok=True)
     rows = []
@@ -156,4 +210,5 @@ def main(names=None):
 
 
 if __name__ == "__main__":
-    main(sys.argv[1:])
+    argv = sys.argv[1:]
+    sys.exit(run_case(argv[0] if argv else "kernels", argv[1:]))

@@ -1,4 +1,4 @@
-"""Wall time of each scene, and of the whole default run (`make time-scenes`).
+"""Wall time of each scene, and of the whole default run (`make bench CASE=scenes`).
 
 Issue #6: `snakemake --cores 2` with the default config reproduces every scene
 of the report in under 10 minutes wall on 2 cores at `standard` and under 2

@@ -1,4 +1,4 @@
-"""Convergence of the sliding study `asperity_sliding` (`make time-sliding`).
+"""Convergence of the sliding study `asperity_sliding` (`make bench CASE=sliding`).
 
 Runs the scene's 3-D asperity (report 9.2: pressed 0.125 um in 0-1800 s, slid 1.0 um
 in 1800-4000 s with a friction coefficient of 20) at the sliding presets, one process

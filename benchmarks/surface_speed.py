@@ -1,4 +1,5 @@
-"""Speed of a measured map's preparation and statistics against SurfaceTopography's (`make time-surface`).
+"""Speed of a measured map's preparation and statistics against SurfaceTopography's
+(`make bench CASE=surface`).
 
 The case of the README: a 2048 x 2048 map with 10 % of its points undefined
 (scattered, as an optical instrument leaves them), measured side by side in one

@@ -264,7 +264,7 @@ def _scale_study(name: str) -> str:
     text = ["\n## The lateral scale of the asperities\n\n",
             "Each map low-passed at lambda_s = s max(dx, dy) (s = 0: the pixel's peaks, unfiltered), "
             "its summits found and fitted there, and the routes run on it beside the elastic boundary "
-            "elements of the same prepared map (`python benchmarks/scale_study.py`). Per map and "
+            "elements of the same prepared map (`make bench CASE=scale`). Per map and "
             "scale: summits, their mean curvature, the boundary elements' cells per patch at the "
             "lightest load, and each route's largest error (pressure at equal separation / area at "
             "equal pressure, in per cent) over the separations 0.5-3 sigma where the boundary "
@@ -313,7 +313,7 @@ def _scale_study(name: str) -> str:
 
 def _sliding_convergence(name: str) -> str:
     """The 3-D sliding junction's force histories between accuracy presets
-    (`make time-sliding`): the largest relative difference of each force."""
+    (`make bench CASE=sliding`): the largest relative difference of each force."""
     d = _load(name)
     if d is None:
         return ""
@@ -326,7 +326,7 @@ def _sliding_convergence(name: str) -> str:
                     + " |\n")
     cost = ", ".join(f"`{k}` {v['cpu_time']:.0f} s" for k, v in d["presets"].items() if "cpu_time" in v)
     return ("\n### One asperity slid in 3-D: the junction of report 9.2 sheared at the steel's "
-            "strength (`make time-sliding`)\n\n"
+            "strength (`make bench CASE=sliding`)\n\n"
             "The largest relative difference of each force history between two presets, the "
             f"coarser interpolated at the finer one's times; CPU: {cost}.\n\n" + "".join(rows)
             + "\n" + _provenance(d, name))
@@ -348,7 +348,7 @@ def _surface_speed(name: str) -> str:
 def verification_page() -> str:
     out = [GENERATED, "# Verification and cost\n\n",
            "What the project measured, read from the benchmark outputs of `benchmarks/results/` "
-           "(`make bench` and the `make time-*` targets write them). Each table names the file, "
+           "(`make bench CASE=...` writes them). Each table names the file, "
            "machine, date and commit it comes from. The history of these numbers is in the "
            "[changelog](../changelog.md).\n"]
     routes = [n for n in ("routes-draft.json", "routes-standard.json") if (RESULTS / n).exists()]

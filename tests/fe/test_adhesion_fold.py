@@ -5,7 +5,7 @@ length to the fold and the jump solved from there.
 Checked by forcing it (the bisection allowed 2 halvings instead of MAX_HALVINGS) on a
 case the bisection alone passes, against that run. The asperity that needed it, R = 150 um
 at d = 0.3 nm (report 7.3, Tabor parameter 10), costs 400 s of CPU at draft, too much for
-the suite: it is `make time-adhesion`'s (benchmarks/adhesion_cost.py --only-large),
+the suite: it is `make bench CASE=adhesion`'s (benchmarks/adhesion_cost.py --only-large),
 against JKR.
 """
 

@@ -78,7 +78,7 @@ BAND_AREA = np.array([1.33240e-3, 2.13270e-3, 2.96864e-3, 3.83432e-3, 4.72801e-3
 
 def _scatter(ds):
     """The area's step-to-step scatter (`benchmarks.remesh.area_scatter`, which
-    `make time-remesh` reports for every run)."""
+    `make bench CASE=remesh` reports for every run)."""
     return area_scatter(ds.interference.values, ds.contact_area.values)
 
 
