@@ -37,7 +37,7 @@ FOLLOWING = dict(base="draft", follow_above=0)
 
 @pytest.fixture(scope="module")
 def pair():
-    """R = 15.4 um (Fig. 7.6, mu = 4.8) on the whole band and on a following mesh."""
+    """R = 15.4 um (Fig. 7.6, mu = 4.7) on the whole band and on a following mesh."""
     R = 15.4e-6
     fixed = solve_asperity_adhesive(Paraboloid(R), MAT, LAW, w_max=W_MAX, accuracy="draft")
     moving = solve_asperity_adhesive(Paraboloid(R), MAT, LAW, w_max=W_MAX, accuracy=FOLLOWING)

@@ -55,12 +55,12 @@ through the fold, until dw/ds changes sign; the fold so bracketed is
 located to ``min_step * d`` and the jump solved from the stable state
 there to ``min_step * d`` beyond it (`_through_fold`).  A stretch that
 turns out to have no fold is followed to the step's end.  Paths on which
-the bisection does not stall are unchanged.  Where the jump-off from the
-fold does not converge from the tangent predictor (the contact peels over
-a band of many elements at once), it is solved again from the branch out
-of contact that the asperity jumps off to (`_Landing`): the states the
-approach passed before it jumped in, or the undeformed body where the tip
-is beyond the cut-off.
+the bisection does not stall do not take the fold path.  Where the
+jump-off from the fold does not converge from the tangent predictor (the
+contact peels over a band of many elements at once), it is solved again
+from the branch out of contact that the asperity jumps off to
+(`_Landing`): the states the approach passed before it jumped in, or the
+undeformed body where the tip is beyond the cut-off.
 
 Retracting, the flat first runs back over levels the approach reached
 continuously; an elastic body's equilibria along a branch without a fold
@@ -112,24 +112,19 @@ surface within FINE_SEPARATION d of the flat, plus a margin of
 contact inside and the surface outside are graded away from it as above);
 the candidate zone is still the whole band.  The margin trades the size
 of the Newton tangent's active set, whose dense factorization is most of
-the cost, against how often the mesh moves: 20 elements in every preset,
-where the code before took 0.15 times the radius (at least 40 elements),
-a band 2-4 times wider at R = 150-300 um: at R = 150 um draft the active
-set shrank from a median 717 nodes to 381 and the run from 66 s to 25 s,
-with 21 meshes instead of 13, for forces within 8.2e-5 and contact radii
-within 5.9e-4 of the largest (`benchmarks/adhesion_cost.py --margins`,
-README "Adhesion"); the pull-off moves by up to 1e-4 of itself
-(`tests/fe/test_adhesion_follow.py`).  At a large Tabor parameter the
-surface held in the well is a wide annulus around the contact (the
-tension of JKR's contact), where the fields are smooth; the contact edge
-inside it (where the penalty takes over from the adhesion, the edge of
-the contact area) gets a band of its own, of elements EDGE_COARSENING
-times longer.  Refining the whole annulus at h_ring, as before (preset
-key ``edge_band`` False), makes the active set of the Newton tangent 2.7
-times as large (a median 1045 nodes against 381 at R = 150 um, draft)
-and the run 5 times as long, for forces within 3e-5 and contact radii
-within 6e-4 of the largest of the two bands' (`benchmarks/adhesion_cost.py
---bands`, README "Adhesion").  Each state the path reaches is
+the cost, against how often the mesh moves: a narrow margin, 20 elements
+in every preset, keeps the active set small at the price of more meshes
+along the path (docs: changelog, 'Adhesion'); the pull-off moves by up
+to 1e-4 of itself (`tests/fe/test_adhesion_follow.py`).  At a large
+Tabor parameter the surface held in the well is a wide annulus around
+the contact (the tension of JKR's contact), where the fields are smooth;
+the contact edge inside it (where the penalty takes over from the
+adhesion, the edge of the contact area) gets a band of its own, of
+elements EDGE_COARSENING times longer.  Refining the whole annulus at
+h_ring instead (preset key ``edge_band`` False) puts every node of the
+annulus in the active set of the Newton tangent, whose factorization
+costs the cube of its size (`_Tangent`), where the smooth fields need no
+such refinement.  Each state the path reaches is
 checked: if its edge or ring has come within a quarter of the margin of
 the window's ends, the surface displacement is interpolated onto a mesh
 with a new window and the equilibrium at the same flat position is
@@ -141,9 +136,9 @@ re-solved, until its window holds.  Each state keeps its mesh
 outputs use it.  Only the current mesh keeps the sparse factors of its
 body; the states recorded on a mesh the path has left are evaluated and
 that mesh's factors dropped (`AdhesiveModel.release`), so the memory of a
-path does not grow with its meshes at the rate of their factors.  What
-the adhesive jobs cost is measured by `make time-adhesion` (README,
-"Adhesion").
+path does not grow with its meshes at the rate of their factors.  The
+measured costs of the adhesive jobs are in the docs (changelog,
+'Adhesion').
 """
 
 from __future__ import annotations
@@ -177,7 +172,7 @@ from asperity.references.adhesion import jkr_contact_radius
 log = logging.getLogger(__name__)
 
 #: Newton iterations of a step attempt are the preset's ``max_iterations``
-#: (40): a continuous step converges in 4-20; one that does not is halved
+#: (40): a continuous step converges well within them; one that does not is halved
 #: (beyond a fold there is no nearby minimum, so failing fast localizes the
 #: fold cheaply).  The solve of a jump, at the smallest step, may take
 #: JUMP_ITERATION_FACTOR times more (the contact zips or peels).
@@ -506,8 +501,7 @@ class AdhesiveNewton:
         A Newton step computed with the current contact set would push the
         nodes it does not hold deep into the flat, and plain backtracking
         then lets the contact grow by about one node per iteration (the
-        zipping of a jump-in: measured 570 iterations against 18 with the
-        projection at mu = 3); projected, it grows at once.
+        zipping of a jump-in); projected, it grows at once.
         """
         zone = self.zone
         cap = np.maximum(zone.node_penetration(u, w), self.adhesion.peak_pressure / self.node_kappa)
@@ -667,18 +661,16 @@ class AdhesiveModel:
         contact; the predictor's own move is capped at d + 2 |dw|, since
         du/dw blows up near a fold).  A jump of the surface that releases
         too little energy to show in the balance still moves it far from
-        the predictor: measured at mu = 1 (draft), continuous steps of d / 3
-        balance to 0.014 d |F| and stay within 0.43 d of the predictor; the
-        jump-in moves 1.1 d off the predictor but releases only
-        0.015 d |F| (so both tests are needed); at mu = 3 (standard) the
-        last continuous steps before the jump-off fold stay within 0.06 d
-        of the predictor at min_step, the jump moves 5 d.
+        the predictor (a jump-in at a small Tabor parameter releases about
+        as little energy as a continuous step's balance error, but moves the
+        surface farther off the predictor than any continuous step; so both
+        tests are needed), while the last continuous steps before a fold stay
+        close to the predictor at min_step.
 
         Where a contact zips and peels over many ring elements (a large
         Tabor parameter) the predictor is no guide: the nodes that enter or
         leave contact within a step move several |dw| off it while the
-        energy balances (`benchmarks/adhesion_secant.py` records by how
-        much). Such a step is tested against the secant instead
+        energy balances. Such a step is tested against the secant instead
         (`midpoint`): the state halfway, solved from `old`, must balance its
         energy with both ends and lie within d / 2 + |dw| of the mean of
         their surfaces. A jump J moves the secant's midpoint by J / 2
@@ -1783,12 +1775,11 @@ def smooth_aluminum_curves(radii=(15.4e-6, 30e-6, 60e-6), d: float = 0.3e-9,
     pull-off forces 2 pi R W_c and 3/2 pi R W_c for comparison.
 
     Cost grows with the Tabor parameter (R^(1/3) / d): with d = 0.3 nm,
-    mu = 4.8, 6.0, 7.6 at 15.4, 30, 60 um, and 10, 13 at 150 and 300 um
+    mu = 4.7, 5.9, 7.5 at 15.4, 30, 60 um, and 10, 13 at 150 and 300 um
     (the flat end of 7.3's range), whose mesh follows the contact edge
     (module docstring, "Mesh").  The report's Fig. 7.6 shows R = 15.4 um
-    only; the default adds two flatter radii, and the costs of all of
-    them are measured by `make time-adhesion` (README "Adhesion").  With
-    d = 0.5 nm, mu is 0.6 times smaller.
+    only; the default adds two flatter radii (their measured costs: docs,
+    changelog, 'Adhesion').  With d = 0.5 nm, mu is 0.6 times smaller.
     """
     alloy = BodnerPartom.aluminum_6061_t4()
     mat = LinearElastic(alloy.E if E is None else E, alloy.nu if nu is None else nu)

@@ -204,10 +204,8 @@ class CondensedStiffness:
     degree order of K_II (read from a factorization of K_II: scipy gives the
     ordering only with the factors), and factorized by SuperLU in that order
     without pivoting (K is symmetric positive definite).  The factorization of
-    K_II costs less than the fill it saves: on a mesh of the R = 300 um
-    adhesive tip at draft (16 794 free dofs, 451 on S) the factors hold 2.0 M
-    entries in 0.14 s for both factorizations, against 5.2 M in 0.27 s with the
-    geometric nested dissection used before.  With K = L U, the trailing blocks give
+    K_II that yields the order costs less than the fill the order saves (docs:
+    changelog, 'Speed of the kernels').  With K = L U, the trailing blocks give
     the Schur complement K_S = K_SS - K_SI K_II^-1 K_IS = L_SS U_SS, the
     exact stiffness of the body seen from S, at the price of one sparse
     factorization.  Full displacements for forces acting on S are recovered
@@ -260,9 +258,8 @@ class OrderedLU:
 
     SuperLU orders the columns again at every factorization (minimum degree on
     the pattern of A^T + A, ``permc_spec="MMD_AT_PLUS_A"``), although a mesh's
-    tangent keeps its pattern for a whole run: on the viscoplastic hill of
-    `benchmarks/remesh.py` (7 946 dofs) the ordering was a quarter of each
-    factorization.  Here the first factorization of a pattern is SuperLU's own;
+    tangent keeps its pattern for a whole run, so that the ordering is repeated
+    for nothing.  Here the first factorization of a pattern is SuperLU's own;
     its column order (postordered) is kept, and the next matrices of the same
     pattern are permuted symmetrically by it and factorized in their natural order
     with the same options.  The factors are SuperLU's up to round-off (their

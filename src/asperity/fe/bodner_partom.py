@@ -53,8 +53,7 @@ components, as ``LinearElastic.tangent``), or, for three-dimensional
 bodies, ``(6, *shape)`` with components (11, 22, 33, 12, 13, 23) and
 tangents ``(6, 6, *shape)``: every function decides by the first axis of
 the strain (or stress) array, and the state carries the same number of
-components (``initial_state(shape, components=6)``); the 4-component path
-is unchanged.  ``shape`` is that of the
+components (``initial_state(shape, components=6)``).  ``shape`` is that of the
 quadrature points (e.g. (ne, nq), or () for one point).  Internally all
 points are flattened and everything is vectorized (no loop over points);
 tensors are handled in Mandel form (shear times sqrt 2) so that

@@ -22,11 +22,12 @@ length h_f, E' = E / (1 - nu^2) the contact modulus,
 ``c = PENALTY_FACTOR = 1000``: the penetration is about p h_f / (c E'),
 i.e. 0.1 % of the element size at a pressure equal to E'.  The penalty's
 own error (`asperity.fe.solve.penalty_error`) falls as 1 / c; at c = 1000
-it is a few 1e-5 in force and contact radius on the Hertz problem, well
-below the discretization error.  The smoothing covers the pressures below
-p_s / 2 with ``p_s = SMOOTHING * E'`` (SMOOTHING = 1e-3), i.e.
-eps = p_s / kappa, which shrinks with the penalty so that the C1 law tends
-to the exact condition as kappa grows.
+it is below 2e-4 in force and contact radius on the Hertz problem
+(tests/fe/test_penalty_error.py), well below the discretization error.
+The smoothing covers the pressures below p_s / 2 with
+``p_s = SMOOTHING * E'`` (SMOOTHING = 1e-3), i.e. eps = p_s / kappa,
+which shrinks with the penalty so that the C1 law tends to the exact
+condition as kappa grows.
 
 Integration over the surface (`ContactZone`): the traction is evaluated
 at contact points on each 3-node facet.  Default ``FACET_RULE = "nodal"``:
@@ -34,8 +35,8 @@ Simpson's rule, whose points are the facet's nodes, so there is one
 contact condition per surface node.  The "gauss" rule (6 Gauss points)
 imposes more conditions than a quadratic facet has unknowns; with a stiff
 penalty the pressure then oscillates between the points and Newton's
-active set creeps a few points per iteration (measured: 20-30 iterations
-against 4-8 with the nodal rule, independent of the penalty factor).
+active set creeps a few points per iteration, whatever the penalty
+factor, where the nodal rule converges in a few iterations.
 Contact area and radius are not counted at the points (the report's
 Fig. 8.15 staircase): the edge is interpolated between nodes, from the
 gaps (`contact_edge`) or, for an inelastic body, from the pressures and

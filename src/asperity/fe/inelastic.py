@@ -86,7 +86,7 @@ A step with E > 2 ``time_tolerance`` is rejected and retried with the time
 step h 0.9 (tol / E)^(1/(p+1)) (p the order, at least 0.2 h); after an
 accepted step the time step becomes h min(2, 0.9 (tol / E)^(1/(p+1))).
 (Rejecting only above twice the tolerance: the estimate jumps when a node
-of the surface comes into contact, and rejecting at the tolerance cost 40 %
+of the surface comes into contact, and rejecting at the tolerance takes
 more steps for no gain in accuracy.)  E is recorded per step
 (``time_error``), its largest value and the rejections it caused as
 attributes.  With local error control the error of the end of the
@@ -771,8 +771,8 @@ def solve_asperity_history(geometry, material, history: History, accuracy="stand
         The elastic contact edge at the largest level lies inside a plastic
         one (a sphere: sqrt(R w) against up to sqrt(2 R w)): the preset key
         ``edge_size`` (set at 'fine') refines the band of radii the plastic
-        edge sweeps (`remesh.edge_band`; README, "Meshes that follow the
-        contact"); with ``remesh`` on it is not read.
+        edge sweeps (`remesh.edge_band`; docs: theory/single-asperity.md,
+        'Inelastic histories'); with ``remesh`` on it is not read.
     stop_at_zero_force
         on unloading, stop once the force vanishes (falls below
         ``ZERO_FORCE`` x the largest force; the crossing is

@@ -22,8 +22,8 @@ A material is any object with
 - ``yield_stress`` [Pa] (``inf`` if none): the response counts as elastic
   while the von Mises stress stays below it.
 
-Inelastic materials (report 3.2.2) will add internal state; the solvers
-use only the interface above.
+Inelastic materials (report 3.2.2: `j2`, `bodner_partom`) add internal
+state and its update on top of this interface.
 """
 
 from __future__ import annotations

@@ -6,15 +6,14 @@ material, contact law) is the same, except that the cut-off distance of a
 body of revolution is part of the approximation of the half space and
 grows with the preset.
 
-Measured on the Hertz problem of report 6.1 (paraboloid, R = 1, E = 1000,
-nu = 0.3, w = 0.001 ... 0.02, five levels, 2 shared cores):
+Accuracy on the Hertz problem of report 6.1 (paraboloid, R = 1, E = 1000,
+nu = 0.3, w = 0.001 ... 0.02, five levels; docs: theory/single-asperity.md,
+'Accuracy presets'):
 
-    preset    dofs    wall    |load error|   |radius error|
-    draft     2 100   0.1 s   <= 0.4 %       <= 0.5 %
-    standard  6 800   0.4 s   <= 0.12 %      <= 0.17 %
-    fine     30 600   2 s     <= 0.03 %      <= 0.03 %
-
-A 40-level loading curve of a cosine hill takes 0.1 s, 0.9 s and 4 s.
+    preset    dofs    |load error|   |radius error|
+    draft     2 100   <= 0.4 %       <= 0.5 %
+    standard  6 800   <= 0.12 %      <= 0.17 %
+    fine     30 600   <= 0.03 %      <= 0.03 %
 
 Keys
 ----
@@ -57,14 +56,14 @@ time_tolerance
     of a step (nodal forces of the local error over the contact forces;
     local: the stiff flow relaxes most of it, the error of the results is
     far smaller).  What each preset's tolerance costs and how far its
-    results are from tighter ones: `make bench` (benchmarks/run.py, README
-    "Inelastic histories").
+    results are from tighter ones: docs, changelog, 'Inelastic histories
+    and the material point'.
 remesh
     inelastic histories: rebuild the mesh around the contact edge and the
     plastic zone as they move (`remesh`), instead of one mesh adapted once
     to elastic solutions up to the largest interference.  Off in every
-    preset: what it costs and gains is measured by `make time-remesh`
-    (benchmarks/remesh.py, README "Inelastic histories").
+    preset (what it costs and gains: docs, changelog, 'Meshes that follow
+    the plastic contact').
 remesh_band
     a new mesh resolves the contact edge from its current radius a to
     remesh_band x a (elastic solutions drive the refinement, as above),
@@ -80,28 +79,29 @@ edge_size
     radius at the largest interference), refined on top of the elastic
     adaptation, which resolves the elastic edges only.  Not read with
     ``remesh`` on (the meshes then follow the edge).  None at draft and
-    standard, `EDGE_SIZE` at fine (`INELASTIC_ACCURACY`): on the J2 sphere of
-    `make time-remesh`, 0.02 at standard puts standard's contact area within
-    1 % of fine's from a tenth of the largest interference on (3 % on the
-    default mesh), for about twice standard's CPU; but the viscoplastic hill
-    takes 2.5 times as long with it (README "Meshes that follow the
-    contact").  `EDGE_SIZE` holds the size of each preset, which a scene's
-    ``asperity: {edge_band: true}`` sets, and which a scene's J2 jobs have at
-    standard without the key (`asperity.population.kinds.inelastic.wants_band`:
-    a J2 body's steps are not set by the time-error control).
+    standard, `EDGE_SIZE` at fine (`INELASTIC_ACCURACY`): on a J2 sphere
+    0.02 at standard is sized to put standard's contact area within 1 % of
+    fine's from a tenth of the largest interference on; on a rate-dependent
+    body the time-error indicator grows as the surface is refined, so the
+    band makes a viscoplastic hill take many more steps (docs: changelog,
+    'Meshes that follow the plastic contact').  `EDGE_SIZE` holds the size
+    of each preset, which a scene's ``asperity: {edge_band: true}`` sets,
+    and which a scene's J2 jobs have at standard without the key
+    (`asperity.population.kinds.inelastic.wants_band`: a J2 body's steps
+    are not set by the time-error control).
 
 Adhesive presets (`ADHESIVE_ACCURACY`, `adhesive.solve_asperity_adhesive`)
 add to the elastic preset of the same name: the mesh of the adhesive band
 (process_zone_elements, ring_elements, grading, max_band_facets,
 follow_above: a band of more ring elements follows the contact, and
 edge_band: a contact edge far inside the cohesive zone gets a band of its
-own; False gives the one band from the contact edge of the code before,
-for `benchmarks/adhesion_cost.py --bands`; follow_margin and
-follow_margin_elements: a following band reaches the larger of
+own; False gives one band from the contact edge to the ring, the
+alternative `benchmarks/adhesion_cost.py --bands` compares; follow_margin
+and follow_margin_elements: a following band reaches the larger of
 follow_margin x the radius its zone reaches and follow_margin_elements
 ring elements beyond the zone on either side: 20 elements in every
-preset, the 0.15 x radius and 40 elements of the code before for
-`benchmarks/adhesion_cost.py --margins`), the
+preset; 0.15 x radius and 40 elements are the wider margins
+`benchmarks/adhesion_cost.py --margins` compares), the
 surface rule (gauss_points, subdivisions), the path (steps_per_d,
 far_steps) and its step control (jump_tolerance, energy_tolerance,
 min_step); the adhesive module docstring says what each does.  Sliding
@@ -199,16 +199,16 @@ ADHESIVE_ACCURACY: dict[str, dict] = {
 }
 
 #: ``edge_size`` at each preset where a scene asks for the band the plastic contact edge
-#: sweeps (``asperity: {edge_band: true}``, and a J2 body at standard without the key;
-#: `benchmarks/remesh.py --edge-band` measures these): standard's within 1 % of fine's in
-#: contact area on the J2 sphere.  'fine' has its band in every inelastic history
-#: (`INELASTIC_ACCURACY`)
+#: sweeps (``asperity: {edge_band: true}``, and a J2 body at standard without the key),
+#: sized to put standard's contact area on a J2 sphere within 1 % of fine's.  'fine' has
+#: its band in every inelastic history (`INELASTIC_ACCURACY`)
 EDGE_SIZE = {"draft": 0.04, "standard": 0.02, "fine": 0.0125}
 
 #: the presets at which a scene's rate-independent (J2) body gets the band without the
 #: scene's key (`asperity.population.kinds.inelastic.wants_band`; fine's inelastic preset
-#: has it for every body): its steps are not set by the time-error control, which on the
-#: band takes a viscoplastic hill 2.5 times as long; draft stays a first look
+#: has it for every body): its steps are not set by the time-error control, whose
+#: indicator grows as the surface is refined, so that on the band a viscoplastic hill
+#: takes many more steps; draft stays a first look
 RATE_INDEPENDENT_EDGE_BAND = ("standard",)
 
 #: inelastic histories (`inelastic.solve_asperity_history`) on top of the preset of the
@@ -216,10 +216,9 @@ RATE_INDEPENDENT_EDGE_BAND = ("standard",)
 #: mesh is adapted to the elastic solutions of the history's levels only as far as
 #: standard's is (``sweeps``, ``target_error``), on its own finer rings, and refined
 #: where the plastic contact edge goes (``edge_size``).  The elastic adaptation resolves
-#: elastic contact edges, inside the plastic ones; fine's sweeps beyond standard's spent
-#: most of its dofs at the small contacts of the first levels.  This mesh is closer to
-#: the finest runs of `make time-remesh` than fine's before (7 elastic sweeps to 0.002,
-#: no band), for less CPU (README, "Meshes that follow the contact")
+#: elastic contact edges, inside the plastic ones; sweeps beyond standard's would spend
+#: most of the dofs at the small elastic contacts of the first levels, not where the
+#: plastic edge goes (docs: changelog, 'Meshes that follow the plastic contact')
 INELASTIC_ACCURACY: dict[str, dict] = {
     "draft": dict(base="draft"),
     "standard": dict(base="standard"),
@@ -245,8 +244,8 @@ SLIDING_ACCURACY: dict[str, dict] = {
                   max_iterations=40, max_cuts=10, max_inelastic_step=0.3),
     # standard and fine resolve the contact surface: the contact on the facets' P2 nodes
     # grows a ring of nodes at a time, so the force histories converge with the
-    # surface's node spacing, not with the dofs (README, "The sliding presets").  fine
-    # refines the mesh only; its time steps are standard's
+    # surface's node spacing, not with the dofs (docs: changelog, 'Sliding of one
+    # asperity', 'The presets').  fine refines the mesh only; its time steps are standard's
     "standard": dict(tip_fraction=0.25, refine_fraction=0.8, grading=0.5, coarse_fraction=0.35,
                      depth_grading=1.0, normal_steps=16, tangential_steps=32, tolerance=1e-7,
                      max_iterations=40, max_cuts=10, max_inelastic_step=0.1),

@@ -35,9 +35,8 @@ quadrature points per element (degree 2), with the volumetric strain
 replaced by its element mean (B-bar, the P2/P0 mixed element;
 ``volumetric="mean"``): with the full volumetric strain at four points
 the 10-node tetrahedron locks under isochoric plastic flow (about one
-constraint per displacement dof); on the sliding scene (standard preset)
-the locked mesh separated from the flat after 0.3 um of sliding, with
-B-bar the junction stays in contact.
+constraint per displacement dof), and a locked junction can separate from
+the flat while it slides; with B-bar it stays in contact.
 
 Weak form: the incremental (backward-Euler) counterpart of report (3.22):
 at each time step the equilibrium
@@ -69,34 +68,33 @@ phi_i, is integrated against the P2 shape functions.  The contact area is
 the weight int phi_i ds of the nodes with t_N > 0 (a staircase of a
 sub-triangle's size about each node).  One condition a node, as many as
 the surface has P2 nodes: with the penalty at the facets' quadrature
-points (3 Gauss points per 6-node facet, used before 07f898e) a
-plastically flattened junction satisfied its contact condition at only
-half of the points within its edge ring, the pressure jumping from zero to
-twice the mean between neighbours (three conditions a facet are one and a
-half a node); the nodes as points let the facets' corners lift inside the
-contact (the consistent force of a uniform pressure on a 6-node facet's
-corner is zero); the facets' vertices alone (07f898e to this change) kept
-the pressure smooth but resolved the contact's edge at the vertex spacing,
-twice the node spacing, and the normal force of `asperity_sliding_junction`
-grew by rings of vertices, 5.8 % apart between `standard` and `fine` in
-pressing (README, "Sliding of one asperity").
+points (3 Gauss points per 6-node facet) a plastically flattened junction
+satisfies its contact condition at only some of the points within its
+edge ring, the pressure jumping between zero and about twice the mean
+between neighbours (three conditions a facet are one and a half a node);
+the nodes as points let the facets' corners lift inside the contact (the
+consistent force of a uniform pressure on a 6-node facet's corner is
+zero); the facets' vertices alone keep the pressure smooth but resolve
+the contact's edge at the vertex spacing, twice the node spacing, so the
+normal force grows by rings of vertices (docs: changelog, 'Sliding of one
+asperity').
 
 Shear resistance and the normal pressure.  The law as printed: h(t_N) at
 the pressure of the current Newton iterate, with its full linearization
 (the d t / d t_N d t_N / d a coupling of 3.26, 3.27, 20 times the penalty
 stiffness with the mu = 20 of report 9.2), so that a point that enters the
 contact during a step carries its shear resistance in that step and the
-bound does not lag the pressure.  (An explicit bound, h at the pressure of
-the last accepted step, was used before: a point new to the contact then
-had no shear resistance in its first step, and the sliding forces depended
+bound does not lag the pressure.  (With an explicit bound, h at the
+pressure of the last accepted step, a point new to the contact would have
+no shear resistance in its first step, and the sliding forces would depend
 on the step size; issue #14.)  When the junction starts to slide the
 coupled problem is stiff and Newton may need the step cut a few times.
 Past the junction's critical friction coefficient
 (`SlidingModel.critical_factor`, computed and reported where sliding starts
 and after every sliding step) the problem of a slipping junction is not
 unique and Newton may stall: report 9.2's mu = 20 is past it at `standard`
-for much of the slide (mu_c 0.8 at its smallest and 9.6 at the median while
-sliding), and the run stalls after 0.152 um and stops there (below; README).
+for much of the slide, and a run that stalls there stops (below; docs:
+theory/single-asperity.md, 'Sliding').
 
 Predictor: each step starts from the Euler predictor of the converged
 state (the tangent and d R / d(w, delta) of the last step: the contact
@@ -201,10 +199,9 @@ JUNCTION_DEPTH_FRACTION = 0.25
 #: a run has stalled when this many accepted steps in a row each advanced less
 #: than STALL_FRACTION of their segment's step cap: at that pace the rest of the
 #: motion would take thousands of steps (report 9.2's mu = 20 past the critical
-#: coefficient, README "Sliding of one asperity"); the run stops there with
-#: ``completed`` 0.  No run of the sliding benchmarks that finished or reached its
-#: target had more than 12 such steps in a row; stopped by hand, the stalled mu = 20
-#: runs had 13 to 42 (``benchmarks/sliding_convergence.py --stalls``, README).
+#: coefficient); the run stops there with ``completed`` 0.  STALL_STEPS lies above
+#: the longest such streak of a run that goes on to finish (docs: changelog, 'Sliding
+#: of one asperity').
 STALL_STEPS, STALL_FRACTION = 20, 1e-3
 #: `SlidingModel.solve_through_slip`: the dashpot on the touching points starts at
 #: SLIP_DAMPING[0] times the normal penalty stiffness; after a damped solve that
