@@ -5,7 +5,7 @@ Implements the method of Oden, Martins, Lee, Rabier, Demkowicz et al. (1993),
 statistics -> asperity statistics -> single-asperity response ->
 statistical expectation over the asperity population.
 
-One package per stage of that route (the README's module map): `surface`,
+One package per stage of that route (DESIGN.md, layout): `surface`,
 `peaks`, `population`, `fe`, `unloading`, `homogenize`, `friction`, `laws`;
 beside them `scene` (a scene's sections as SI objects), `references` (closed
 forms), `studies` (what accuracy costs), `uniaxial` (material points), `plots`,

@@ -3,7 +3,8 @@
 The statistical route of report 2.5 adds up independent asperities whose
 response was computed (or is Hertz's).  Each separation of an interface is
 checked against the assumptions this rests on, with limits set in the scene
-(``validity:``, config/schema.yaml, defaults and their sources in the README):
+(``validity:``, config/schema.yaml, defaults and their sources in the docs,
+guide/validity.md):
 
 1. **Computed responses.**  The gather (`asperity.population.models.gather`)
    continues an FE curve beyond its last level in a straight line and flags

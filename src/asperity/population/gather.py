@@ -246,7 +246,7 @@ def curve_kinks(jobs) -> dict:
     range on), also logged with what refines them.  At 'standard' the default run's
     areas kink by 1.4-3.8 % (elastic) and 2.2-4.2 % (inelastic on the default mesh; 1.3 %
     for the J2 job, which has the edge band) where the located edge crosses the mesh's
-    grading; the interface averages this over its asperities (README, "Gather")."""
+    grading; the interface averages this over its asperities (docs: changelog, "The gather")."""
     force = area = 0.0
     for job in jobs:
         lb = loading_branch(job)

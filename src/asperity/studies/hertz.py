@@ -26,7 +26,7 @@ Five members from very coarse to very fine.  Each step tightens the mesh
 Hertz problem the load error of a fine mesh is dominated by the cut-off
 (fixing u = 0 at L stiffens the body by about a / L), so refining the mesh
 alone stalls at the cut-off error. What each member costs and reaches is
-results/accuracy/hertz.nc (the README's table).
+results/accuracy/hertz.nc (docs: the Verification page).
 
 The contact radius error falls more slowly: the contact edge is located
 between nodes (`contact.contact_edge`), so it is bounded by the element

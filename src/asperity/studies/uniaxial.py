@@ -26,7 +26,7 @@ integrator, in SI). Everything returned is SI.
   integrators over a sweep of tolerances, per test.
 
 The accuracy study measures two regimes (both are in the file; the numbers are
-in the README):
+in the docs, theory/plane-strain-uniaxial.md):
 
 1. a pairing of tolerances: the implicit integrator at its default tolerance
    against the explicit *reference* (the report's own scheme of 3.6 at a tight

@@ -19,8 +19,8 @@ goes) is in fine's preset for every body, and the spec adds it at standard for a
 rate-independent (J2) body (`wants_band`): on the J2 sphere of `make bench CASE=remesh` it puts
 standard's contact area within 1 % of fine's (3 % on the default mesh) for about twice
 standard's CPU. A rate-dependent body has it at fine only: its steps are set by the
-time-error control, which takes 2.5 times as long on the band (README, "Meshes that
-follow the contact"). Draft stays a first look on the default mesh: the J2 cosine hill of
+time-error control, whose indicator grows as the surface is refined, so the band takes
+it many more steps (docs: changelog, "Meshes that follow the plastic contact"). Draft stays a first look on the default mesh: the J2 cosine hill of
 `tests/fe/test_self_similar.py` takes 4.6 times as long with draft's band. A scene's
 ``asperity: {edge_band: true}`` or ``false`` says which at every preset.
 """
