@@ -10,14 +10,14 @@ import xarray as xr
 from asperity.plots import uniaxial as uniaxial_plots
 from asperity.scene import Units
 from asperity.scene.uniaxial import IntegratorStudy, tests
-from asperity.studies import uniaxial as study
+from asperity.studies import uniaxial as uniaxial_study
 
 Config = Mapping[str, Any]
 
 
 def uniaxial_dataset(uniaxial: Config, units_cfg: Config) -> xr.Dataset:
     """Every test of a scene's ``uniaxial`` section (dims test, step)."""
-    return study.run_uniaxial_scene(tests(uniaxial["tests"], Units.from_section(units_cfg)))
+    return uniaxial_study.run_uniaxial_scene(tests(uniaxial["tests"], Units.from_section(units_cfg)))
 
 
 def uniaxial_figure(ds: xr.Dataset):
@@ -26,7 +26,7 @@ def uniaxial_figure(ds: xr.Dataset):
 
 def accuracy_dataset(study: Config) -> xr.Dataset:
     """The integrators over their tolerance sweeps against an ODE reference."""
-    return study.accuracy_study(IntegratorStudy.from_section(study))
+    return uniaxial_study.accuracy_study(IntegratorStudy.from_section(study))
 
 
 def accuracy_figure(ds: xr.Dataset):
