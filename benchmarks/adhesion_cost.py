@@ -7,7 +7,7 @@ script measures it (CPU time of this process, `time.process_time`):
    13.6 um at d = 0.3 nm), at `draft` (the scene's preset) and at
    `standard`.  Their specs come from the scene's plan, built by Snakemake
    in a fresh copy of the workflow;
-2. `asperity.fe.adhesive.smooth_aluminum_curves` (Fig. 7.6: R = 15.4, 30,
+2. `asperity.fe.drivers.adhesive.smooth_aluminum_curves` (Fig. 7.6: R = 15.4, 30,
    60 um at d = 0.3 nm), at draft, one radius at a time;
 3. the flat end of report 7.3's range, R = 150 and 300 um at d = 0.3 nm
    (Tabor parameter 10 and 13), pressed to 10 nm, at draft
@@ -71,8 +71,9 @@ from benchmarks.workflow_copy import SNAKEMAKE, copy_workflow  # noqa: E402
 
 from asperity.population import samples  # noqa: E402
 from asperity.fe import ConvergenceError  # noqa: E402
-from asperity.fe import BodnerPartom, LennardJones, LinearElastic, Paraboloid, adhesive  # noqa: E402
-from asperity.fe.adhesive import smooth_aluminum_curves  # noqa: E402
+from asperity.fe import BodnerPartom, LennardJones, LinearElastic, Paraboloid  # noqa: E402
+from asperity.fe.drivers import adhesive  # noqa: E402
+from asperity.fe.drivers.adhesive import smooth_aluminum_curves  # noqa: E402
 from asperity.references.adhesion import jkr_jump_off, maugis_pull_off  # noqa: E402
 
 SCENE = "smooth_aluminum_adhesion"

@@ -1,6 +1,6 @@
 """What the adhesive step test sees in contact at a large Tabor parameter.
 
-`asperity.fe.adhesive.AdhesiveModel.continuity` takes a step whose energy balances
+`asperity.fe.drivers.adhesive.AdhesiveModel.continuity` takes a step whose energy balances
 as continuous if the surface stayed within d/2 + 2 |dw| of the tangent predictor,
 or else if the state halfway lies within d/2 + |dw| of the secant
 (`AdhesiveModel.midpoint`). This script runs one adhesive aluminum asperity
@@ -29,7 +29,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1]))  # run as a script:
 from benchmarks.scenes import _commit  # noqa: E402
 
 from asperity.fe import BodnerPartom, LennardJones, LinearElastic, Paraboloid  # noqa: E402
-from asperity.fe import adhesive  # noqa: E402
+from asperity.fe.drivers import adhesive  # noqa: E402
 
 ALLOY = BodnerPartom.aluminum_6061_t4()  # the aluminum of Fig. 7.6 (report 6.3.1)
 RESULTS = Path(__file__).with_name("results")

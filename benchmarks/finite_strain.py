@@ -1,4 +1,4 @@
-"""Finite against small strain in the inelastic asperity (`asperity.fe.kinematics`).
+"""Finite against small strain in the inelastic asperity (`asperity.fe.discretization.kinematics`).
 
 Two cases, each with ``kinematics`` small and finite, CPU time by
 ``time.process_time`` in this process:
@@ -30,9 +30,9 @@ from pathlib import Path
 import numpy as np
 
 from asperity.fe import J2Plasticity, Sphere
-from asperity.fe.bodner_partom import BodnerPartom
-from asperity.fe.geometry import CosineHill
-from asperity.fe.inelastic import History, solve_asperity_history
+from asperity.fe.materials.bodner_partom import BodnerPartom
+from asperity.fe.discretization.geometry import CosineHill
+from asperity.fe.drivers.inelastic import History, solve_asperity_history
 
 OUT = Path(__file__).with_name("results") / "finite-strain.json"
 

@@ -28,7 +28,7 @@ with fine on its default mesh (``against_fine_fixed``) and with the finest run
     python benchmarks/remesh.py --cases viscoplastic_hill --presets standard --remesh on off
 
 ``--edge-band`` refines the fixed mesh along the surface where the plastic contact edge
-goes (the preset key ``edge_size``, `asperity.fe.remesh.edge_band`; ``presets.EDGE_SIZE``
+goes (the preset key ``edge_size``, `asperity.fe.drivers.remesh.edge_band`; ``presets.EDGE_SIZE``
 per preset; runs recorded as <case>/<preset>/fixed-edge): the elastic contact edge at
 w_max lies well inside the plastic one (a sphere: sqrt(R w) against nearly sqrt(2 R w)),
 so the elastic adaptation leaves the plastic edge's path coarse.  Fine's one mesh has
@@ -71,9 +71,9 @@ from pathlib import Path
 import numpy as np
 
 from asperity.fe import J2Plasticity, Sphere
-from asperity.fe.bodner_partom import BodnerPartom
-from asperity.fe.geometry import CosineHill
-from asperity.fe.inelastic import History, solve_asperity_history
+from asperity.fe.materials.bodner_partom import BodnerPartom
+from asperity.fe.discretization.geometry import CosineHill
+from asperity.fe.drivers.inelastic import History, solve_asperity_history
 from asperity.fe.presets import ACCURACY, EDGE_SIZE
 
 OUT = Path(__file__).with_name("results") / "remesh.json"

@@ -78,8 +78,8 @@ def case_fe_viscoplastic_hill_load_unload():
     best wall time and the steps of the run.
     """
     from asperity.fe import CosineHill
-    from asperity.fe.bodner_partom import BodnerPartom
-    from asperity.fe.inelastic import History, solve_asperity_history
+    from asperity.fe.materials.bodner_partom import BodnerPartom
+    from asperity.fe.drivers.inelastic import History, solve_asperity_history
 
     ratio = np.pi / (np.sqrt(2.0) * 0.160)
     hill = CosineHill.from_aspect(ratio, 2.0 * np.pi**2 / (ratio**2 * 0.042e6))

@@ -160,7 +160,7 @@ def patch_diagnostics(tn, tx, vw, x, facets, fw, stress, dv, before=None) -> dic
 
 def _hook_diagnostics(path: Path):
     """Write `patch_diagnostics` of every recorded step to `path` (one JSON a line)."""
-    import asperity.fe.solid3d as s3
+    import asperity.fe.drivers.solid3d as s3
 
     record = s3.SlidingModel.record
     sink = open(path, "w")
@@ -549,7 +549,7 @@ def stalls(names, out: Path, law: dict | None, study: bool) -> list:
     than `solid3d.STALL_FRACTION` of their segment's step cap (STALL_STEPS of them stop a
     run), the step where it ended, and how the run ended (finished, reached its --until,
     or stopped: by hand, --timeout or a stall)."""
-    from asperity.fe.solid3d import STALL_FRACTION, step_caps
+    from asperity.fe.drivers.solid3d import STALL_FRACTION, step_caps
 
     sc = scene()
     rows = []

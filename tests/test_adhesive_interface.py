@@ -28,7 +28,7 @@ from asperity.stages import homogenize as homogenize_stage
 from asperity.stages import population as population_stage
 from asperity.stages import surface as surface_stage
 from asperity.population.kinds import adhesive as adhesive_interface
-from asperity.fe.adhesion import LennardJones, derjaguin_force
+from asperity.fe.contact.adhesion import LennardJones, derjaguin_force
 from asperity.peaks import JointDensity
 from asperity.population.plan import interference_grid as contact_grid
 from asperity.scene import Adhesion, Population, Units

@@ -10,7 +10,7 @@ import math
 
 import pytest
 
-from asperity.fe.contact import EDGE_FROM_PRESSURES
+from asperity.fe.contact.penalty import EDGE_FROM_PRESSURES
 from asperity.fe.presets import EDGE_SIZE
 from asperity.population import samples as population
 from asperity.population.kinds import KINDS, Planning

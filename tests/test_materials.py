@@ -10,9 +10,9 @@ import pytest
 from tests.scene_defaults import filled
 
 from asperity.scene import Material, Units, build
-from asperity.fe.bodner_partom import BodnerPartom
-from asperity.fe.j2 import J2Plasticity
-from asperity.fe.material import LinearElastic
+from asperity.fe.materials.bodner_partom import BodnerPartom
+from asperity.fe.materials.j2 import J2Plasticity
+from asperity.fe.materials.elastic import LinearElastic
 
 UNITS = Units("um", "MPa")
 

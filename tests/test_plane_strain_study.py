@@ -32,9 +32,9 @@ import pytest
 import yaml
 
 from asperity.fe.analytic import hertz_line_half_width
-from asperity.fe.bodner_partom import BodnerPartom
-from asperity.fe.geometry import Cylinder, TruncatedV
-from asperity.fe.material import LinearElastic
+from asperity.fe.materials.bodner_partom import BodnerPartom
+from asperity.fe.discretization.geometry import Cylinder, TruncatedV
+from asperity.fe.materials.elastic import LinearElastic
 from asperity.studies.plane_strain import levels, plane_strain_study
 from asperity.scene.plane_strain import PlaneStrain
 
@@ -91,7 +91,7 @@ def test_scene_sections_in_si():
 
 
 def test_study_rejects_a_body_of_revolution_and_a_foreign_elastic_twin():
-    from asperity.fe.inelastic import History
+    from asperity.fe.drivers.inelastic import History
 
     body = BodnerPartom.aluminum_6061_t4()
     with pytest.raises(ValueError, match="plane section"):

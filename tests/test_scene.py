@@ -6,8 +6,8 @@ import math
 
 import pytest
 
-from asperity.fe.bodner_partom import BodnerPartom
-from asperity.fe.material import LinearElastic
+from asperity.fe.materials.bodner_partom import BodnerPartom
+from asperity.fe.materials.elastic import LinearElastic
 from asperity.scene import Asperity, Material, Sliding, UniaxialTest, Units, build
 from tests.scene_defaults import filled, filled_scene
 

@@ -8,8 +8,8 @@ import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
 
-from asperity.fe.bodner_partom import BodnerPartom
-from asperity.fe.j2 import J2Plasticity
+from asperity.fe.materials.bodner_partom import BodnerPartom
+from asperity.fe.materials.j2 import J2Plasticity
 from asperity.uniaxial.point import (
     aluminum_tension,
     b1900_histories,

@@ -16,7 +16,7 @@ import pytest
 import yaml
 from scipy.integrate import solve_ivp
 
-from asperity.fe.bodner_partom import BodnerPartom
+from asperity.fe.materials.bodner_partom import BodnerPartom
 from asperity.io.netcdf import missing_attributes, read_dataset, write_dataset
 from asperity.uniaxial.point import uniaxial_flow_stress
 from asperity.scene import Units

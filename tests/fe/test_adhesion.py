@@ -14,8 +14,8 @@ import pytest
 from scipy.integrate import quad
 
 from asperity.fe import LennardJones, LinearElastic, Paraboloid, solve_asperity_adhesive
-from asperity.fe.adhesion import adhesion_zone, composite_gauss, derjaguin_force
-from asperity.fe.adhesive import adhesive_model, adhesive_path, interpolate_adhesive
+from asperity.fe.contact.adhesion import adhesion_zone, composite_gauss, derjaguin_force
+from asperity.fe.drivers.adhesive import adhesive_model, adhesive_path, interpolate_adhesive
 from asperity.references.adhesion import jkr_jump_off, maugis_pull_off
 
 D = 0.3e-9
@@ -365,7 +365,7 @@ def test_steps_off_the_predictor_pass_by_the_secant_and_land_on_the_branch(monke
     through a state solved halfway (`AdhesiveModel.midpoint`) instead of being
     bisected.  The states must be those of a path with steps half as long, and the
     jumps the same."""
-    from asperity.fe.adhesive import AdhesiveModel
+    from asperity.fe.drivers.adhesive import AdhesiveModel
 
     verdicts = []
     midpoint = AdhesiveModel.midpoint
@@ -406,7 +406,7 @@ def test_retraction_retraces_the_approach_where_it_was_continuous():
     no jump, the same force to the Newton tolerance (1e-6 of the forces at draft)
     and the same surface to 1e-4 d; the level across the jump-in is solved, and
     the contact hangs on there (in contact, where the approach was not)."""
-    from asperity.fe.adhesive import _advance, _trace
+    from asperity.fe.drivers.adhesive import _advance, _trace
     from asperity.fe.presets import resolve
 
     pre = resolve("adhesive", "draft")
@@ -438,7 +438,7 @@ def test_retraction_retraces_the_approach_where_it_was_continuous():
 
 def _on_same_nodes(a, b):
     """The difference of two states' surfaces on b's nodes."""
-    from asperity.fe.adhesive import _on_nodes
+    from asperity.fe.drivers.adhesive import _on_nodes
 
     return _on_nodes(a, b.model) - b.u
 
@@ -451,7 +451,7 @@ def test_meshes_left_behind_drop_their_factors_and_evaluate_the_same():
     made anew, their contact radius and field maxima are the same to 1e-12."""
     from dataclasses import replace
 
-    from asperity.fe.adhesive import _evaluate, _trace
+    from asperity.fe.drivers.adhesive import _evaluate, _trace
     from asperity.fe.presets import resolve
 
     pre = resolve("adhesive", dict(base="draft", follow_above=0))

@@ -1,4 +1,4 @@
-"""The adhesive path through a fold (`asperity.fe.adhesive._FoldPath`, module docstring
+"""The adhesive path through a fold (`asperity.fe.drivers.adhesive._FoldPath`, module docstring
 "Control and jumps"): where the bisection in w stalls, the branch is followed by its arc
 length to the fold and the jump solved from there.
 
@@ -15,7 +15,7 @@ import numpy as np
 import pytest
 
 from asperity.fe import LennardJones, LinearElastic, Paraboloid, solve_asperity_adhesive
-from asperity.fe import adhesive
+from asperity.fe.drivers import adhesive
 from asperity.references.adhesion import jkr_jump_off
 
 D = 0.3e-9

@@ -1,4 +1,4 @@
-"""Meshes that follow the contact (`asperity.fe.adhesive`, module docstring "Mesh"),
+"""Meshes that follow the contact (`asperity.fe.drivers.adhesive`, module docstring "Mesh"),
 meant for the flat asperities of report 7.3 (R up to 300 um at d = 0.3 nm).
 
 The fine band is a window around the cohesive zone, moved (surface displacement
@@ -13,8 +13,9 @@ the jump).
 import numpy as np
 import pytest
 
-from asperity.fe import BodnerPartom, LennardJones, LinearElastic, Paraboloid, adhesive, solve_asperity_adhesive
-from asperity.fe.adhesive import on_levels
+from asperity.fe import BodnerPartom, LennardJones, LinearElastic, Paraboloid, solve_asperity_adhesive
+from asperity.fe.drivers import adhesive
+from asperity.fe.drivers.adhesive import on_levels
 from asperity.fe.presets import resolve
 
 D = 0.3e-9

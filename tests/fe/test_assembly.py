@@ -5,9 +5,9 @@ import pytest
 import scipy.sparse.linalg as spl
 
 from asperity.fe import CosineHill, Cylinder, LinearElastic, Sphere
-from asperity.fe.assembly import CondensedStiffness, Discretization, OrderedLU
-from asperity.fe.material import METRIC
-from asperity.fe.mesh import AsperityMesh, MeshSpec
+from asperity.fe.discretization.assembly import CondensedStiffness, Discretization, OrderedLU
+from asperity.fe.materials.elastic import METRIC
+from asperity.fe.discretization.mesh import AsperityMesh, MeshSpec
 
 MAT = LinearElastic(200.0, 0.3)
 
@@ -175,8 +175,8 @@ def test_mesh_fields_of_an_affine_field(geometry):
     for a = -2 (every element inside out); the element mean of a uniform inelastic strain
     is its equivalent value."""
     from asperity.fe import J2Plasticity
-    from asperity.fe.inelastic import END_FIELDS, mesh_fields
-    from asperity.fe.material import equivalent_strain
+    from asperity.fe.drivers.inelastic import END_FIELDS, mesh_fields
+    from asperity.fe.materials.elastic import equivalent_strain
 
     disc = _disc(geometry)
     state = J2Plasticity(200.0, 0.3, 1.0).initial_state(disc.weights.shape)

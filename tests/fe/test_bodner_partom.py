@@ -7,7 +7,7 @@ import math
 import numpy as np
 import pytest
 
-from asperity.fe.bodner_partom import BodnerPartom
+from asperity.fe.materials.bodner_partom import BodnerPartom
 from asperity.uniaxial.point import run_uniaxial
 
 MPA = 1e6

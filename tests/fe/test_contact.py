@@ -6,9 +6,9 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from asperity.fe import CosineHill, Cylinder, Sphere
-from asperity.fe.assembly import Discretization
-from asperity.fe.contact import AugmentedPenalty, C1Penalty, ContactZone, contact_edge
-from asperity.fe.mesh import AsperityMesh, MeshSpec
+from asperity.fe.discretization.assembly import Discretization
+from asperity.fe.contact.penalty import AugmentedPenalty, C1Penalty, ContactZone, contact_edge
+from asperity.fe.discretization.mesh import AsperityMesh, MeshSpec
 
 
 def test_c1_penalty_is_the_report_law_and_continuously_differentiable():

@@ -17,10 +17,10 @@ import numpy as np
 import pytest
 
 from asperity.fe import LinearElastic
-from asperity.fe.geometry import EllipticParaboloid, Paraboloid
-from asperity.fe.j2 import J2Plasticity
+from asperity.fe.discretization.geometry import EllipticParaboloid, Paraboloid
+from asperity.fe.materials.j2 import J2Plasticity
 from asperity.fe.presets import resolve
-from asperity.fe.solid3d import MeshSpec, build_mesh, press_3d
+from asperity.fe.drivers.solid3d import MeshSpec, build_mesh, press_3d
 from asperity.references.hertz import elliptic_hertz
 
 E_, NU = 1000.0, 0.3

@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 from asperity.fe import ConvergenceError, CosineHill, LinearElastic, hertz, solve_asperity
-from asperity.fe.contact import PENALTY_FACTOR
+from asperity.fe.contact.penalty import PENALTY_FACTOR
 
 MAT = LinearElastic(1.0, 0.3)
 

@@ -1,4 +1,4 @@
-"""Inelastic asperity along a loading-unloading history (`asperity.fe.inelastic`)."""
+"""Inelastic asperity along a loading-unloading history (`asperity.fe.drivers.inelastic`)."""
 
 from __future__ import annotations
 
@@ -10,9 +10,9 @@ import pytest
 
 from asperity.fe import CosineHill, Cylinder, LinearElastic, Paraboloid, solve_asperity
 from asperity.fe import ConvergenceError
-from asperity.fe.bodner_partom import BodnerPartom
-from asperity.fe.inelastic import OUTPUTS, History, solve_asperity_history
-from asperity.fe.j2 import J2Plasticity
+from asperity.fe.materials.bodner_partom import BodnerPartom
+from asperity.fe.drivers.inelastic import OUTPUTS, History, solve_asperity_history
+from asperity.fe.materials.j2 import J2Plasticity
 
 E, NU = 1000.0, 0.3
 E_STAR = E / (1 - NU**2)
@@ -290,9 +290,9 @@ def test_plane_strain_ridge_elastic_round_trip():
 @pytest.fixture(scope="module")
 def plastic_point():
     """A model and a trial field with yielding points and contact."""
-    from asperity.fe.inelastic import InelasticModel, elastic_part
+    from asperity.fe.drivers.inelastic import InelasticModel, elastic_part
     from asperity.fe.presets import resolve
-    from asperity.fe.solve import adapted_model
+    from asperity.fe.drivers.elastic import adapted_model
 
     pre = resolve("inelastic", "draft")
     mat = J2Plasticity(E, NU, 5.0, H=0.1 * E)
@@ -343,7 +343,7 @@ def _j2_sphere_steps(tolerance):
 
 
 def test_a_tighter_newton_tolerance_does_not_shorten_the_steps(monkeypatch):
-    import asperity.fe.inelastic as inelastic
+    import asperity.fe.drivers.inelastic as inelastic
 
     loose, tight = _j2_sphere_steps(1e-8), _j2_sphere_steps(1e-10)
     # the tighter tolerance costs iterations ...

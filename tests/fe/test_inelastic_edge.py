@@ -1,5 +1,5 @@
 """The contact edge of an inelastic asperity located between nodes
-(`asperity.fe.contact.contact_edge_pressure`, used by `solve_asperity_history`)."""
+(`asperity.fe.contact.penalty.contact_edge_pressure`, used by `solve_asperity_history`)."""
 
 from __future__ import annotations
 
@@ -9,8 +9,8 @@ import numpy as np
 import pytest
 
 from asperity.fe import J2Plasticity, Paraboloid, Sphere, solve_asperity_history
-from asperity.fe.contact import contact_edge_pressure
-from asperity.fe.inelastic import History
+from asperity.fe.contact.penalty import contact_edge_pressure
+from asperity.fe.drivers.inelastic import History
 from benchmarks.remesh import area_scatter
 
 E, NU = 1000.0, 0.3

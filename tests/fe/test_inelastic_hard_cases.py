@@ -1,4 +1,4 @@
-"""Hard cases of the inelastic history solver (`asperity.fe.inelastic`, issue 4).
+"""Hard cases of the inelastic history solver (`asperity.fe.drivers.inelastic`, issue 4).
 
 Stiff aluminum constants (n = 5.8, D0 = 1e8/s) on a cosine hill, damage
 driven to rupture, a load reversal inside one step, unloading to zero
@@ -17,9 +17,9 @@ import numpy as np
 import pytest
 
 from asperity.fe import ConvergenceError, CosineHill, LinearElastic, Paraboloid, solve_asperity
-from asperity.fe.bodner_partom import BodnerPartom
-from asperity.fe.inelastic import History, RuptureError, solve_asperity_history
-from asperity.fe.j2 import J2Plasticity
+from asperity.fe.materials.bodner_partom import BodnerPartom
+from asperity.fe.drivers.inelastic import History, RuptureError, solve_asperity_history
+from asperity.fe.materials.j2 import J2Plasticity
 
 from .test_inelastic import _loading, _unloading
 

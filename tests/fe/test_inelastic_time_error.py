@@ -15,10 +15,10 @@ import numpy as np
 import pytest
 
 from asperity.fe import CosineHill, Paraboloid
-from asperity.fe.bodner_partom import BodnerPartom
-from asperity.fe.inelastic import (History, bdf2_coefficients, local_errors,
+from asperity.fe.materials.bodner_partom import BodnerPartom
+from asperity.fe.drivers.inelastic import (History, bdf2_coefficients, local_errors,
                                    solve_asperity_history)
-from asperity.fe.j2 import J2Plasticity
+from asperity.fe.materials.j2 import J2Plasticity
 from asperity.fe.presets import ACCURACY
 
 SAE_HILL = CosineHill.from_tip(0.042e6, 2 * math.pi**2 / (13.4**2 * 0.042e6))

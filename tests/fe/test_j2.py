@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from asperity.fe.j2 import J2Plasticity
+from asperity.fe.materials.j2 import J2Plasticity
 from asperity.uniaxial.point import run_uniaxial
 
 E, NU, SY = 200e9, 0.3, 250e6
@@ -102,7 +102,7 @@ def test_load_reversal_in_one_step_is_finite():
     _, _, st = mat.update(np.array([0.02, -0.01, -0.01, 0.0]), st)
     s, D, st2 = mat.update(np.array([-0.02, 0.01, 0.01, 0.003]), st)
     assert np.all(np.isfinite(s)) and np.all(np.isfinite(D))
-    from asperity.fe.material import von_mises
+    from asperity.fe.materials.elastic import von_mises
     np.testing.assert_allclose(von_mises(s), SY, rtol=1e-12)
 
 

@@ -1,4 +1,4 @@
-"""Finite-strain kinematics in logarithmic strain space (`asperity.fe.kinematics`).
+"""Finite-strain kinematics in logarithmic strain space (`asperity.fe.discretization.kinematics`).
 
 The residual of `FiniteStrain` is the gradient of the stored energy of a
 Hencky material, int 1/2 E : D : E dV_0 with E = 1/2 ln C, and its element
@@ -16,10 +16,10 @@ import scipy.sparse as sp
 
 from asperity.fe import J2Plasticity, LinearElastic, Sphere
 from asperity.fe.errors import StepFailed
-from asperity.fe.inelastic import History, solve_asperity_history
-from asperity.fe.kinematics import (Deformation, FiniteStrain, SmallStrain, divided_log,
+from asperity.fe.drivers.inelastic import History, solve_asperity_history
+from asperity.fe.discretization.kinematics import (Deformation, FiniteStrain, SmallStrain, divided_log,
                                     divided_log2)
-from asperity.fe.material import METRIC
+from asperity.fe.materials.elastic import METRIC
 
 from .test_assembly import _disc, _field
 
@@ -201,8 +201,8 @@ def test_steepest_coupled_steel_hill_flattened_in_finite_strain():
     3 % of the standard run of the benchmark in force and contact area (measured: 1.4 %
     and 0.7 % at C/2, 2.0 % and 2.4 % at C); the mean contact pressure lies between the
     saturated flow stress and Tabor's 2.8 times it (a plastic contact's constraint)."""
-    from asperity.fe.bodner_partom import BodnerPartom
-    from asperity.fe.geometry import CosineHill
+    from asperity.fe.materials.bodner_partom import BodnerPartom
+    from asperity.fe.discretization.geometry import CosineHill
     from asperity.uniaxial.point import uniaxial_flow_stress
 
     C = 5e-6

@@ -8,7 +8,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from asperity.fe import LinearElastic
-from asperity.fe.material import METRIC, complementary_energy_density, equivalent_strain, von_mises
+from asperity.fe.materials.elastic import METRIC, complementary_energy_density, equivalent_strain, von_mises
 
 
 def test_uniaxial_stress():

@@ -4,8 +4,8 @@ import numpy as np
 import pytest
 
 from asperity.fe import CosineHill, Paraboloid, Sphere, TruncatedV
-from asperity.fe.assembly import Discretization
-from asperity.fe.mesh import AsperityMesh, MeshSpec, project_to_profile, ring_radii
+from asperity.fe.discretization.assembly import Discretization
+from asperity.fe.discretization.mesh import AsperityMesh, MeshSpec, project_to_profile, ring_radii
 
 GEOMETRIES = [
     Sphere(1.0),

@@ -29,10 +29,10 @@ def test_step_cutting_recovers_and_is_recorded():
 
 
 def test_converged_residual_is_small():
-    from asperity.fe.contact import C1Penalty
-    from asperity.fe.newton import ContactNewton, continuation
+    from asperity.fe.contact.penalty import C1Penalty
+    from asperity.fe.solvers.newton import ContactNewton, continuation
     from asperity.fe.presets import resolve
-    from asperity.fe.solve import adapted_model
+    from asperity.fe.drivers.elastic import adapted_model
 
     model, _ = adapted_model(HILL, MAT, W, resolve("elastic", "draft"))
     law = C1Penalty.for_zone(model.zone, MAT.contact_modulus)

@@ -1,4 +1,4 @@
-"""The shared Newton iteration (`asperity.fe.nonlinear`) against the previous code.
+"""The shared Newton iteration (`asperity.fe.solvers.nonlinear`) against the previous code.
 
 Before the four drivers (elastic, adhesive, inelastic, 3-D sliding) were
 put on the one Newton routine, a small fast case of each was run and its
@@ -105,7 +105,7 @@ def _bodner_partom():
 
 
 def _sliding(accuracy="draft"):
-    from asperity.fe.solid3d import MeshSpec
+    from asperity.fe.drivers.solid3d import MeshSpec
 
     a = math.sqrt(0.005)
     spec = MeshSpec(half_width=8 * a, depth=8 * a, coarse_size=8 * a / 3, tip_size=a,
@@ -213,7 +213,7 @@ class _Cubic:
     sum x^4/4 + x^2/2 - 2x; Newton's direction d = -R / (3 x^2 + 1)."""
 
     def __init__(self):
-        from asperity.fe.nonlinear import Problem
+        from asperity.fe.solvers.nonlinear import Problem
 
         class P(Problem):
             def evaluate(self, x):
@@ -237,7 +237,7 @@ class _Cubic:
 def test_one_wild_iterate_does_not_loosen_the_convergence_test():
     """`ContactScale`: the current iterate's contact force norm, or the step's
     largest so far but at most twice the last accepted step's."""
-    from asperity.fe.nonlinear import ContactScale
+    from asperity.fe.solvers.nonlinear import ContactScale
 
     scale = ContactScale(reference=1.0)
     assert scale(1.2) == 1.2
@@ -250,7 +250,7 @@ def test_one_wild_iterate_does_not_loosen_the_convergence_test():
 def test_newton_is_newton_on_a_closed_form():
     """Full steps from near the root (no backtracking): the iterates of a plain
     Newton loop written here, quadratic convergence, and the count."""
-    from asperity.fe.nonlinear import EnergySearch, ResidualSearch, newton
+    from asperity.fe.solvers.nonlinear import EnergySearch, ResidualSearch, newton
 
     x0 = np.array([1.5, 0.7])
     plain = [x0]
@@ -267,7 +267,7 @@ def test_newton_is_newton_on_a_closed_form():
 
 def test_a_failed_try_says_how_many_iterations_it_took():
     from asperity.fe.errors import StepFailed
-    from asperity.fe.nonlinear import EnergySearch, newton
+    from asperity.fe.solvers.nonlinear import EnergySearch, newton
 
     with pytest.raises(StepFailed, match="no convergence in 2 iterations") as info:
         newton(_Cubic().problem, np.array([30.0]), 1e-13, 2, EnergySearch(40))
@@ -281,7 +281,7 @@ def test_the_line_searches_rescue_a_diverging_newton():
     """R(x) = arctan x, the gradient of the convex x arctan x - ln(1 + x^2) / 2:
     plain Newton from x = 3 diverges (|x| grows every step); both line searches
     converge to 0, the energy search lowering the energy at every iterate."""
-    from asperity.fe.nonlinear import EnergySearch, Problem, ResidualSearch, newton
+    from asperity.fe.solvers.nonlinear import EnergySearch, Problem, ResidualSearch, newton
 
     class Arctan(Problem):
         def __init__(self):
@@ -320,7 +320,7 @@ def test_the_line_searches_rescue_a_diverging_newton():
 def test_the_sliding_trace_sees_every_iteration():
     """The monitor hook: the 3-D solver's trace has one entry per iteration,
     the last one converged."""
-    from asperity.fe.solid3d import HalfModel, MeshSpec, SlidingModel, build_mesh
+    from asperity.fe.drivers.solid3d import HalfModel, MeshSpec, SlidingModel, build_mesh
 
     a = math.sqrt(0.005)
     spec = MeshSpec(half_width=8 * a, depth=8 * a, coarse_size=8 * a / 3, tip_size=a,
@@ -342,7 +342,7 @@ def test_step_cuts_run_out_after_the_limit_and_name_the_step():
     """Limit 2: the third cut exhausts the allowance; the error names the step,
     the position tried and reached, and the cuts before the last; a restart
     (the adhesive path after a fold) gives a fresh allowance, the count goes on."""
-    from asperity.fe.nonlinear import StepCuts
+    from asperity.fe.solvers.nonlinear import StepCuts
 
     cuts = StepCuts(step=7, limit=2)
     seen = []
@@ -374,7 +374,7 @@ def test_step_cuts_run_out_after_the_limit_and_name_the_step():
     (10, 1, None, 0.7),
 ])
 def test_pace_sizes_the_next_step_by_newton(iterations, cuts, proposed, factor):
-    from asperity.fe.nonlinear import Pace
+    from asperity.fe.solvers.nonlinear import Pace
 
     assert Pace(fast=4, growth=2.0, slow=10, shrink=0.7).factor(
         iterations, cuts, proposed) == factor
@@ -384,7 +384,7 @@ def test_pace_sizes_the_next_step_by_newton(iterations, cuts, proposed, factor):
 
 
 def test_steps_end_on_knots_and_follow_the_inelastic_strain():
-    from asperity.fe.nonlinear import next_time, strain_limited
+    from asperity.fe.solvers.nonlinear import next_time, strain_limited
 
     assert next_time(1.0, 0.25, 2.0) == 1.25
     assert next_time(1.0, 3.0, 2.0) == 2.0                     # not past the knot

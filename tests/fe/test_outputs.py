@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 from asperity.fe import CosineHill, Cylinder, LinearElastic, solve_asperity
-from asperity.fe.contact import EDGE_FROM_GAPS
+from asperity.fe.contact.penalty import EDGE_FROM_GAPS
 from asperity.fe.outputs import VARIABLES
 
 from .conftest import HERTZ_W
@@ -92,7 +92,7 @@ def test_bad_options_are_rejected():
 
 
 def test_contact_zone_grows_when_the_contact_reaches_it(monkeypatch):
-    import asperity.fe.solve as solve
+    import asperity.fe.drivers.elastic as solve
 
     hill, mat = CosineHill.from_aspect(13.4, 1.0), LinearElastic(1.0, 0.3)
     w = [0.02, 0.1]

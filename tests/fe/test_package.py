@@ -8,15 +8,15 @@ import pkgutil
 from pathlib import Path
 
 import asperity.fe as fe
-from asperity.fe.geometry import Profile
-from asperity.fe.material import IsotropicElasticity
+from asperity.fe.discretization.geometry import Profile
+from asperity.fe.materials.elastic import IsotropicElasticity
 
 FE = Path(fe.__file__).parent
 
 
 def _modules():
-    return [importlib.import_module(f"asperity.fe.{m.name}")
-            for m in pkgutil.iter_modules([str(FE)])]
+    return [importlib.import_module(m.name)
+            for m in pkgutil.walk_packages([str(FE)], prefix="asperity.fe.") if not m.ispkg]
 
 
 def test_every_geometry_material_and_driver_is_exported():
@@ -43,7 +43,7 @@ def test_every_geometry_material_and_driver_is_exported():
 
 def test_no_module_imports_a_private_name_of_another():
     offenders = []
-    for path in sorted(FE.glob("*.py")):
+    for path in sorted(FE.rglob("*.py")):
         for node in ast.walk(ast.parse(path.read_text())):
             if isinstance(node, ast.ImportFrom) and node.level >= 1:
                 offenders += [f"{path.name}: {a.name}" for a in node.names

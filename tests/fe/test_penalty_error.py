@@ -3,7 +3,7 @@
 import numpy as np
 
 from asperity.fe import CosineHill, LinearElastic, Paraboloid, penalty_error
-from asperity.fe.contact import PENALTY_FACTOR
+from asperity.fe.contact.penalty import PENALTY_FACTOR
 
 from .conftest import HERTZ_MATERIAL, HERTZ_W
 

@@ -1,4 +1,4 @@
-"""Meshes that follow the contact (`asperity.fe.remesh`, the ``remesh`` preset
+"""Meshes that follow the contact (`asperity.fe.drivers.remesh`, the ``remesh`` preset
 key of `solve_asperity_history`): transfer of the fields, remeshing at a load
 reversal, a plastic zone crossing the refined region."""
 
@@ -10,9 +10,9 @@ import numpy as np
 import pytest
 
 from asperity.fe import J2Plasticity, LinearElastic, Sphere, solve_asperity_history
-from asperity.fe.inelastic import History
+from asperity.fe.drivers.inelastic import History
 from asperity.fe.presets import resolve
-from asperity.fe.remesh import EDGE_BAND, Transfer, contact_mesh, edge_band, integral
+from asperity.fe.drivers.remesh import EDGE_BAND, Transfer, contact_mesh, edge_band, integral
 
 E, NU = 1000.0, 0.3
 Y = E / 400  # elastic-perfectly plastic, E/Y = 400

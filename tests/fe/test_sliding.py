@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from asperity.fe.sliding import (FrictionLaw, ShearResistance, contact_tangent, drag_anchor,
+from asperity.fe.contact.sliding import (FrictionLaw, ShearResistance, contact_tangent, drag_anchor,
                                  regularized_sign)
 
 MPA = 1e6
@@ -100,7 +100,7 @@ def test_tangent_matches_finite_differences(scale):
 
 def test_contact_tangent_against_finite_differences():
     """The 3 x 3 alpha_ij of (3.26, 3.27) for traction (t_x, t_y, -t_N(a)) with a C1 penalty."""
-    from asperity.fe.contact import C1Penalty
+    from asperity.fe.contact.penalty import C1Penalty
 
     law = FrictionLaw(ShearResistance(c0=0.0, c1=0.5, c2=1e-10), EPS)
     pen = C1Penalty(np.array([1e17]), 1e8)

@@ -11,13 +11,13 @@ import pytest
 import scipy.sparse.linalg as spl
 
 from asperity.fe import LinearElastic
-from asperity.fe.bodner_partom import BodnerPartom
+from asperity.fe.materials.bodner_partom import BodnerPartom
 from asperity.fe.errors import ConvergenceError
 from asperity.fe.presets import resolve
-from asperity.fe.geometry import CosineHill, Paraboloid
-from asperity.fe.material import equivalent_strain, von_mises
-from asperity.fe.sliding import FrictionLaw, ShearResistance
-from asperity.fe.solid3d import (DEVELOPED_SLIP, SLIP_DAMPING, STALL_FRACTION, FlatMotion,
+from asperity.fe.discretization.geometry import CosineHill, Paraboloid
+from asperity.fe.materials.elastic import equivalent_strain, von_mises
+from asperity.fe.contact.sliding import FrictionLaw, ShearResistance
+from asperity.fe.drivers.solid3d import (DEVELOPED_SLIP, SLIP_DAMPING, STALL_FRACTION, FlatMotion,
                                  HalfModel, MeshSpec, SlidingModel, build_mesh, solve_prescribed,
                                  solve_sliding, step_grid)
 from asperity.references.hertz import hertz_response
@@ -127,7 +127,7 @@ def test_contact_nodes_are_the_facets_p2_nodes_with_hats_on_their_sub_triangles(
     integrates a vertex's hat to 1/24 and a midpoint's to 1/8, a third of their
     sub-triangles (1e-14); the weighted heights vz0 lie within the body's range on the
     facets."""
-    from asperity.fe.solid3d import _subtriangle_hats, _subtriangle_rule
+    from asperity.fe.drivers.solid3d import _subtriangle_hats, _subtriangle_rule
 
     m = hill_model
     f = m.hm.reference.facets[:, m.cfacets]
@@ -554,7 +554,7 @@ def test_a_stalled_run_stops_and_keeps_its_steps(caplog):
     left: 22 steps."""
     mot = FlatMotion.press_and_slide(0.05e-6, 0.1e-6, (0.0, 100.0), (100.0, 200.0))
     law = FrictionLaw(ShearResistance.coulomb(0.3), 1e-8)
-    with caplog.at_level("WARNING", logger="asperity.fe.solid3d"):
+    with caplog.at_level("WARNING", logger="asperity.fe.drivers.solid3d"):
         ds = solve_sliding(HILL, BodnerPartom.sae_1020(), mot, law, accuracy="draft",
                            stall_steps=2, stall_fraction=0.999)
     ref = solve_sliding(HILL, BodnerPartom.sae_1020(), mot, law, accuracy="draft", max_steps=2)
@@ -586,7 +586,7 @@ def test_viscoplastic_asperity_press_and_slide(caplog):
     coefficient of the junction (`critical_factor` < 1): recorded and warned."""
     mot = FlatMotion.press_and_slide(0.05e-6, 0.1e-6, (0.0, 720.0), (720.0, 940.0))
     law = FrictionLaw(ShearResistance.coulomb(20.0), 1e-8)
-    with caplog.at_level("WARNING", logger="asperity.fe.solid3d"):
+    with caplog.at_level("WARNING", logger="asperity.fe.drivers.solid3d"):
         ds = solve_sliding(HILL, BodnerPartom.sae_1020(), mot, law, accuracy="draft")
     assert ds.attrs["completed"] == 1 and ds.attrs["stop_reason"] == ""
     for name in ("normal_force", "tangential_force", "max_inelastic_strain"):

@@ -11,7 +11,7 @@ import yaml
 
 from asperity import homogenize
 from asperity.population import density as population_density
-from asperity.fe.adhesion import LennardJones, derjaguin_force
+from asperity.fe.contact.adhesion import LennardJones, derjaguin_force
 from asperity.scene import Population, Units
 from tests.scene_defaults import filled
 from asperity.io.netcdf import missing_attributes

@@ -14,35 +14,45 @@ elastic or viscoplastic, pressed and slid under friction (3.3.4, 9.2).
 
 Drivers: `solve_asperity` (elastic), `solve_asperity_history`
 (inelastic), `solve_asperity_adhesive` (adhesive), `solve_sliding` (3-D
-sliding).  Modules: `geometry` (profiles), `mesh` (graded curved meshes,
-refinement), `material`, `j2`, `bodner_partom` (stress and tangent at
-quadrature points), `assembly` (P2 fields, stiffness, condensation onto the
-surface), `contact` (penalty law, contact points, contact edge),
-`nonlinear` (the one Newton iteration and step control of every driver,
-line searches), `newton` (the elastic contact problem, Uzawa), `adapt` (ZZ
-estimator, marking), `presets` (accuracy of every kind of model),
-`outputs` (the variables of every driver's Dataset), `solve`,
-`inelastic`, `adhesion` and `adhesive`, `sliding` and `solid3d` (drivers
-and their laws), `analytic` (Hertz), `errors` (`StepFailed`: one try of a
-step; `ConvergenceError`: a step after its cuts).
+sliding).  Packages by concern, each importing only those below it:
+
+- `drivers`: what a job runs (`elastic`, `inelastic` with `remesh`,
+  `adhesive`, `solid3d`);
+- `solvers`: `nonlinear` (the one Newton iteration and step control of every
+  driver, line searches), `newton` (the elastic contact problem, Uzawa);
+- `contact`: the laws of the surface against the flat (`penalty`: penalty law,
+  contact points, contact edge; `adhesion`: Lennard-Jones; `sliding`: the
+  resistance of the junction);
+- `discretization`: `geometry` (profiles), `mesh` (graded curved meshes,
+  refinement), `adapt` (ZZ estimator, marking), `assembly` (P2 fields,
+  stiffness, condensation onto the surface), `kinematics` (small and finite
+  strain);
+- `materials`: `elastic`, `j2`, `bodner_partom` (stress and tangent at
+  quadrature points);
+
+and beside them `presets` (accuracy of every kind of model), `outputs` (the
+variables of every driver's Dataset), `analytic` (Hertz), `errors`
+(`StepFailed`: one try of a step; `ConvergenceError`: a step after its cuts).
 
     >>> from asperity.fe import solve_asperity, Paraboloid, LinearElastic
     >>> ds = solve_asperity(Paraboloid(1.0), LinearElastic(1000.0, 0.3),
     ...                     [0.001, 0.002, 0.005, 0.01, 0.02])  # doctest: +SKIP
 """
 
-from .adhesion import LennardJones
-from .adhesive import interpolate_adhesive, smooth_aluminum_curves, solve_asperity_adhesive
-from .bodner_partom import BodnerPartom
-from .errors import ContactZoneError, ConvergenceError, RuptureError, StepFailed
-from .geometry import CosineHill, Cylinder, EllipticParaboloid, Paraboloid, Profile, Sphere, TruncatedV
-from .inelastic import History, solve_asperity_history
-from .j2 import J2Plasticity
-from .material import IsotropicElasticity, LinearElastic
-from .presets import ACCURACY
-from .sliding import FrictionLaw, ShearResistance
-from .solid3d import FlatMotion, press_3d, solve_sliding
-from .solve import hertz, penalty_error, solve_asperity
+from asperity.fe.contact.adhesion import LennardJones
+from asperity.fe.drivers.adhesive import (interpolate_adhesive, smooth_aluminum_curves,
+                                          solve_asperity_adhesive)
+from asperity.fe.materials.bodner_partom import BodnerPartom
+from asperity.fe.errors import ContactZoneError, ConvergenceError, RuptureError, StepFailed
+from asperity.fe.discretization.geometry import (CosineHill, Cylinder, EllipticParaboloid,
+                                                 Paraboloid, Profile, Sphere, TruncatedV)
+from asperity.fe.drivers.inelastic import History, solve_asperity_history
+from asperity.fe.materials.j2 import J2Plasticity
+from asperity.fe.materials.elastic import IsotropicElasticity, LinearElastic
+from asperity.fe.presets import ACCURACY
+from asperity.fe.contact.sliding import FrictionLaw, ShearResistance
+from asperity.fe.drivers.solid3d import FlatMotion, press_3d, solve_sliding
+from asperity.fe.drivers.elastic import hertz, penalty_error, solve_asperity
 
 __all__ = [
     "ACCURACY",

@@ -33,7 +33,7 @@ guide/validity.md):
 3. **Small strain** (report 7.3: every strain below 8 %):
    ``large_strain_fraction`` = 1 - ``small_strain_fraction`` of FE asperities;
    recorded, not limited, where the jobs are in finite-strain kinematics
-   (effect ``finite_strain``, `asperity.fe.kinematics`).
+   (effect ``finite_strain``, `asperity.fe.discretization.kinematics`).
 4. **Independent asperities.**  The expectation (2.5) sums asperities that do
    not feel each other.  ``contact_area_ratio`` grows with the load, and
    ``interaction`` is the mean contact radius over half the mean spacing of

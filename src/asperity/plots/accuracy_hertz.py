@@ -11,7 +11,7 @@ import numpy as np
 import xarray as xr
 from matplotlib.lines import Line2D
 
-from asperity.fe.contact import PENALTY_FACTOR
+from asperity.fe.contact.penalty import PENALTY_FACTOR
 from asperity.plots.layout import fit, subplots
 from asperity.studies.hertz import REPORT_MAX_FORCE_ERROR, REPORT_MAX_RADIUS_ERROR
 

@@ -86,8 +86,8 @@ class NamedMaterial:
 
 
 def _preset_elastic(preset: str) -> tuple[float, float]:
-    """E [Pa] and nu of one of the report's Bodner-Partom sets (`asperity.fe.bodner_partom`)."""
-    from asperity.fe.bodner_partom import BodnerPartom
+    """E [Pa] and nu of one of the report's Bodner-Partom sets (`asperity.fe.materials.bodner_partom`)."""
+    from asperity.fe.materials.bodner_partom import BodnerPartom
 
     body = getattr(BodnerPartom, preset)()
     return float(body.E), float(body.nu)
@@ -222,16 +222,16 @@ class Material:
 
 def kinematics(effects: Iterable[str]) -> str:
     """The kinematics of an inelastic body under `effects`: ``"finite"`` with the effect
-    ``finite_strain`` (`asperity.fe.kinematics`), else ``"small"`` (the report's theory)."""
+    ``finite_strain`` (`asperity.fe.discretization.kinematics`), else ``"small"`` (the report's theory)."""
     return "finite" if "finite_strain" in set(effects) else "small"
 
 
 def build(material: Material, effects: Iterable[str] = ()):
     """The `asperity.fe` body of `material` under `effects` (module docstring):
     `LinearElastic`, `J2Plasticity` or `BodnerPartom`."""
-    from asperity.fe.bodner_partom import BodnerPartom
-    from asperity.fe.j2 import J2Plasticity
-    from asperity.fe.material import LinearElastic
+    from asperity.fe.materials.bodner_partom import BodnerPartom
+    from asperity.fe.materials.j2 import J2Plasticity
+    from asperity.fe.materials.elastic import LinearElastic
 
     effects = set(effects)
     yield_stress = math.inf if material.yield_stress is None else float(material.yield_stress)

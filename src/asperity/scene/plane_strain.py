@@ -89,7 +89,7 @@ class PlaneStrain:
         `TruncatedV` ridge: half width ``top_width / 2`` on top, flanks at half the
         groove angle from the vertical reaching the neighbouring grooves' bottom half a
         pitch from the axis."""
-        from asperity.fe.geometry import Cylinder, TruncatedV
+        from asperity.fe.discretization.geometry import Cylinder, TruncatedV
 
         if self.shape == "cylinder":
             return Cylinder(self.radius, cap_angle_deg=self.cap_angle)
@@ -120,7 +120,7 @@ class PlaneStrain:
         effect ``unloading`` the flat then goes back at the same speed (towards zero
         interference: the run stops where the force has returned to zero,
         `asperity.fe.solve_asperity_history`)."""
-        from asperity.fe.inelastic import History
+        from asperity.fe.drivers.inelastic import History
 
         if self.unloading:
             return History.load_unload(self.max_interference, self.velocity)

@@ -1,5 +1,5 @@
 """One 3-D asperity pressed and slid by a rigid flat (report 9.2): a scene's
-``sliding`` section in SI, and the `asperity.fe.solid3d` objects it describes."""
+``sliding`` section in SI, and the `asperity.fe.drivers.solid3d` objects it describes."""
 
 from __future__ import annotations
 
@@ -68,7 +68,7 @@ class Sliding:
 
     def geometry(self):
         """The `CosineHill`: amplitude height / 2, wavenumber 2 pi / base_diameter."""
-        from asperity.fe.geometry import CosineHill
+        from asperity.fe.discretization.geometry import CosineHill
 
         return CosineHill(0.5 * self.height, 2.0 * math.pi / self.base_diameter)
 
@@ -78,13 +78,13 @@ class Sliding:
         return build(self.material, () if self.material.model == "elastic" else ("plasticity",))
 
     def motion(self):
-        from asperity.fe.solid3d import FlatMotion
+        from asperity.fe.drivers.solid3d import FlatMotion
 
         return FlatMotion.press_and_slide(self.approach, self.slide, self.press_time, self.slide_time)
 
     def friction(self):
         """The `FrictionLaw` (3.21, 3.24, 3.25)."""
-        from asperity.fe.sliding import FrictionLaw, ShearResistance
+        from asperity.fe.contact.sliding import FrictionLaw, ShearResistance
 
         law = ShearResistance(c0=self.c0, c1=self.c1, c2=self.c2, onset_pressure=self.onset_pressure)
         return FrictionLaw(law, self.slip_regularization)

@@ -7,7 +7,7 @@ from typing import Any, Callable, Mapping
 
 import xarray as xr
 
-from asperity.fe.solid3d import solve_sliding
+from asperity.fe.drivers.solid3d import solve_sliding
 from asperity.plots import sliding as sliding_plots
 from asperity.scene import Sliding, Units
 

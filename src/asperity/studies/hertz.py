@@ -41,11 +41,11 @@ from collections.abc import Sequence
 import numpy as np
 import xarray as xr
 
-from asperity.fe.contact import PENALTY_FACTOR
-from asperity.fe.geometry import Paraboloid, Sphere
-from asperity.fe.material import LinearElastic
+from asperity.fe.contact.penalty import PENALTY_FACTOR
+from asperity.fe.discretization.geometry import Paraboloid, Sphere
+from asperity.fe.materials.elastic import LinearElastic
 from asperity.fe.presets import resolve
-from asperity.fe.solve import hertz, penalty_error, solve_asperity
+from asperity.fe.drivers.elastic import hertz, penalty_error, solve_asperity
 
 #: the refinement sequence of the study (see the module docstring); each
 #: member is a complete accuracy dict (no 'base' needed; the keys not set

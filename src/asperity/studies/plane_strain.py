@@ -97,7 +97,7 @@ def plane_strain_study(geometry, body, elastic, history, meshes: Mapping[str, di
     Parameters
     ----------
     geometry
-        a plane-strain `asperity.fe.geometry.Profile` (`Cylinder`, `TruncatedV`).
+        a plane-strain `asperity.fe.discretization.geometry.Profile` (`Cylinder`, `TruncatedV`).
     body, elastic
         the inelastic body (`BodnerPartom`, `J2Plasticity`) and its elastic twin
         (`LinearElastic` with the same E and nu).
@@ -123,11 +123,11 @@ def plane_strain_study(geometry, body, elastic, history, meshes: Mapping[str, di
     the residual interference and the unloading stiffness of each mesh, for a cylinder
     the Hertz half width, and on dims ``vertex``, ``triangle`` and ``corner`` each mesh
     with the viscoplastic body's displacement and nonelastic strain at the end of the
-    history (`asperity.fe.inelastic.mesh_fields`, padded to the largest mesh).
+    history (`asperity.fe.drivers.inelastic.mesh_fields`, padded to the largest mesh).
     """
     from asperity.fe import solve_asperity, solve_asperity_history
     from asperity.fe.analytic import hertz_line_half_width
-    from asperity.fe.inelastic import END_FIELDS
+    from asperity.fe.drivers.inelastic import END_FIELDS
     from asperity.fe.presets import resolve
 
     if geometry.axisymmetric:

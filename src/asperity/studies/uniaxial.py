@@ -6,7 +6,7 @@ loading then 1000 s creep, Fig. 5.4), 6.3.1 (aluminum 6061-T4 tension,
 Fig. 6.14) and 8.2.1 (SAE 1020 steel tension, Fig. 8.13), with the
 Bodner-Partom model of 3.2.2 (flow rule, isotropic hardening 3.13,
 directional hardening 3.14, damage 3.15) as implemented by
-`asperity.fe.bodner_partom.BodnerPartom` and driven by
+`asperity.fe.materials.bodner_partom.BodnerPartom` and driven by
 `asperity.uniaxial.run_uniaxial`.
 
 A scene's ``uniaxial`` section is a list of tests, each an
@@ -48,7 +48,7 @@ import numpy as np
 import xarray as xr
 from scipy.integrate import solve_ivp
 
-from asperity.fe.bodner_partom import BodnerPartom
+from asperity.fe.materials.bodner_partom import BodnerPartom
 from asperity.scene.materials import CONSTANTS, DAMAGE_CONSTANTS
 from asperity.scene.uniaxial import EFFECTS, PLOTS, IntegratorStudy, UniaxialTest
 from asperity.uniaxial.point import run_uniaxial, uniaxial_flow_stress

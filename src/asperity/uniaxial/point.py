@@ -38,7 +38,7 @@ import time as _time
 import numpy as np
 import xarray as xr
 
-from asperity.fe.bodner_partom import BodnerPartom
+from asperity.fe.materials.bodner_partom import BodnerPartom
 
 __all__ = [
     "run_uniaxial",

@@ -9,9 +9,9 @@ A scene turns adhesion on with the effect ``adhesion`` and a section
 errata), ``spacing`` the intermolecular distance d of eq. 3.16 in **nm**
 whatever the scene's length unit (a molecular length: 0.3-0.5 nm reads
 better than 0.0005 um), ``cutoff`` the separation s_c / d beyond which the
-law is dropped (`asperity.fe.adhesion`: 16 loses 0.5 % of the work, the
+law is dropped (`asperity.fe.contact.adhesion`: 16 loses 0.5 % of the work, the
 report's 4 loses 8.3 %).  The body must be elastic
-(`asperity.fe.adhesive.solve_asperity_adhesive`).
+(`asperity.fe.drivers.adhesive.solve_asperity_adhesive`).
 
 What changes against an asperity without adhesion:
 
@@ -87,7 +87,7 @@ def law(adhesion: Adhesion | Mapping[str, float]):
 
 def reach(adhesion: Adhesion) -> float:
     """Largest gap -w [m] at which the law acts: the tip at the cut-off separation,
-    w = d - s_c (the first level of `asperity.fe.adhesive.adhesive_path`)."""
+    w = d - s_c (the first level of `asperity.fe.drivers.adhesive.adhesive_path`)."""
     lj = law(adhesion)
     return float(lj.range - lj.d)
 
@@ -129,7 +129,7 @@ GATHERED = {
     "small_strain": ("1", "1 where the asperity touches the flat and every strain magnitude is "
                           "below 8 % (report 7.3)"),
 }
-#: per curvature, as `asperity.fe.adhesive.stack_runs` gives them
+#: per curvature, as `asperity.fe.drivers.adhesive.stack_runs` gives them
 PER_CURVATURE = ("pull_off_force", "pull_off_interference", "tabor_parameter",
                  "jump_in_interference", "jump_off_interference")
 PATH = {"interference": "path_interference", "force": "path_force",
@@ -139,7 +139,7 @@ PATH = {"interference": "path_interference", "force": "path_force",
 
 def gather(plan: xr.Dataset, samples: Mapping[str, xr.Dataset]) -> xr.Dataset:
     """Adhesive samples onto (branch, height, curvature, interference) (module docstring)."""
-    from asperity.fe.adhesive import interpolate_adhesive, stack_runs
+    from asperity.fe.drivers.adhesive import interpolate_adhesive, stack_runs
     from asperity.population.gather import (SMALL_STRAIN_LIMIT, fe_cost, samples_by_key,
                                             strain_magnitude)
 
@@ -270,7 +270,7 @@ class Adhesive(FiniteElementKind):
     def check(self, asperity, material, effects):
         if "plasticity" in effects:
             raise ValueError("effect `adhesion` needs an elastic body (no `plasticity`): "
-                             "the adhesive solver is elastic (asperity.fe.adhesive)")
+                             "the adhesive solver is elastic (asperity.fe.drivers.adhesive)")
         super().check(asperity, material, effects)
 
     def grid(self, base, largest, count, adhesion):

@@ -10,7 +10,7 @@ level (`asperity.population.geometry.unloading_levels`), on one mesh adapted to 
 asperity's whole range so that the loading branches of its levels coincide (the
 corners of the blend, 8.3). Coupled cosine hills (2.5.1) are loaded only: one job per
 sample, or per aspect of their family under ``scaling: self_similar`` (8.2.2). With the
-effect ``finite_strain`` the jobs are in finite-strain kinematics (`asperity.fe.kinematics`);
+effect ``finite_strain`` the jobs are in finite-strain kinematics (`asperity.fe.discretization.kinematics`);
 the effect enters the spec with the others, so it reruns them.
 
 The band the plastic contact edge sweeps (`edge_band_accuracy`: the spec's accuracy is
@@ -20,7 +20,8 @@ rate-independent (J2) body (`wants_band`): on the J2 sphere of `make bench CASE=
 standard's contact area within 1 % of fine's (3 % on the default mesh) for about twice
 standard's CPU. A rate-dependent body has it at fine only: its steps are set by the
 time-error control, whose indicator grows as the surface is refined, so the band takes
-it many more steps (docs: changelog, "Meshes that follow the plastic contact"). Draft stays a first look on the default mesh: the J2 cosine hill of
+it many more steps (docs: changelog, "Meshes that follow the plastic contact"). Draft
+stays a first look on the default mesh: the J2 cosine hill of
 `tests/fe/test_self_similar.py` takes 4.6 times as long with draft's band. A scene's
 ``asperity: {edge_band: true}`` or ``false`` says which at every preset.
 """

@@ -18,11 +18,11 @@ How it joins the contact law
 ----------------------------
 The separation of report 3.3.2, s = (x + u - p_o) . N - w - d, counts
 from the equilibrium spacing: a point "touches" the flat when its physical
-separation is d.  With the solver's penetration a (`asperity.fe.contact`,
+separation is d.  With the solver's penetration a (`asperity.fe.contact.penalty`,
 a = -gap, the flat first touching the apex at w = 0 with the tip at the
 equilibrium spacing d), the physical separation is s = d - a and the
 normal traction on the surface (positive compressive, as in
-`asperity.fe.contact`) is
+`asperity.fe.contact.penalty`) is
 
     t(a) = C1 penalty t_N(a)      a >= 0     (contact, report 3.3.2)
            -q(d - a)              a < 0, d - a < s_c   (adhesion, 3.16)
@@ -63,7 +63,7 @@ of separation, so it is integrated with its own rule: every facet of the
 candidate zone gets a composite Gauss rule (`composite_gauss`:
 `subdivisions` equal parts of `gauss_points` points, default 2 x 5 = the
 report's 10 points per direction), while the penalty keeps its nodal rule.
-With the adhesive mesh graded to the ring (`asperity.fe.adhesive`) the
+With the adhesive mesh graded to the ring (`asperity.fe.drivers.adhesive`) the
 separation varies by a fraction of d across a facet; convergence of the
 rule is tested (tests/fe/test_adhesion.py).  Points beyond the cut-off
 contribute exactly zero (they are evaluated, which costs little, rather
@@ -77,7 +77,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .contact import ContactZone
+from asperity.fe.contact.penalty import ContactZone
 
 #: cut-off separation / d beyond which the adhesion is dropped (see module docstring)
 DEFAULT_CUTOFF = 16.0

@@ -21,7 +21,7 @@ the law is smoothed.  Here ``kappa = c E' / h_f`` on each facet of arc
 length h_f, E' = E / (1 - nu^2) the contact modulus,
 ``c = PENALTY_FACTOR = 1000``: the penetration is about p h_f / (c E'),
 i.e. 0.1 % of the element size at a pressure equal to E'.  The penalty's
-own error (`asperity.fe.solve.penalty_error`) falls as 1 / c; at c = 1000
+own error (`asperity.fe.drivers.elastic.penalty_error`) falls as 1 / c; at c = 1000
 it is below 2e-4 in force and contact radius on the Hertz problem
 (tests/fe/test_penalty_error.py), well below the discretization error.
 The smoothing covers the pressures below p_s / 2 with
@@ -42,7 +42,7 @@ Fig. 8.15 staircase): the edge is interpolated between nodes, from the
 gaps (`contact_edge`) or, for an inelastic body, from the pressures and
 the gaps (`contact_edge_pressure`).  An explicit rule ``(points,
 weights)`` on the facet coordinate [0, 1] may be passed instead of a name
-(the adhesion traction of `asperity.fe.adhesion` is integrated with a
+(the adhesion traction of `asperity.fe.contact.adhesion` is integrated with a
 composite Gauss rule).
 
 Exact option: the same point-wise condition enforced exactly by an
@@ -58,7 +58,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .assembly import TopSurface
+from asperity.fe.discretization.assembly import TopSurface
 
 #: penalty stiffness kappa = PENALTY_FACTOR * E' / h_facet
 PENALTY_FACTOR = 1000.0

@@ -155,16 +155,16 @@ from skfem import Basis, ElementTetP2, ElementVector, FacetBasis, MeshTet, MeshT
 from skfem.quadrature import get_quadrature
 from skfem.refdom import RefTri
 
-from . import nonlinear
-from .assembly import OrderedLU
-from .contact import SMOOTHING, C1Penalty
-from .errors import ContactZoneError, StepFailed
-from .material import METRIC6, equivalent_strain, von_mises
-from .nonlinear import (Pace, Problem, ResidualSearch, StepCuts, check_local_update, next_time,
-                        strain_limited)
-from .outputs import INELASTIC_THRESHOLD, VARIABLES, dataset, describe
-from .presets import resolve
-from .sliding import FrictionLaw, ShearResistance, contact_tangent, drag_anchor
+from asperity.fe.solvers import nonlinear
+from asperity.fe.discretization.assembly import OrderedLU
+from asperity.fe.contact.penalty import SMOOTHING, C1Penalty
+from asperity.fe.errors import ContactZoneError, StepFailed
+from asperity.fe.materials.elastic import METRIC6, equivalent_strain, von_mises
+from asperity.fe.solvers.nonlinear import (Pace, Problem, ResidualSearch, StepCuts,
+                                           check_local_update, next_time, strain_limited)
+from asperity.fe.outputs import INELASTIC_THRESHOLD, VARIABLES, dataset, describe
+from asperity.fe.presets import resolve
+from asperity.fe.contact.sliding import FrictionLaw, ShearResistance, contact_tangent, drag_anchor
 from asperity.io.run_report import StepProgress
 
 log = logging.getLogger(__name__)

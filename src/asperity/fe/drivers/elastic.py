@@ -32,17 +32,17 @@ import time
 import numpy as np
 import xarray as xr
 
-from .adapt import StressRecovery, mark, relative_indicator
-from . import analytic
-from .assembly import CondensedStiffness, Discretization
-from .contact import EDGE_FROM_GAPS, PENALTY_FACTOR, C1Penalty, ContactZone, contact_edge
-from .errors import ContactZoneError
-from .geometry import Profile
-from .material import equivalent_strain, von_mises
-from .mesh import AsperityMesh, MeshSpec
-from .newton import ContactNewton, continuation
-from .outputs import dataset, describe
-from .presets import PLANE_STRAIN_DOMAIN, resolve
+from asperity.fe.discretization.adapt import StressRecovery, mark, relative_indicator
+from asperity.fe import analytic
+from asperity.fe.discretization.assembly import CondensedStiffness, Discretization
+from asperity.fe.contact.penalty import EDGE_FROM_GAPS, PENALTY_FACTOR, C1Penalty, ContactZone, contact_edge
+from asperity.fe.errors import ContactZoneError
+from asperity.fe.discretization.geometry import Profile
+from asperity.fe.materials.elastic import equivalent_strain, von_mises
+from asperity.fe.discretization.mesh import AsperityMesh, MeshSpec
+from asperity.fe.solvers.newton import ContactNewton, continuation
+from asperity.fe.outputs import dataset, describe
+from asperity.fe.presets import PLANE_STRAIN_DOMAIN, resolve
 
 #: the zone of surface nodes allowed to touch the flat extends to this
 #: multiple of the geometric intersection radius at the largest interference

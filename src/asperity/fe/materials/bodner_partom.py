@@ -46,7 +46,7 @@ recovery terms), ``directional_hardening`` (beta, Z^D) and ``damage``.  With
 all flags off Z = Z0 is constant.  The recovery term is taken odd,
 sign(x)|x|^r1, so that Z^I recovers towards Z2 from either side.
 
-Arrays follow `asperity.fe.material`: strains and stresses are
+Arrays follow `asperity.fe.materials.elastic`: strains and stresses are
 ``(4, *shape)`` with components (11, 22, 33, 12) and the tensor shear
 component, tangents ``(4, 4, *shape)`` (d stress / d strain in the same
 components, as ``LinearElastic.tangent``), or, for three-dimensional
@@ -90,7 +90,7 @@ from dataclasses import dataclass, fields, replace
 
 import numpy as np
 
-from .material import IsotropicElasticity
+from asperity.fe.materials.elastic import IsotropicElasticity
 
 SQRT2 = math.sqrt(2.0)
 SQRT3 = math.sqrt(3.0)

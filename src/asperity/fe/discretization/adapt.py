@@ -23,8 +23,8 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as spl
 from skfem import adaptive_theta
 
-from .assembly import Discretization
-from .material import complementary_energy_density
+from asperity.fe.discretization.assembly import Discretization
+from asperity.fe.materials.elastic import complementary_energy_density
 
 
 class StressRecovery:

@@ -155,21 +155,21 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as spl
 import xarray as xr
 
-from . import nonlinear
-from .assembly import Discretization, OrderedLU
-from .contact import (EDGE_FROM_PRESSURES, PENALTY_FACTOR, C1Penalty, ContactZone,
-                      contact_edge_pressure)
-from .errors import ContactZoneError, RuptureError, StepFailed
-from .kinematics import KINEMATICS, SmallStrain, kinematics_for
-from .material import LinearElastic, equivalent_strain, von_mises
-from .nonlinear import (Pace, Problem, ResidualSearch, StepCuts, check_local_update, next_time,
-                        strain_limited)
-from .outputs import INELASTIC_THRESHOLD, SMALL_STRAIN_LIMIT, dataset
+from asperity.fe.solvers import nonlinear
+from asperity.fe.discretization.assembly import Discretization, OrderedLU
+from asperity.fe.contact.penalty import (EDGE_FROM_PRESSURES, PENALTY_FACTOR, C1Penalty,
+                                         ContactZone, contact_edge_pressure)
+from asperity.fe.errors import ContactZoneError, RuptureError, StepFailed
+from asperity.fe.discretization.kinematics import KINEMATICS, SmallStrain, kinematics_for
+from asperity.fe.materials.elastic import LinearElastic, equivalent_strain, von_mises
+from asperity.fe.solvers.nonlinear import (Pace, Problem, ResidualSearch, StepCuts,
+                                           check_local_update, next_time, strain_limited)
+from asperity.fe.outputs import INELASTIC_THRESHOLD, SMALL_STRAIN_LIMIT, dataset
 from asperity.io.run_report import StepProgress
 
-from .presets import resolve
-from .remesh import EDGE_BAND, ContactMeshes, Transfer, edge_band
-from .solve import adapted_model, check_levels, run_attrs
+from asperity.fe.presets import resolve
+from asperity.fe.drivers.remesh import EDGE_BAND, ContactMeshes, Transfer, edge_band
+from asperity.fe.drivers.elastic import adapted_model, check_levels, run_attrs
 
 log = logging.getLogger(__name__)
 

@@ -74,10 +74,10 @@ import scipy.sparse as sp
 from scipy.spatial import cKDTree
 from skfem import Basis, ElementTriP2
 
-from .assembly import Discretization
-from .material import equivalent_strain
-from .mesh import AsperityMesh
-from .solve import adapted_model
+from asperity.fe.discretization.assembly import Discretization
+from asperity.fe.materials.elastic import equivalent_strain
+from asperity.fe.discretization.mesh import AsperityMesh
+from asperity.fe.drivers.elastic import adapted_model
 
 #: elastic interferences driving the refinement of the contact edge
 REMESH_LEVELS = 3

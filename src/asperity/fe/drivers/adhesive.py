@@ -1,6 +1,6 @@
 """Elastic asperity with Lennard-Jones adhesion: approach, retract, jumps, pull-off.
 
-The body and the contact are those of `asperity.fe.solve` (P2 elements,
+The body and the contact are those of `asperity.fe.drivers.elastic` (P2 elements,
 the stiffness condensed onto the candidate surface dofs, C1 penalty of
 report 3.3.2 at the nodes); the adhesive traction of report 3.3.3 acts on
 the free surface outside contact (`adhesion.LennardJones`, composite Gauss
@@ -153,19 +153,19 @@ import scipy.linalg as sla
 import xarray as xr
 from scipy.interpolate import PchipInterpolator
 
-from . import nonlinear
-from .adhesion import LennardJones, adhesion_zone
-from .assembly import CondensedStiffness, Discretization
-from .contact import PENALTY_FACTOR, C1Penalty, ContactZone, contact_edge
-from .errors import ContactZoneError, ConvergenceError, StepFailed
-from .bodner_partom import BodnerPartom
-from .geometry import CosineHill, Paraboloid, Profile
-from .material import LinearElastic, equivalent_strain, von_mises
-from .mesh import AsperityMesh, MeshSpec
-from .newton import ROUNDOFF_FACTOR
-from .nonlinear import EnergySearch, Problem
-from .outputs import accuracy_attrs, dataset, describe
-from .presets import PLANE_STRAIN_DOMAIN, resolve
+from asperity.fe.solvers import nonlinear
+from asperity.fe.contact.adhesion import LennardJones, adhesion_zone
+from asperity.fe.discretization.assembly import CondensedStiffness, Discretization
+from asperity.fe.contact.penalty import PENALTY_FACTOR, C1Penalty, ContactZone, contact_edge
+from asperity.fe.errors import ContactZoneError, ConvergenceError, StepFailed
+from asperity.fe.materials.bodner_partom import BodnerPartom
+from asperity.fe.discretization.geometry import CosineHill, Paraboloid, Profile
+from asperity.fe.materials.elastic import LinearElastic, equivalent_strain, von_mises
+from asperity.fe.discretization.mesh import AsperityMesh, MeshSpec
+from asperity.fe.solvers.newton import ROUNDOFF_FACTOR
+from asperity.fe.solvers.nonlinear import EnergySearch, Problem
+from asperity.fe.outputs import accuracy_attrs, dataset, describe
+from asperity.fe.presets import PLANE_STRAIN_DOMAIN, resolve
 from asperity.io.run_report import StepProgress
 from asperity.references.adhesion import jkr_contact_radius
 

@@ -54,8 +54,8 @@ import functools
 import numpy as np
 import scipy.sparse as sp
 
-from .errors import StepFailed
-from .material import METRIC
+from asperity.fe.errors import StepFailed
+from asperity.fe.materials.elastic import METRIC
 
 #: kinematics of the inelastic driver
 KINEMATICS = ("small", "finite")

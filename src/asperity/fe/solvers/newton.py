@@ -30,10 +30,10 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.linalg as sla
 
-from . import nonlinear
-from .contact import AugmentedPenalty, C1Penalty, ContactZone
-from .errors import StepFailed
-from .nonlinear import EnergySearch, Problem
+from asperity.fe.solvers import nonlinear
+from asperity.fe.contact.penalty import AugmentedPenalty, C1Penalty, ContactZone
+from asperity.fe.errors import StepFailed
+from asperity.fe.solvers.nonlinear import EnergySearch, Problem
 
 
 #: Newton stops once the residual is below this multiple of its round-off

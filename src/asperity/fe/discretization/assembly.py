@@ -25,8 +25,8 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as spl
 from skfem import Basis, ElementTriP2, ElementVector
 
-from .material import METRIC
-from .mesh import AsperityMesh
+from asperity.fe.materials.elastic import METRIC
+from asperity.fe.discretization.mesh import AsperityMesh
 
 #: quadrature order on the triangles (6 points), enough for P2 on curved
 #: 6-node triangles with the r weight and the hoop term u_r / r.

@@ -46,7 +46,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .errors import ConvergenceError, StepFailed
+from asperity.fe.errors import ConvergenceError, StepFailed
 
 #: Armijo's sufficient decrease: merit(x + d) <= merit(x) + ARMIJO R.d
 ARMIJO = 1e-4

@@ -32,7 +32,7 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 from skfem import MeshTri1, MeshTri2
 
-from .geometry import Profile
+from asperity.fe.discretization.geometry import Profile
 
 
 def project_to_profile(geometry: Profile, a: np.ndarray, b: np.ndarray) -> np.ndarray:
