@@ -5,6 +5,8 @@
 * ``docs/reference/keys.md``: every key of a scene and of ``config/config.yaml``,
   from ``config/schema.yaml`` (its types, ranges, defaults and descriptions);
 * ``docs/reference/cli.md``: the help of every ``asperity`` command;
+* ``docs/reference/modules.md``: every module's first line, and the picture of what
+  imports what in the finite element package (``fe-package.png``);
 * ``docs/verification/index.md``: the tables of what was measured, read from the
   benchmark outputs in ``benchmarks/results/`` (each with its machine, date and
   commit), never typed by hand.
@@ -123,10 +125,103 @@ def module_summaries() -> dict[str, str]:
     return out
 
 
+def fe_parts_imports() -> dict[str, dict[str, int]]:
+    """The parts of `asperity.fe` (its packages by concern and its top modules) and, for
+    each, how many import statements of its modules name each other part (read with `ast`;
+    imports inside functions too)."""
+    import ast
+
+    fe = ROOT / "src" / "asperity" / "fe"
+
+    def part(dotted: str) -> str | None:
+        rest = dotted.split(".")[2:] if dotted.startswith("asperity.fe.") else []
+        return rest[0] if rest else None
+
+    out: dict[str, dict[str, int]] = {}
+    for path in sorted(fe.rglob("*.py")):
+        rel = path.relative_to(fe).with_suffix("").parts
+        if rel == ("__init__",):
+            continue  # the package's exports, not a dependency
+        here = rel[0]
+        edges = out.setdefault(here, {})
+        for node in ast.walk(ast.parse(path.read_text())):
+            if isinstance(node, ast.Import):
+                names = [a.name for a in node.names]
+            elif isinstance(node, ast.ImportFrom):  # `from asperity.fe import analytic` names a part
+                names = [f"{node.module}.{a.name}" for a in node.names] \
+                    if node.module == "asperity.fe" else [node.module or ""]
+            else:
+                continue
+            for name in names:
+                other = part(name)
+                if other and other != here:
+                    edges[other] = edges.get(other, 0) + 1
+    return out
+
+
+def fe_package_figure(path: Path) -> None:
+    """`asperity.fe` as layers: each part above every part it imports, an arrow per
+    importing pair, labelled with the number of import statements."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    edges = fe_parts_imports()
+    depth: dict[str, int] = {}
+
+    def level(p: str) -> int:  # longest chain of imports below a part (the graph is acyclic)
+        if p not in depth:
+            depth[p] = 1 + max((level(q) for q in edges.get(p, {})), default=-1)
+        return depth[p]
+
+    for p in edges:
+        level(p)
+    rows: dict[int, list[str]] = {}
+    for p in sorted(depth, key=lambda q: (depth[q], q)):
+        rows.setdefault(depth[p], []).append(p)
+    pos = {p: ((i + 0.5) / len(row), d) for d, row in rows.items() for i, p in enumerate(row)}
+    fig, ax = plt.subplots(figsize=(8, 1.3 * (max(rows) + 1)))
+    ax.set(xlim=(0, 1), ylim=(-0.6, max(rows) + 0.6))
+    to_display, to_data = ax.transData.transform, ax.transData.inverted().transform
+    for p, targets in edges.items():
+        for q, n in targets.items():
+            start, end = np.array(pos[p]) - (0, 0.18), np.array(pos[q]) + (0, 0.18)
+            # an arrow past a level bends round the parts between (arc3: the control point
+            # is the chord's midpoint moved by rad times the chord turned a quarter)
+            rad = 0.35 if depth[p] - depth[q] > 1 and abs(start[0] - end[0]) < 0.05 else 0.0
+            ax.annotate("", xy=end, xytext=start, arrowprops=dict(
+                arrowstyle="->", color="0.45", lw=0.8, connectionstyle=f"arc3,rad={rad}"))
+            a, b = to_display(start), to_display(end)
+            middle = 0.5 * (a + b) + 0.5 * rad * np.array([b[1] - a[1], a[0] - b[0]])
+            ax.text(*to_data(middle), str(n), fontsize=7, color="0.3", ha="center",
+                    va="center", backgroundcolor="white")
+    for p, (x, y) in pos.items():
+        package = (ROOT / "src" / "asperity" / "fe" / p).is_dir()
+        ax.text(x, y, p + ("/" if package else ".py"), ha="center", va="center", fontsize=10,
+                bbox=dict(boxstyle="round", fc="#dbe8f5" if package else "#f2f2f2", ec="0.4"))
+    ax.axis("off")
+    ax.set_title("asperity.fe: each part above what it imports (numbers: import statements)",
+                 fontsize=10)
+    fig.tight_layout()
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+
+
 def modules_page() -> str:
+    fe_package_figure(DOCS / "reference" / "fe-package.png")
     out = [GENERATED, "# Modules\n\n",
            "The package by stage (DESIGN.md: the library, by stage), each module with the first "
            "line of its docstring; the [Python API](api.md) has the functions a user calls.\n\n",
+           "## The finite element package\n\n",
+           "`asperity.fe` by concern: `materials/` (the bodies' laws), `discretization/` "
+           "(shape, meshes, fields, assembly), `contact/` (penalty contact, adhesion and "
+           "sliding resistance against the flat), `solvers/` (the Newton iteration) and "
+           "`drivers/` (what a job runs), each part importing only the parts below it; "
+           "drawn from the code's imports when the docs are built.\n\n",
+           "![What imports what in asperity.fe](fe-package.png)\n\n",
+           "## Every module\n\n",
            "| module | what it holds |\n|---|---|\n"]
     out.extend(f"| `{name}` | {_cell(summary)} |\n" for name, summary in module_summaries().items())
     return "".join(out)

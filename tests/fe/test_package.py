@@ -1,5 +1,5 @@
 """`asperity.fe` exports every geometry, material and driver; its modules share
-only public names."""
+only public names; its packages hold one concern each."""
 
 import ast
 import importlib
@@ -14,9 +14,21 @@ from asperity.fe.materials.elastic import IsotropicElasticity
 FE = Path(fe.__file__).parent
 
 
+#: the packages of `asperity.fe` by concern, and the modules left at its top
+PACKAGES = {"materials", "discretization", "contact", "solvers", "drivers"}
+TOP = {"__init__", "presets", "errors", "outputs", "analytic"}
+
+
 def _modules():
     return [importlib.import_module(m.name)
             for m in pkgutil.walk_packages([str(FE)], prefix="asperity.fe.") if not m.ispkg]
+
+
+def test_the_package_is_laid_out_by_concern():
+    assert {p.name for p in FE.iterdir() if (p / "__init__.py").is_file()} == PACKAGES
+    assert {p.stem for p in FE.glob("*.py")} == TOP
+    for package in PACKAGES:
+        assert importlib.import_module(f"asperity.fe.{package}").__doc__, package
 
 
 def test_every_geometry_material_and_driver_is_exported():
@@ -45,7 +57,8 @@ def test_no_module_imports_a_private_name_of_another():
     offenders = []
     for path in sorted(FE.rglob("*.py")):
         for node in ast.walk(ast.parse(path.read_text())):
-            if isinstance(node, ast.ImportFrom) and node.level >= 1:
-                offenders += [f"{path.name}: {a.name}" for a in node.names
+            if isinstance(node, ast.ImportFrom) and (
+                    node.level >= 1 or (node.module or "").startswith("asperity.fe")):
+                offenders += [f"{path.relative_to(FE)}: {a.name}" for a in node.names
                               if a.name.startswith("_")]
     assert not offenders, offenders
