@@ -73,6 +73,7 @@ from asperity.population import samples  # noqa: E402
 from asperity.fe import ConvergenceError  # noqa: E402
 from asperity.fe import BodnerPartom, LennardJones, LinearElastic, Paraboloid  # noqa: E402
 from asperity.fe.drivers import adhesive  # noqa: E402
+from asperity.population.kinds.adhesive import on_levels  # noqa: E402
 from asperity.fe.drivers.adhesive import smooth_aluminum_curves  # noqa: E402
 from asperity.references.adhesion import jkr_jump_off, maugis_pull_off  # noqa: E402
 
@@ -198,7 +199,7 @@ def meshes_row(runs: dict, radius: float = 150e-6, w_max: float = 10e-9) -> dict
     diff = {}
     for var in ("force", "contact_radius"):
         worst = 0.0
-        for x, y in adhesive.on_levels(ref, new, var, 0.1 * d):
+        for x, y in on_levels(ref, new, var, 0.1 * d):
             ok = np.isfinite(x) & np.isfinite(y)
             worst = max(worst, float(np.max(np.abs(y[ok] - x[ok])) / np.max(np.abs(x[ok]))))
         diff[f"{var}_largest_difference_over_largest"] = worst

@@ -15,7 +15,8 @@ from scipy.integrate import quad
 
 from asperity.fe import LennardJones, LinearElastic, Paraboloid, solve_asperity_adhesive
 from asperity.fe.contact.adhesion import adhesion_zone, composite_gauss, derjaguin_force
-from asperity.fe.drivers.adhesive import adhesive_model, adhesive_path, interpolate_adhesive
+from asperity.fe.drivers.adhesive import adhesive_model, adhesive_path
+from asperity.population.kinds.adhesive import interpolate_adhesive
 from asperity.references.adhesion import jkr_jump_off, maugis_pull_off
 
 D = 0.3e-9

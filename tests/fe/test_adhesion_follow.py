@@ -15,8 +15,8 @@ import pytest
 
 from asperity.fe import BodnerPartom, LennardJones, LinearElastic, Paraboloid, solve_asperity_adhesive
 from asperity.fe.drivers import adhesive
-from asperity.fe.drivers.adhesive import on_levels
 from asperity.fe.presets import resolve
+from asperity.population.kinds.adhesive import on_levels
 
 D = 0.3e-9
 LAW = LennardJones(1.0, D)

@@ -40,8 +40,7 @@ variables of every driver's Dataset), `analytic` (Hertz), `errors`
 """
 
 from asperity.fe.contact.adhesion import LennardJones
-from asperity.fe.drivers.adhesive import (interpolate_adhesive, smooth_aluminum_curves,
-                                          solve_asperity_adhesive)
+from asperity.fe.drivers.adhesive import smooth_aluminum_curves, solve_asperity_adhesive
 from asperity.fe.materials.bodner_partom import BodnerPartom
 from asperity.fe.errors import ContactZoneError, ConvergenceError, RuptureError, StepFailed
 from asperity.fe.discretization.geometry import (CosineHill, Cylinder, EllipticParaboloid,
@@ -77,7 +76,6 @@ __all__ = [
     "StepFailed",
     "TruncatedV",
     "hertz",
-    "interpolate_adhesive",
     "penalty_error",
     "press_3d",
     "smooth_aluminum_curves",

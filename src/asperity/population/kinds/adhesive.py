@@ -117,6 +117,83 @@ def interference_grid(largest: float, count: int, adhesion: Adhesion) -> np.ndar
     return np.concatenate([-gaps[::-1], contact_grid(largest, count)])
 
 
+# --- an adhesive sample on the plan's grid ------------------------------------------------
+def on_levels(reference: xr.Dataset, other: xr.Dataset, name: str, clearance: float):
+    """Two adhesive samples' `name` on the reference's requested levels, branch by
+    branch, away from its jumps (farther than `clearance` [m] from its jump-in and
+    jump-off): a (reference, other) pair of arrays per branch (`interpolate_adhesive`).
+    Compares two discretizations of one asperity (tests, `benchmarks/adhesion_cost.py`)."""
+    for which in ("approach", "retract"):
+        keep = reference.requested.values & (reference.branch.values == which)
+        w = reference.interference.values[keep]
+        w = w[(np.abs(w - reference.attrs["jump_in_interference"]) > clearance)
+              & (np.abs(w - reference.attrs["jump_off_interference"]) > clearance)]
+        yield (interpolate_adhesive(reference, w, which)[name],
+               interpolate_adhesive(other, w, which)[name])
+
+
+def interpolate_adhesive(ds: xr.Dataset, grid, branch: str = "approach",
+                         names=("force", "contact_area", "contact_radius")) -> dict:
+    """An adhesive sample's curves on an interference grid, for one branch.
+
+    The log-log interpolation of `asperity.population.gather` assumes positive
+    curves growing from w = 0; an adhesive sample has negative forces,
+    negative interferences (attraction before touching) and jumps, and two
+    branches.  Here the records of `branch` ('approach', or 'retract' with
+    the turning point) are taken in order of interference and split at the
+    jumps into continuous pieces; each piece is interpolated by a monotone
+    cubic (PCHIP) in (w, X); a grid point between the state before a jump
+    and the one after (min_step * d apart) is interpolated linearly
+    between them, so the jump stays a jump.  Below the branch's smallest
+    interference the value is the first record's if that record is out of
+    the adhesive range (force below 1e-6 of the largest: zero everywhere
+    below), else NaN; above
+    its largest, the last tangent, flagged.  Returns {name: values} and
+    ``extrapolated`` (bool, beyond the largest interference).
+    """
+    from scipy.interpolate import PchipInterpolator
+
+    from asperity.fe.drivers.adhesive import retract_indices
+
+    grid = np.asarray(grid, dtype=float)
+    b = ds["branch"].values.astype(str)
+    idx = np.nonzero(b == "approach")[0] if branch == "approach" else retract_indices(b)
+    if branch not in ("approach", "retract") or idx.size == 0:
+        raise ValueError(f"the sample has no {branch!r} records")
+    w = ds["interference"].values[idx]
+    jump = ds["jump"].values[idx].astype(bool)
+    jump[0] = False
+    if branch == "retract":  # path order is decreasing w
+        idx, w, jump = idx[::-1], w[::-1], np.concatenate(([False], jump[1:][::-1]))
+    # jump[k]: a discontinuity between sorted records k - 1 and k
+    if np.any(np.diff(w) < 0):
+        raise ValueError(f"the {branch} records are not monotonic in the interference")
+    starts = np.concatenate(([0], np.nonzero(jump)[0]))
+    stops = np.concatenate((np.nonzero(jump)[0], [len(w)]))
+    forces = ds["force"].values[idx]
+    first_out = (ds["contact_area"].values[idx[0]] == 0
+                 and abs(forces[0]) <= 1e-6 * np.max(np.abs(forces)))
+    extrap = grid > w[-1]
+    out = {}
+    for name in names:
+        x = ds[name].values[idx].astype(float)
+        y = np.interp(grid, w, x)  # linear: across a jump's gap
+        for lo, hi in zip(starts, stops):
+            ws, xs = w[lo:hi], x[lo:hi]
+            keep = np.concatenate(([True], np.diff(ws) > 0))
+            ws, xs = ws[keep], xs[keep]
+            inside = (grid >= ws[0]) & (grid <= ws[-1])
+            if ws.size >= 2 and inside.any():
+                y[inside] = PchipInterpolator(ws, xs)(grid[inside])
+        y[grid < w[0]] = x[0] if first_out else np.nan
+        if len(w) > 1 and w[-1] > w[-2]:
+            slope = (x[-1] - x[-2]) / (w[-1] - w[-2])
+            y[extrap] = x[-1] + slope * (grid[extrap] - w[-1])
+        out[name] = y
+    out["extrapolated"] = extrap
+    return out
+
+
 # --- the gather ---------------------------------------------------------------------------
 GATHERED = {
     "force": ("N", "normal force on the asperity, compressive positive (adhesion negative)"),
@@ -139,7 +216,7 @@ PATH = {"interference": "path_interference", "force": "path_force",
 
 def gather(plan: xr.Dataset, samples: Mapping[str, xr.Dataset]) -> xr.Dataset:
     """Adhesive samples onto (branch, height, curvature, interference) (module docstring)."""
-    from asperity.fe.drivers.adhesive import interpolate_adhesive, stack_runs
+    from asperity.fe.drivers.adhesive import stack_runs
     from asperity.population.gather import (SMALL_STRAIN_LIMIT, fe_cost, samples_by_key,
                                             strain_magnitude)
 
