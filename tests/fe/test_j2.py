@@ -47,6 +47,18 @@ def test_uniaxial_unloading_and_reversal():
     assert s[-1] < reverse
 
 
+def _finite_difference_tangent(mat, strain, state, h=1e-8):
+    """d stress / d strain by central differences in each strain component (step h)."""
+    D = np.empty((strain.shape[0],) + strain.shape)
+    for j in range(strain.shape[0]):
+        ep, em = strain.copy(), strain.copy()
+        ep[j] += h
+        em[j] -= h
+        D[:, j] = (mat.update(ep, state, tangent=False)[0]
+                   - mat.update(em, state, tangent=False)[0]) / (2 * h)
+    return D
+
+
 def _random_strains(rng, n, size):
     e = rng.normal(size=(4, n)) * size
     return e
@@ -64,14 +76,7 @@ def test_consistent_tangent_matches_finite_differences(H):
     e2 = e1 + _random_strains(rng, n, 0.003)
     s, D, new = mat.update(e2, st)
     assert np.all(new.alpha > st.alpha - 1e-300)
-    h = 1e-8
-    Dfd = np.empty_like(D)
-    for j in range(4):
-        ep, em = e2.copy(), e2.copy()
-        ep[j] += h
-        em[j] -= h
-        Dfd[:, j] = (mat.update(ep, st, tangent=False)[0]
-                     - mat.update(em, st, tangent=False)[0]) / (2 * h)
+    Dfd = _finite_difference_tangent(mat, e2, st)
     plastic = new.alpha > st.alpha
     assert plastic.sum() >= n // 2
     err = np.abs(D - Dfd).max(axis=(0, 1)) / np.abs(D).max(axis=(0, 1))
@@ -185,14 +190,7 @@ def test_six_component_tangent_matches_finite_differences(H):
     e2 = e1 + rng.normal(size=(6, n)) * 0.003
     s, D, new = mat.update(e2, st)
     assert D.shape == (6, 6, n)
-    h = 1e-8
-    Dfd = np.empty_like(D)
-    for j in range(6):
-        ep, em = e2.copy(), e2.copy()
-        ep[j] += h
-        em[j] -= h
-        Dfd[:, j] = (mat.update(ep, st, tangent=False)[0]
-                     - mat.update(em, st, tangent=False)[0]) / (2 * h)
+    Dfd = _finite_difference_tangent(mat, e2, st)
     assert (new.alpha > st.alpha).sum() >= n // 2
     err = np.abs(D - Dfd).max(axis=(0, 1)) / np.abs(D).max(axis=(0, 1))
     assert err.max() < 1e-6, err
