@@ -104,6 +104,14 @@ def _bodner_partom():
                                   History.load_unload(0.01e-6, 0.25e-6), accuracy="draft")
 
 
+def _bodner_partom_plane_strain():
+    # the report's cosine hill as a plane-strain section (a ridge), report 8.2.2
+    hill = CosineHill.from_tip(0.042e6, 2 * math.pi**2 / (13.4**2 * 0.042e6),
+                               axisymmetric=False)
+    return solve_asperity_history(hill, BodnerPartom.sae_1020(),
+                                  History.load_unload(0.01e-6, 0.25e-6), accuracy="draft")
+
+
 def _sliding(accuracy="draft"):
     from asperity.fe.drivers.solid3d import MeshSpec
 
@@ -127,6 +135,9 @@ CASES = {
                              "contact_area")),
     "j2": (_j2, ("time", "interference", "force", "contact_area")),
     "bodner_partom": (_bodner_partom, ("time", "interference", "force", "contact_area")),
+    # the plane-strain marching case (recorded on 482b26a, before the one marching driver)
+    "bodner_partom_plane_strain": (_bodner_partom_plane_strain,
+                                   ("time", "interference", "force", "contact_area")),
     "sliding": (_sliding, ("time", "normal_force", "tangential_force", "contact_area")),
     # the time-marching drivers with their steps cut (recorded on 9e6dc8a, before
     # their step control moved to `nonlinear`): 15 and 14 cuts, steps grown after

@@ -17,7 +17,7 @@ Drivers: `solve_asperity` (elastic), `solve_asperity_history`
 sliding).  Packages by concern, each importing only those below it:
 
 - `drivers`: what a job runs (`elastic`, `inelastic` with `remesh`,
-  `adhesive`, `solid3d`);
+  `adhesive`, `solid3d`), the time-marching ones through `march`;
 - `solvers`: `nonlinear` (the one Newton iteration and step control of every
   driver, line searches), `newton` (the elastic contact problem, Uzawa);
 - `contact`: the laws of the surface against the flat (`penalty`: penalty law,

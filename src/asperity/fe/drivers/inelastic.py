@@ -100,15 +100,15 @@ iterations: an overshooting predictor pushes a node deep into the stiff
 penalty and would inflate it), or, if larger, up to twice that of the last
 accepted step.
 
-Other step control: a step is rejected and retried with half the time
-step (counted in ``step_cuts``, with the error rejections) when Newton does
-not converge (or gives non-finite values), or when the step is too coarse
-for the output: the interference changed by more than
-``max_interference_step`` times the largest interference, or the
-equivalent inelastic strain changed somewhere by more than
-``max_inelastic_step`` (a safety bound; the error control decides).  Slow
-Newton convergence shrinks the next time step.  A step that would cross a
-knot of the history ends on it.
+Other step control (the steps are marched by `march.march`): a step is
+rejected and retried with half the time step (counted in ``step_cuts``, with
+the error rejections) when Newton does not converge (or gives non-finite
+values), or when the step is too coarse for the output: the interference
+changed by more than ``max_interference_step`` times the largest interference,
+or the equivalent inelastic strain changed somewhere by more than
+``max_inelastic_step`` (a safety bound; the error control decides). Slow
+Newton convergence shrinks the next time step. A step that would cross a knot
+of the history ends on it.
 
 Points with negligible flow (`InelasticModel.point_time_steps`): a
 rate-dependent material flows at every stressed point, but the exponential
@@ -162,14 +162,15 @@ from asperity.fe.contact.penalty import (EDGE_FROM_PRESSURES, PENALTY_FACTOR, C1
 from asperity.fe.errors import ContactZoneError, RuptureError, StepFailed
 from asperity.fe.discretization.kinematics import KINEMATICS, SmallStrain, kinematics_for
 from asperity.fe.materials.elastic import LinearElastic, equivalent_strain, von_mises
-from asperity.fe.solvers.nonlinear import (Pace, Problem, ResidualSearch, StepCuts,
-                                           check_local_update, next_time, strain_limited)
+from asperity.fe.solvers.nonlinear import (Pace, Problem, ResidualSearch, check_local_update,
+                                           strain_limited)
 from asperity.fe.outputs import INELASTIC_THRESHOLD, SMALL_STRAIN_LIMIT, dataset
 from asperity.io.run_report import StepProgress
 
 from asperity.fe.presets import resolve
 from asperity.fe.drivers.remesh import EDGE_BAND, ContactMeshes, Transfer, edge_band
 from asperity.fe.drivers.elastic import adapted_model, check_levels, run_attrs
+from asperity.fe.drivers.march import Accepted, Marching, Trial, march
 
 log = logging.getLogger(__name__)
 
@@ -848,253 +849,35 @@ def solve_asperity_history(geometry, material, history: History, accuracy="stand
     check_levels(geometry, [w_max])
     if not hasattr(material, "update"):
         raise TypeError("material must have initial_state/update (an inelastic material)")
-
-    # --- mesh: adapted once to the elastic solutions at mesh_levels (with the
-    # band of ``edge_size``), or (preset key ``remesh``) rebuilt as the contact moves
-    if mesh_levels is None:
-        mesh_levels = np.geomspace(MESH_RANGE * w_max, w_max, MESH_LEVELS)
-    mesh_levels = check_levels(geometry, mesh_levels)
-    rg = float(geometry.intersection_radius(np.array([w_max]))[0])
-    r_cand = INELASTIC_CANDIDATE_FACTOR * rg
     if tolerance is None and rate_dependent and math.isfinite(time_tolerance):
         tolerance = max(preset["tolerance"], NEWTON_FRACTION * time_tolerance)
-    remesh = bool(preset["remesh"])
-    # the band of the one mesh; with remesh on the meshes follow the contact edge
-    edge_size = None if remesh else preset["edge_size"]
-    if edge_size is not None:
-        if not 0 < float(edge_size) < 1:
-            raise ValueError(f"accuracy key edge_size must be None or between 0 and 1 "
-                             f"(times the intersection radius), got {edge_size!r}")
-    remesh_times = sorted(float(x) for x in np.atleast_1d(remesh_times))
-    meshes = ContactMeshes(geometry, elastic_part(material), preset, factor, INELASTIC_THRESHOLD)
-    if remesh:
-        # the elastic contact radius at the smallest mesh level
-        a_first = float(geometry.intersection_radius(mesh_levels.min())) / math.sqrt(2.0)
-        disc = meshes.build(a_first)
-    else:
-        emodel, _ = adapted_model(geometry, elastic_part(material), mesh_levels, preset,
-                                  "penalty", factor)
-        r_cand = max(r_cand, emodel.r_candidate)
-        disc = emodel.disc
-        if edge_size is not None:  # the band the plastic edge sweeps
-            disc = Discretization(edge_band(emodel.mesh, geometry, w_max, float(edge_size)))
-    model = InelasticModel(disc, geometry, material, preset, r_cand, factor, tolerance,
-                           kinematics)
+    mesh = _first_mesh(geometry, material, preset, factor, w_max, mesh_levels)
+    model = InelasticModel(mesh.disc, geometry, material, preset, mesh.r_candidate, factor,
+                           tolerance, kinematics)
     t_mesh = time.perf_counter() - t_start
-    if remesh:
-        strategy = "rebuilt around the contact edge and the plastic zone as they move (remesh)"
-    else:
-        strategy = (f"fixed, adapted once to the elastic solutions at {mesh_levels.size} "
-                    f"interferences from {mesh_levels.min():.6g} to {mesh_levels.max():.6g} m")
-        if edge_size is not None:
-            strategy += (f", then refined along the surface where the plastic contact edge "
-                         f"goes ({EDGE_BAND[0]:g} to {EDGE_BAND[1]:g} times the intersection "
-                         f"radius at the largest interference, to {float(edge_size):g} of it)")
 
-    # --- time stepping ---------------------------------------------------------
-    t_end = history.end
+    # --- time stepping: `march` with the steps of `_HistoryMarch`
     dw_max = max_interference_step * w_max
     slopes = np.abs(np.diff(knots_w)) / np.diff(np.asarray(history.times, float))
-    vmax = float(slopes.max()) if slopes.max() > 0 else w_max / t_end
+    vmax = float(slopes.max()) if slopes.max() > 0 else w_max / history.end
     dt = initial_time_step if initial_time_step is not None else 0.25 * dw_max / vmax
-    dt_cap = math.inf if max_time_step is None else float(max_time_step)
     if not dt > 0:
         raise ValueError("initial_time_step must be positive")
-    interior_knots = np.asarray(history.times, float)[1:-1]
-
-    t = float(history.times[0])
-    w = float(history(t))
-    # a progress line every ~5 s of a run past ~5 s (the job's log; logging only)
-    ticker, t_first = StepProgress(log, "asperity history: "), t
-    state = material.initial_state(model.shape)
-    u = np.zeros(model.disc.ndofs)
-    u_prev, t_prev = None, None
-    rows = []
-    # rates of the controlled variables at the end of the last two steps (the
-    # body starts at rest), the state one step back and that step's length
-    r_n = {k: np.zeros_like(v) for k, v in _rates(material, state, state, 1.0).items()}
-    r_prev, state_prev, h_prev = None, None, math.nan
-    f_ref = 0.0  # contact force norm of the last accepted step
-
-    def append(rec, **extra):
-        rec.update(extra)
-        rows.append(rec)
-
-    # initial state (assumed stress free, w <= 0 or first touch)
-    _, out0 = model.evaluate(u, w, state, 0.0, tangent=False)
-    append(model.record(u, w, out0), time=t, branch=history.branch(t), newton_iterations=0,
-           step_cuts=0, time_step=0.0, integration_order=0, time_error=0.0, wall_time=0.0,
-           dofs=model.dofs)
-    residual = math.nan
-    f_max = 0.0
-    n = 0
-    error_rejections = 0
-    rupture = None
-    stop_reason = ""
-    factorizations = 0  # of the models replaced by remeshing
-    redo = False  # the step is being re-solved on a new mesh
-    carried = 0  # Newton iterations of a step solved on the mesh it left
-    remeshed_steps = []
-    while t < t_end * (1 - 1e-12) and n < max_steps:
-        n += 1
-        step_start = time.perf_counter()
-        cuts = StepCuts(n, max_cuts)
-        iterations, carried = carried, 0
-        branch = history.branch(t)
-        # BDF2 from the second step on, restarted with backward Euler after a
-        # knot of the history (where the loading rate jumps)
-        at_knot = bool(np.any(np.abs(interior_knots - t) <= 1e-12 * t_end))
-        order = 2 if (integration == "bdf2" and rate_dependent and state_prev is not None
-                      and not at_knot) else 1
-        while True:
-            t_new = next_time(t, min(dt, dt_cap), history.next_knot(t))
-            h = t_new - t
-            w_new = float(history(t_new))
-            reason = None
-            shrink = 0.5
-            if abs(w_new - w) > dw_max * (1 + 1e-9):
-                reason = "interference step too large"
-            else:
-                # predictor: extrapolate the last increment on the same branch
-                u0 = u.copy()
-                if u_prev is not None and rows[-1]["branch"] == branch and t - t_prev > 0:
-                    u0 += (h / (t - t_prev)) * (u - u_prev)
-                if order == 2:
-                    a, b, c, _ = bdf2_coefficients(h / h_prev)
-                    start, h_m = bdf2_start(state, state_prev, a, b), c * h
-                else:
-                    start, h_m = state, h
-                try:
-                    u_new, out, its, to_pace = model.solve_step(u0, w_new, start, h_m, f_ref)
-                    iterations += its
-                    # what the step control reads: the tries before in full, this one
-                    # to PACE_TOLERANCE
-                    paced = iterations - its + to_pace
-                    new = out["state"]
-                    if order == 2 and hasattr(new, "time"):
-                        new.time = state.time + h
-                    eps_step = float(np.max(equivalent_strain(
-                        new.inelastic_strain - state.inelastic_strain)))
-                    r_new = _rates(material, start, new, h_m)
-                    if rate_dependent:
-                        err = error_indicator(
-                            model, local_errors(order, h, h_prev, r_new, r_n, r_prev), out)
-                    else:
-                        err = math.nan
-                    if eps_step > max_inelastic_step:
-                        reason = "inelastic strain step too large"
-                    elif err > REJECT * time_tolerance:
-                        reason = f"time error {err:.3g} above the tolerance {time_tolerance:g}"
-                        shrink = max(MIN_FACTOR,
-                                     SAFETY * (time_tolerance / err) ** (1.0 / (order + 1)))
-                        error_rejections += 1
-                except StepFailed as exc:
-                    iterations += exc.iterations
-                    reason = str(exc)
-            if reason is None:
-                rec = model.record(u_new, w_new, out)
-                if rec["overflow"]:
-                    if not model.grow_zone():
-                        raise ContactZoneError("the contact reached the outer edge of the top surface "
-                                               f"at step {n} (interference {w_new:.6g} m)")
-                    continue  # same step on the larger zone (not a cut)
-                f_zero = ZERO_FORCE * f_max
-                if (branch == "unloading" and rec["force"] <= f_zero
-                        and rows[-1]["force"] > f_zero and math.isnan(residual)
-                        and abs(w_new - w) > event_tolerance * w_max):
-                    dt = 0.5 * h  # locate the zero force crossing: not a cut
-                    continue
-                break
-            cuts.cut()
-            if cuts.exhausted:
-                detail = reason
-                if rupture is not None:
-                    detail += (f" ({rows[-1]['ruptured_points']} points ruptured since step "
-                               f"{rupture['step']})")
-                raise cuts.error(w_new, w, detail)
-            dt = shrink * h
-        # remesh: a new mesh around the contact and the plastic zone of the
-        # step, the state at its start transferred, the step re-solved on it
-        forced = bool(remesh_times) and t_new >= remesh_times[0] * (1 - 1e-12)
-        why = "" if redo or not (remesh or forced) else (
-            "forced" if forced else meshes.due(rec["contact_radius"], model.disc, new))
-        redo = False
-        if why:
-            if forced:
-                remesh_times.pop(0)
-            new_disc = meshes.build(max(rec["contact_radius"], 1e-3 * rg), model.disc, new)
-            move = Transfer(model.disc, new_disc)
-            factorizations += model.factorizations
-            r_cand = max(r_cand, model.r_candidate)
-            model = InelasticModel(new_disc, geometry, material, preset, r_cand, factor,
-                                   tolerance, kinematics)
-            u = move.displacement(u)
-            u_prev = None if u_prev is None else move.displacement(u_prev)
-            state = move.state(state)
-            r_n = move.fields(r_n)
-            state_prev, r_prev = None, None  # restart with backward Euler
-            _, out_t = model.evaluate(u, w, state, 0.0, tangent=False)
-            f_ref = float(np.linalg.norm(model.zone.nodal(out_t["traction"])))
-            remeshed_steps.append(n)
-            n -= 1
-            dt = h
-            redo = True
-            carried = iterations
-            continue
-        # accept
-        u_prev, t_prev = u, t
-        state_prev, h_prev = state, h
-        r_prev, r_n = r_n, r_new
-        u, t, w, state = u_new, t_new, w_new, new
-        f_ref = float(np.linalg.norm(model.zone.nodal(out["traction"])))
-        append(rec, time=t, branch=branch, newton_iterations=iterations, step_cuts=cuts.count,
-               time_step=h, integration_order=order, time_error=err,
-               wall_time=time.perf_counter() - step_start, dofs=model.dofs)
-        ticker.update(n, (t - t_first) / (t_end - t_first),
-                      f"t = {t:.4g} of {t_end:.4g} s ({branch}), interference {w:.4g} m, "
-                      f"force {rec['force']:.4g} N", iterations)
-        if progress is not None:
-            progress(f"step {n} ({branch}): t = {t:.6g} of {t_end:.6g} s, w = {w:.6g} m, force "
-                     f"{rec['force']:.6g} N, {iterations} Newton iterations, {cuts.count} cuts, "
-                     f"{rows[-1]['wall_time']:.3g} s")
-        # next time step: the error controller, limited by Newton and the caps
-        if math.isnan(err) or err <= 0:
-            fac = MAX_GROWTH
-        else:
-            fac = min(MAX_GROWTH, max(MIN_FACTOR,
-                                      SAFETY * (time_tolerance / err) ** (1.0 / (order + 1))))
-        dt = PACE.factor(paced, cuts.count, fac) * h
-        v = history.velocity(t)
-        if v > 0:
-            dt = min(dt, dw_max / v)
-        dt = strain_limited(dt, h, eps_step, max_inelastic_step)
-        f_zero = ZERO_FORCE * f_max
-        f_max = max(f_max, rec["force"])
-        if rec["ruptured_points"] and rupture is None:
-            rt = getattr(state, "rupture_time", None)
-            mask = np.asarray(state.ruptured).ravel()
-            first = (int(np.argmin(np.where(mask, np.asarray(rt).ravel(), np.inf)))
-                     if rt is not None else int(np.argmax(mask)))
-            pos = model.point_position(first)
-            t_r = float(np.asarray(rt).ravel()[first]) if rt is not None else t
-            rupture = dict(step=n, time=t_r if math.isfinite(t_r) else t, interference=w,
-                           position=pos[0], depth=pos[1])
-            if on_rupture == "raise":
-                raise RuptureError(n, w, rupture["time"], pos, rec["ruptured_points"])
-            if on_rupture == "stop":
-                stop_reason = (f"material ruptured at step {n} (interference {w:.6g} m): "
-                               f"{rec['ruptured_points']} point(s), the first at "
-                               f"r = {pos[0]:.6g} m, {pos[1]:.6g} m below the surface")
-                break
-        if branch == "unloading" and rec["force"] <= f_zero and rows[-2]["force"] > f_zero \
-                and math.isnan(residual):
-            residual = _zero_force_crossing(rows)  # the first crossing only
-            if stop_at_zero_force:
-                break
+    run = _HistoryMarch(
+        model, mesh.meshes, history, r_candidate=mesh.r_candidate, tolerance=tolerance,
+        kinematics=kinematics, integration=integration, dw_max=dw_max,
+        dt_cap=math.inf if max_time_step is None else float(max_time_step),
+        max_inelastic_step=max_inelastic_step, max_cuts=max_cuts,
+        time_tolerance=time_tolerance, event_tolerance=event_tolerance, w_max=w_max,
+        stop_at_zero_force=stop_at_zero_force, on_rupture=on_rupture,
+        remesh=mesh.remesh, remesh_times=remesh_times, rg=mesh.rg, progress=progress)
+    march(run, dt, max_steps)
+    model, rows, t, residual = run.model, run.rows, run.t, run.residual
 
     total = time.perf_counter() - t_start
     k = len(rows)
-    done = bool(t >= t_end * (1 - 1e-12) or not math.isnan(residual))
+    done = bool(t >= history.end * (1 - 1e-12) or not math.isnan(residual))
+    stop_reason = run.stop_reason
     if not done and not stop_reason:
         stop_reason = f"max_steps ({max_steps}) reached at time {t:.6g} s"
     rec = {}
@@ -1106,14 +889,15 @@ def solve_asperity_history(geometry, material, history: History, accuracy="stand
         else:
             rec[name] = np.array([r[name] for r in rows])
     errors = rec["time_error"][1:]
+    rupture = run.rupture
     extra = dict(
         history_times=np.asarray(history.times, float),
         history_interferences=knots_w,
         steps=k - 1,
         total_step_cuts=int(sum(r["step_cuts"] for r in rows)),
-        total_factorizations=int(factorizations + model.factorizations),
-        remeshes=len(remeshed_steps),
-        remeshed_steps=np.asarray(remeshed_steps, dtype=np.int64),
+        total_factorizations=int(run.factorizations + model.factorizations),
+        remeshes=len(run.remeshed_steps),
+        remeshed_steps=np.asarray(run.remeshed_steps, dtype=np.int64),
         residual_interference=float(residual),
         residual_interference_method="linear extrapolation to zero of the force of the last two "
                                      "unloading steps with force > 0, within the crossing step "
@@ -1122,7 +906,7 @@ def solve_asperity_history(geometry, material, history: History, accuracy="stand
                      else "backward Euler (rate-independent material)"),
         time_tolerance=time_tolerance,
         max_time_error=float(np.nanmax(errors)) if np.any(np.isfinite(errors)) else math.nan,
-        time_error_rejections=int(error_rejections),
+        time_error_rejections=int(run.error_rejections),
         time_error_method="local truncation error of backward Euler (against the trapezoidal "
                           "rule) or BDF2 from the flow rates at the step ends (report 3.36): "
                           "nodal forces of the stress error over the contact forces; damage "
@@ -1140,6 +924,295 @@ def solve_asperity_history(geometry, material, history: History, accuracy="stand
                      rupture_interference=rupture["interference"],
                      rupture_position=rupture["position"], rupture_depth=rupture["depth"])
     ds = dataset(rec, geometry, material, accuracy, preset, "time step index", {
-        **run_attrs("penalty", factor, strategy, EDGE_FROM_PRESSURES), **extra})
-    return xr.merge([ds, mesh_fields(model.disc, u, state)], combine_attrs="override") \
+        **run_attrs("penalty", factor, mesh.strategy, EDGE_FROM_PRESSURES), **extra})
+    return xr.merge([ds, mesh_fields(model.disc, run.u, run.state)], combine_attrs="override") \
         if end_fields else ds
+
+
+@dataclass
+class _FirstMesh:
+    """The mesh a history starts on (`_first_mesh`)."""
+
+    disc: Discretization
+    meshes: ContactMeshes
+    r_candidate: float
+    rg: float
+    remesh: bool
+    strategy: str
+
+
+def _first_mesh(geometry, material, preset: dict, factor: float, w_max: float,
+                mesh_levels) -> _FirstMesh:
+    """The first mesh of a history to the largest interference `w_max`: adapted once to
+    the elastic solutions at `mesh_levels` (with the band of the preset's ``edge_size``),
+    or, with the preset's ``remesh``, the one for the elastic contact at the smallest
+    level, rebuilt as the contact moves (`solve_asperity_history`)."""
+    if mesh_levels is None:
+        mesh_levels = np.geomspace(MESH_RANGE * w_max, w_max, MESH_LEVELS)
+    mesh_levels = check_levels(geometry, mesh_levels)
+    rg = float(geometry.intersection_radius(np.array([w_max]))[0])
+    r_cand = INELASTIC_CANDIDATE_FACTOR * rg
+    remesh = bool(preset["remesh"])
+    # the band of the one mesh; with remesh on the meshes follow the contact edge
+    edge_size = None if remesh else preset["edge_size"]
+    if edge_size is not None:
+        if not 0 < float(edge_size) < 1:
+            raise ValueError(f"accuracy key edge_size must be None or between 0 and 1 "
+                             f"(times the intersection radius), got {edge_size!r}")
+    meshes = ContactMeshes(geometry, elastic_part(material), preset, factor, INELASTIC_THRESHOLD)
+    if remesh:
+        # the elastic contact radius at the smallest mesh level
+        a_first = float(geometry.intersection_radius(mesh_levels.min())) / math.sqrt(2.0)
+        disc = meshes.build(a_first)
+    else:
+        emodel, _ = adapted_model(geometry, elastic_part(material), mesh_levels, preset,
+                                  "penalty", factor)
+        r_cand = max(r_cand, emodel.r_candidate)
+        disc = emodel.disc
+        if edge_size is not None:  # the band the plastic edge sweeps
+            disc = Discretization(edge_band(emodel.mesh, geometry, w_max, float(edge_size)))
+    if remesh:
+        strategy = "rebuilt around the contact edge and the plastic zone as they move (remesh)"
+    else:
+        strategy = (f"fixed, adapted once to the elastic solutions at {mesh_levels.size} "
+                    f"interferences from {mesh_levels.min():.6g} to {mesh_levels.max():.6g} m")
+        if edge_size is not None:
+            strategy += (f", then refined along the surface where the plastic contact edge "
+                         f"goes ({EDGE_BAND[0]:g} to {EDGE_BAND[1]:g} times the intersection "
+                         f"radius at the largest interference, to {float(edge_size):g} of it)")
+    return _FirstMesh(disc, meshes, r_cand, rg, remesh, strategy)
+
+
+class _HistoryMarch(Marching):
+    """The steps of `solve_asperity_history` for `march`: a try solves the step's
+    equilibrium with BDF2 or backward Euler and checks its interference and inelastic
+    strain steps and time error; an accepted step may first be re-solved on a new mesh
+    (``remesh``), then is recorded, checked for rupture and the zero-force crossing of
+    unloading, and sets the next time step (module docstring)."""
+
+    def __init__(self, model: InelasticModel, meshes: ContactMeshes, history: History, *,
+                 r_candidate, tolerance, kinematics, integration, dw_max, dt_cap,
+                 max_inelastic_step, max_cuts, time_tolerance, event_tolerance, w_max,
+                 stop_at_zero_force, on_rupture, remesh, remesh_times, rg, progress):
+        self.model, self.meshes, self.history = model, meshes, history
+        # what a new mesh's model is made with (`_remeshed`)
+        self.r_cand, self.tolerance, self.kinematics = r_candidate, tolerance, kinematics
+        self.material = model.material
+        self.rate_dependent = hasattr(self.material, "rates")
+        self.integration, self.dw_max, self.dt_cap = integration, dw_max, dt_cap
+        self.max_inelastic_step, self.max_cuts = max_inelastic_step, max_cuts
+        self.time_tolerance, self.event_tolerance = time_tolerance, event_tolerance
+        self.w_max, self.stop_at_zero_force, self.on_rupture = w_max, stop_at_zero_force, on_rupture
+        self.remesh, self.rg, self.progress = remesh, rg, progress
+        self.remesh_times = sorted(float(x) for x in np.atleast_1d(remesh_times))
+        self.end = history.end
+        self.interior_knots = np.asarray(history.times, float)[1:-1]
+        self.t = float(history.times[0])
+        self.w = float(history(self.t))
+        # a progress line every ~5 s of a run past ~5 s (the job's log; logging only)
+        self.ticker, self.t_first = StepProgress(log, "asperity history: "), self.t
+        self.state = self.material.initial_state(model.shape)
+        self.u = np.zeros(model.disc.ndofs)
+        self.u_prev, self.t_prev = None, None
+        self.rows = []
+        # rates of the controlled variables at the end of the last two steps (the
+        # body starts at rest), the state one step back and that step's length
+        self.r_n = {k: np.zeros_like(v)
+                    for k, v in _rates(self.material, self.state, self.state, 1.0).items()}
+        self.r_prev, self.state_prev, self.h_prev = None, None, math.nan
+        self.f_ref = 0.0  # contact force norm of the last accepted step
+        # initial state (assumed stress free, w <= 0 or first touch)
+        _, out0 = model.evaluate(self.u, self.w, self.state, 0.0, tangent=False)
+        self.rows.append(dict(
+            model.record(self.u, self.w, out0), time=self.t, branch=history.branch(self.t),
+            newton_iterations=0, step_cuts=0, time_step=0.0, integration_order=0,
+            time_error=0.0, wall_time=0.0, dofs=model.dofs))
+        self.residual = math.nan
+        self.f_max = 0.0
+        self.error_rejections = 0
+        self.rupture = None
+        self.stop_reason = ""
+        self.factorizations = 0  # of the models replaced by remeshing
+        self.redo = False  # the step is being re-solved on a new mesh
+        self.carried = 0  # Newton iterations of a step solved on the mesh it left
+        self.remeshed_steps = []
+
+    def begin(self, n, dt):
+        self.step_start = time.perf_counter()
+        self.iterations, self.carried = self.carried, 0
+        t = self.t
+        self.branch = self.history.branch(t)
+        # BDF2 from the second step on, restarted with backward Euler after a
+        # knot of the history (where the loading rate jumps)
+        at_knot = bool(np.any(np.abs(self.interior_knots - t) <= 1e-12 * self.end))
+        self.order = 2 if (self.integration == "bdf2" and self.rate_dependent
+                           and self.state_prev is not None and not at_knot) else 1
+        return self.dt_cap, self.history.next_knot(t)
+
+    def attempt(self, n, t_new, cuts):
+        model, t, w, u, state = self.model, self.t, self.w, self.u, self.state
+        h = t_new - t
+        w_new = float(self.history(t_new))
+        data = dict(h=h, w_new=w_new)
+        if abs(w_new - w) > self.dw_max * (1 + 1e-9):
+            return Trial(t_new, "interference step too large", data=data)
+        reason, shrink = None, 0.5
+        # predictor: extrapolate the last increment on the same branch
+        u0 = u.copy()
+        if self.u_prev is not None and self.rows[-1]["branch"] == self.branch \
+                and t - self.t_prev > 0:
+            u0 += (h / (t - self.t_prev)) * (u - self.u_prev)
+        order = self.order
+        if order == 2:
+            a, b, c, _ = bdf2_coefficients(h / self.h_prev)
+            start, h_m = bdf2_start(state, self.state_prev, a, b), c * h
+        else:
+            start, h_m = state, h
+        try:
+            u_new, out, its, to_pace = model.solve_step(u0, w_new, start, h_m, self.f_ref)
+        except StepFailed as exc:
+            self.iterations += exc.iterations
+            return Trial(t_new, str(exc), data=data)
+        self.iterations += its
+        # what the step control reads: the tries before in full, this one to PACE_TOLERANCE
+        paced = self.iterations - its + to_pace
+        new = out["state"]
+        if order == 2 and hasattr(new, "time"):
+            new.time = state.time + h
+        eps_step = float(np.max(equivalent_strain(new.inelastic_strain - state.inelastic_strain)))
+        r_new = _rates(self.material, start, new, h_m)
+        if self.rate_dependent:
+            err = error_indicator(
+                model, local_errors(order, h, self.h_prev, r_new, self.r_n, self.r_prev), out)
+        else:
+            err = math.nan
+        tol = self.time_tolerance
+        if eps_step > self.max_inelastic_step:
+            reason = "inelastic strain step too large"
+        elif err > REJECT * tol:
+            reason = f"time error {err:.3g} above the tolerance {tol:g}"
+            shrink = max(MIN_FACTOR, SAFETY * (tol / err) ** (1.0 / (order + 1)))
+            self.error_rejections += 1
+        if reason is not None:
+            return Trial(t_new, reason, shrink, data=data)
+        rec = model.record(u_new, w_new, out)
+        if rec["overflow"]:
+            if not model.grow_zone():
+                raise ContactZoneError("the contact reached the outer edge of the top surface "
+                                       f"at step {n} (interference {w_new:.6g} m)")
+            return Trial(t_new, again=True)  # same step on the larger zone (not a cut)
+        f_zero = ZERO_FORCE * self.f_max
+        if (self.branch == "unloading" and rec["force"] <= f_zero
+                and self.rows[-1]["force"] > f_zero and math.isnan(self.residual)
+                and abs(w_new - w) > self.event_tolerance * self.w_max):
+            # locate the zero force crossing: not a cut
+            return Trial(t_new, again=True, dt=0.5 * h)
+        data.update(u_new=u_new, out=out, new=new, rec=rec, r_new=r_new, err=err,
+                    eps_step=eps_step, paced=paced)
+        return Trial(t_new, data=data)
+
+    def failure(self, cuts, trial):
+        detail = trial.reason
+        if self.rupture is not None:
+            detail += (f" ({self.rows[-1]['ruptured_points']} points ruptured since step "
+                       f"{self.rupture['step']})")
+        return cuts.error(trial.data["w_new"], self.w, detail)
+
+    def _remeshed(self, n, trial) -> bool:
+        """A new mesh around the contact and the plastic zone of the step, the state at
+        its start transferred, the step to be re-solved on it; whether it was built."""
+        d = trial.data
+        rec, new = d["rec"], d["new"]
+        forced = bool(self.remesh_times) and trial.t_new >= self.remesh_times[0] * (1 - 1e-12)
+        why = "" if self.redo or not (self.remesh or forced) else (
+            "forced" if forced else self.meshes.due(rec["contact_radius"], self.model.disc, new))
+        self.redo = False
+        if not why:
+            return False
+        if forced:
+            self.remesh_times.pop(0)
+        model = self.model
+        new_disc = self.meshes.build(max(rec["contact_radius"], 1e-3 * self.rg), model.disc, new)
+        move = Transfer(model.disc, new_disc)
+        self.factorizations += model.factorizations
+        self.r_cand = max(self.r_cand, model.r_candidate)
+        self.model = InelasticModel(new_disc, model.geometry, self.material, model.preset,
+                                    self.r_cand, model.penalty_factor, self.tolerance,
+                                    self.kinematics)
+        self.u = move.displacement(self.u)
+        self.u_prev = None if self.u_prev is None else move.displacement(self.u_prev)
+        self.state = move.state(self.state)
+        self.r_n = move.fields(self.r_n)
+        self.state_prev, self.r_prev = None, None  # restart with backward Euler
+        _, out_t = self.model.evaluate(self.u, self.w, self.state, 0.0, tangent=False)
+        self.f_ref = float(np.linalg.norm(self.model.zone.nodal(out_t["traction"])))
+        self.remeshed_steps.append(n)
+        self.redo = True
+        self.carried = self.iterations
+        return True
+
+    def accept(self, n, trial, cuts):
+        d = trial.data
+        h = d["h"]
+        if self._remeshed(n, trial):
+            return Accepted(h, redo=True)
+        rec, err, order = d["rec"], d["err"], self.order
+        self.u_prev, self.t_prev = self.u, self.t
+        self.state_prev, self.h_prev = self.state, h
+        self.r_prev, self.r_n = self.r_n, d["r_new"]
+        self.u, self.t, self.w, self.state = d["u_new"], trial.t_new, d["w_new"], d["new"]
+        t, w, branch, iterations = self.t, self.w, self.branch, self.iterations
+        self.f_ref = float(np.linalg.norm(self.model.zone.nodal(d["out"]["traction"])))
+        self.rows.append(dict(
+            rec, time=t, branch=branch, newton_iterations=iterations, step_cuts=cuts.count,
+            time_step=h, integration_order=order, time_error=err,
+            wall_time=time.perf_counter() - self.step_start, dofs=self.model.dofs))
+        t_end = self.end
+        self.ticker.update(n, (t - self.t_first) / (t_end - self.t_first),
+                           f"t = {t:.4g} of {t_end:.4g} s ({branch}), interference {w:.4g} m, "
+                           f"force {rec['force']:.4g} N", iterations)
+        if self.progress is not None:
+            self.progress(f"step {n} ({branch}): t = {t:.6g} of {t_end:.6g} s, w = {w:.6g} m, "
+                          f"force {rec['force']:.6g} N, {iterations} Newton iterations, "
+                          f"{cuts.count} cuts, {self.rows[-1]['wall_time']:.3g} s")
+        # next time step: the error controller, limited by Newton and the caps
+        tol = self.time_tolerance
+        if math.isnan(err) or err <= 0:
+            fac = MAX_GROWTH
+        else:
+            fac = min(MAX_GROWTH, max(MIN_FACTOR, SAFETY * (tol / err) ** (1.0 / (order + 1))))
+        dt = PACE.factor(d["paced"], cuts.count, fac) * h
+        v = self.history.velocity(t)
+        if v > 0:
+            dt = min(dt, self.dw_max / v)
+        dt = strain_limited(dt, h, d["eps_step"], self.max_inelastic_step)
+        f_zero = ZERO_FORCE * self.f_max
+        self.f_max = max(self.f_max, rec["force"])
+        if rec["ruptured_points"] and self.rupture is None and self._ruptured(n, rec):
+            return Accepted(dt, stop=True)
+        if branch == "unloading" and rec["force"] <= f_zero and self.rows[-2]["force"] > f_zero \
+                and math.isnan(self.residual):
+            self.residual = _zero_force_crossing(self.rows)  # the first crossing only
+            if self.stop_at_zero_force:
+                return Accepted(dt, stop=True)
+        return Accepted(dt)
+
+    def _ruptured(self, n, rec) -> bool:
+        """Record the first rupture (step `n`); raise or say to stop, by ``on_rupture``."""
+        state, t, w = self.state, self.t, self.w
+        rt = getattr(state, "rupture_time", None)
+        mask = np.asarray(state.ruptured).ravel()
+        first = (int(np.argmin(np.where(mask, np.asarray(rt).ravel(), np.inf)))
+                 if rt is not None else int(np.argmax(mask)))
+        pos = self.model.point_position(first)
+        t_r = float(np.asarray(rt).ravel()[first]) if rt is not None else t
+        self.rupture = dict(step=n, time=t_r if math.isfinite(t_r) else t, interference=w,
+                            position=pos[0], depth=pos[1])
+        if self.on_rupture == "raise":
+            raise RuptureError(n, w, self.rupture["time"], pos, rec["ruptured_points"])
+        if self.on_rupture == "stop":
+            self.stop_reason = (f"material ruptured at step {n} (interference {w:.6g} m): "
+                                f"{rec['ruptured_points']} point(s), the first at "
+                                f"r = {pos[0]:.6g} m, {pos[1]:.6g} m below the surface")
+            return True
+        return False

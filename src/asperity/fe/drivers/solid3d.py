@@ -109,8 +109,8 @@ V^T diag(w alpha) V of the node operators, and solved with SuperLU; a
 factorization is reused as the preconditioner of GMRES for the next
 iterations and steps while that converges in a few iterations.
 
-Time stepping (`solve_sliding`): the flat's motion is piecewise linear in
-time (`FlatMotion`); steps never cross a time of the step grid
+Time stepping (`solve_sliding`, marched by `march.march`): the flat's
+motion is piecewise linear in time (`FlatMotion`); steps never cross a time of the step grid
 (`step_grid`: each segment divided into the preset's steps for it, so runs
 of presets with the same steps share those times); a step is cut in half when
 Newton fails, gives non-finite values or the local update fails, or when
@@ -160,12 +160,13 @@ from asperity.fe.discretization.assembly import OrderedLU
 from asperity.fe.contact.penalty import SMOOTHING, C1Penalty
 from asperity.fe.errors import ContactZoneError, StepFailed
 from asperity.fe.materials.elastic import METRIC6, equivalent_strain, von_mises
-from asperity.fe.solvers.nonlinear import (Pace, Problem, ResidualSearch, StepCuts,
-                                           check_local_update, next_time, strain_limited)
+from asperity.fe.solvers.nonlinear import (Pace, Problem, ResidualSearch, check_local_update,
+                                           strain_limited)
 from asperity.fe.outputs import INELASTIC_THRESHOLD, VARIABLES, dataset, describe
 from asperity.fe.presets import resolve
 from asperity.fe.contact.sliding import FrictionLaw, ShearResistance, contact_tangent, drag_anchor
 from asperity.io.run_report import StepProgress
+from asperity.fe.drivers.march import Accepted, Marching, Trial, march
 
 log = logging.getLogger(__name__)
 
@@ -1311,163 +1312,20 @@ def solve_sliding(geometry, material, motion: FlatMotion, friction: FrictionLaw,
     say(f"mesh: {hm.reference.t.shape[1]} tetrahedra, {model.ndofs} dofs "
         f"({len(model.free)} free), {model.cfacets.size} contact facets, {t_mesh:.2f} s")
 
-    # --- time stepping --------------------------------------------------------------------------
-    times = np.asarray(motion.times, float)
-    caps = step_caps(motion, preset)
-    grid = step_grid(motion, preset)
-    max_inel = float(preset["max_inelastic_step"])
-    max_cuts = int(preset["max_cuts"])
-    if snapshots is None:
-        snapshots = {}
-        for i in range(len(times) - 1):
-            if motion.phase(times[i]) == "normal" and (i + 1 == len(times) - 1 or
-                                                       motion.phase(times[i + 1]) != "normal"):
-                snapshots["end of pressing"] = float(times[i + 1])
-        snapshots["end"] = float(times[-1])
-    snap_times = {k: float(v) for k, v in snapshots.items()}
-    snap = {}
-
-    t = motion.start
-    w, delta = motion(t)
-    state = sm.material.initial_state(model.shape, components=6)
-    iface = sm.initial_interface(delta)
-    u = np.zeros(model.ndofs)
-    rows = []
-    _, out0 = sm.evaluate(u, w, delta, state, iface, 0.0, tangent=True)
-    out_last = out0
-    f_ref = 0.0  # contact force norm of the last accepted step
-    rows.append(dict(sm.record(u, w, delta, out0), critical_shear_factor=math.nan,
-                     time=t, phase=motion.phase(t),
-                     newton_iterations=0, step_cuts=0, damped_solves=0, time_step=0.0,
-                     wall_time=0.0))
-    for k, ts in snap_times.items():
-        if ts <= t:
-            snap[k] = (t, _snapshot(model, u, state, out0["contact"]["tn"] if contact_section
-                                    else None), {})
-    dt = caps[motion.segment(t)] / 2.0
-    # a progress line every ~5 s of a run past ~5 s (the job's log; logging only)
-    ticker = StepProgress(log, "sliding: ")
-    n = 0
-    critical, warned = [], False       # critical_factor at the starts of sliding and after
-    slow, stop_reason = 0, ""          # steps in a row below stall_fraction of their cap
-    while t < motion.end * (1 - 1e-12) and n < max_steps:
-        n += 1
-        step_start = time.perf_counter()
-        cuts, iterations = StepCuts(n, max_cuts), 0
-        phase = motion.phase(t)
-        cap = caps[motion.segment(t)]
-        proposed = min(dt, cap)
-        knot = float(grid[np.searchsorted(grid, t + 1e-12 * max(abs(t), 1.0), side="right")])
-        while True:
-            t_new = next_time(t, min(dt, cap), knot)
-            h = t_new - t
-            w_new, d_new = motion(t_new)
-            reason = None
-            u0 = sm.predict(u, out_last, w_new - w, d_new - delta)
-            damped = 0
-            try:
-                try:
-                    u_new, out, its = sm.solve_step(u0, w_new, d_new, state, iface, h, f_ref)
-                except StepFailed as exc:
-                    if not (phase == "sliding" and h < stall_fraction * cap):
-                        raise
-                    # a sliding step cut to where its steps would stall: through the
-                    # slip instability
-                    iterations += exc.iterations
-                    u_new, out, its, damped = sm.solve_through_slip(u, w_new, d_new, state,
-                                                                   iface, h, f_ref)
-                iterations += its
-                step_inel = float(np.max(equivalent_strain(
-                    out["state"].inelastic_strain - state.inelastic_strain)))
-                if step_inel > max_inel:
-                    reason = f"inelastic strain step {step_inel:.3g} > {max_inel:g}"
-            except StepFailed as exc:
-                iterations += exc.iterations
-                reason = str(exc)
-            if reason is None:
-                rec = sm.record(u_new, w_new, d_new, out)
-                rec["critical_shear_factor"] = math.nan
-                if phase == "sliding":
-                    rec["critical_shear_factor"] = sm.critical_factor(
-                        u_new, w_new, d_new, out, _direction(motion, d_knots, t))
-                if rec["overflow"]:
-                    raise ContactZoneError(
-                        f"step {n} (t = {t_new:.6g} s): the contact reached the edge of the "
-                        f"candidate zone (radius {model.contact_radius:.4g} m); give a larger "
-                        f"contact_radius")
-                break
-            cuts.cut()
-            if cuts.exhausted:
-                raise cuts.error(w_new, w, f"t = {t_new:.6g} s, delta = {d_new:.6g} m: {reason}")
-            dt = 0.5 * h
-            say(f"step {n}: cut to dt = {dt:.4g} s ({reason})")
-        iface = sm.commit(out, iface)
-        f_ref = float(np.linalg.norm(out["contact"]["fc"]))
-        u, t, w, delta, state = u_new, t_new, w_new, d_new, out["state"]
-        # the converged state with the dragged anchors, for the next predictor
-        _, out_last = sm.evaluate(u, w, delta, state, iface, h)
-        rows.append(dict(rec, time=t, phase=phase, newton_iterations=iterations,
-                         step_cuts=cuts.count, damped_solves=damped, time_step=h,
-                         wall_time=time.perf_counter() - step_start))
-        for k, ts in snap_times.items():
-            if k not in snap and t >= ts * (1 - 1e-12):
-                a_max = max(r["contact_area"] for r in rows)
-                a_ref = math.sqrt(a_max / math.pi) if a_max > 0 else model.contact_radius / 2.5
-                snap[k] = (t, _snapshot(model, u, state, out["contact"]["tn"] if contact_section
-                                        else None),
-                           _largest_deformation(model, u, w, state, a_ref))
-        ticker.update(n, (t - motion.start) / (motion.end - motion.start),
-                      f"t = {t:.4g} of {motion.end:.4g} s ({phase}), approach {w:.4g} m, "
-                      f"slide {delta:.4g} m", iterations)
-        s_c = rec["critical_shear_factor"]
-        say(f"step {n}: t = {t:.6g} of {motion.end:.6g} s, w = {w:.4g} m, delta = {delta:.4g} m, "
-            f"F_N = {rec['normal_force']:.4g} N, F_T = {rec['tangential_force']:.4g} N, "
-            f"A = {rec['contact_area']:.4g} m^2, "
-            f"{iterations} Newton iterations, {cuts.count} cuts"
-            + (f", through the slip in {damped} damped solves" if damped else "")
-            + ("" if math.isnan(s_c) else f", critical: {_critical_text(s_c, friction)}"))
-        if phase != "sliding" and motion.phase(t) == "sliding" and t < motion.end * (1 - 1e-12):
-            s_c = sm.critical_factor(u, w, delta, out, _direction(motion, d_knots, t))
-            say(f"start of sliding at t = {t:.6g} s: the sliding junction's tangent "
-                + (f"turns singular at {_critical_text(s_c, friction)}" if math.isfinite(s_c)
-                   else f"stays regular up to {CRITICAL_FACTOR_BOUND:g} times the shear "
-                   "resistance"))
-        if not math.isnan(s_c):
-            critical.append(s_c)
-            if s_c < 1.0 and not warned:
-                warned = True
-                log.warning("t = %.6g s: the sliding junction's tangent turns singular at %s, "
-                            "below the shear resistance of the scene: the sliding problem of "
-                            "this mesh is not unique near this state (Hassani et al. 2003); "
-                            "expect step cuts, stalls and forces that depend on the mesh",
-                            t, _critical_text(s_c, friction))
-        # a step that ended on a time of the grid before its try's length grows from
-        # that length, not from the rest of the way to the grid time
-        reached = h if cuts.count else max(h, proposed)
-        dt = strain_limited(PACE.factor(iterations, cuts.count) * reached, h, step_inel,
-                            max_inel)
-        slow = slow + 1 if reached < stall_fraction * cap else 0
-        if slow >= stall_steps and t < motion.end * (1 - 1e-12):  # not on the last step
-            pace = (t - rows[-stall_steps - 1]["time"]) / stall_steps
-            stop_reason = (
-                f"stalled at step {n} (t = {t:.6g} s, delta = {delta:.4g} m): the last "
-                f"{stall_steps} steps advanced {pace:.3g} s each on average, under "
-                f"{stall_fraction:g} of the step cap {cap:.4g} s; the remaining "
-                f"{motion.end - t:.6g} s would take about {(motion.end - t) / pace:.3g} more "
-                "steps" + (f"; smallest critical factor {_critical_text(min(critical), friction)}"
-                           if critical else "")
-                + ("; past it the sliding problem is not unique: a lower shear resistance, "
-                   "or a constant shear strength (asperity_sliding_junction), slides"
-                   if critical and min(critical) < 1.0 else ""))
-            log.warning("%s", stop_reason)
-            say(f"stopped: {stop_reason}")
-            break
+    # --- time stepping: `march` with the steps of `_SlidingMarch`
+    run = _SlidingMarch(sm, motion, friction, preset, stall_steps=stall_steps,
+                        stall_fraction=stall_fraction, snapshots=snapshots,
+                        contact_section=contact_section, say=say)
+    march(run, run.caps[motion.segment(run.t)] / 2.0, max_steps)
+    rows, t, u, w, state = run.rows, run.t, run.u, run.w, run.state
+    stop_reason, critical = run.stop_reason, run.critical
 
     completed = t >= motion.end * (1 - 1e-12)
     if not stop_reason and not completed:
         stop_reason = f"max_steps ({max_steps}) reached at t = {t:.6g} s"
-    if "end" in snap_times and "end" not in snap:  # a run stopped early: its last state
-        snap["end"] = (t, _snapshot(model, u, state, out_last["contact"]["tn"]
+    snap = run.snap
+    if "end" in run.snap_times and "end" not in snap:  # a run stopped early: its last state
+        snap["end"] = (t, _snapshot(model, u, state, run.out_last["contact"]["tn"]
                                     if contact_section else None), {})
     total = time.perf_counter() - t_start
     head = dataset({name: np.array([r[name] for r in rows]) for name in OUTPUTS}, geometry,
@@ -1495,6 +1353,203 @@ def solve_sliding(geometry, material, motion: FlatMotion, friction: FrictionLaw,
         factorizations=int(sm.linear.factorizations), krylov_solves=int(sm.linear.krylov_solves),
         completed=int(completed), stop_reason=stop_reason,
         mesh_wall_time=t_mesh, total_wall_time=total))
+
+
+def _default_snapshots(motion: FlatMotion) -> dict:
+    """The end of pressing and the end of `motion`: {name: time}."""
+    times = np.asarray(motion.times, float)
+    snapshots = {}
+    for i in range(len(times) - 1):
+        if motion.phase(times[i]) == "normal" and (i + 1 == len(times) - 1 or
+                                                   motion.phase(times[i + 1]) != "normal"):
+            snapshots["end of pressing"] = float(times[i + 1])
+    snapshots["end"] = float(times[-1])
+    return snapshots
+
+
+class _SlidingMarch(Marching):
+    """The steps of `solve_sliding` for `march`: a try solves the step (through the
+    slip instability once sliding steps are cut to where they would stall) and checks
+    its inelastic strain step; an accepted step drags the anchors of the sticking
+    points, is recorded with the critical factor of the sliding junction, takes the
+    snapshots due and sets the next time step; the run stops when the steps stall."""
+
+    def __init__(self, sm: SlidingModel, motion: FlatMotion, friction: FrictionLaw,
+                 preset: dict, *, stall_steps, stall_fraction, snapshots, contact_section, say):
+        self.sm, self.model, self.motion, self.friction = sm, sm.m, motion, friction
+        self.stall_steps, self.stall_fraction = stall_steps, stall_fraction
+        self.contact_section, self.say = contact_section, say
+        self.d_knots = np.asarray(motion.tangential, float)
+        self.caps = step_caps(motion, preset)
+        self.grid = step_grid(motion, preset)
+        self.max_inel = float(preset["max_inelastic_step"])
+        self.max_cuts = int(preset["max_cuts"])
+        if snapshots is None:
+            snapshots = _default_snapshots(motion)
+        self.snap_times = {k: float(v) for k, v in snapshots.items()}
+        self.snap = {}
+        self.end = motion.end
+        self.t = t = motion.start
+        self.w, self.delta = motion(t)
+        self.state = sm.material.initial_state(self.model.shape, components=6)
+        self.iface = sm.initial_interface(self.delta)
+        self.u = np.zeros(self.model.ndofs)
+        _, out0 = sm.evaluate(self.u, self.w, self.delta, self.state, self.iface, 0.0,
+                              tangent=True)
+        self.out_last = out0
+        self.f_ref = 0.0  # contact force norm of the last accepted step
+        self.rows = [dict(sm.record(self.u, self.w, self.delta, out0),
+                          critical_shear_factor=math.nan, time=t, phase=motion.phase(t),
+                          newton_iterations=0, step_cuts=0, damped_solves=0, time_step=0.0,
+                          wall_time=0.0)]
+        for k, ts in self.snap_times.items():
+            if ts <= t:
+                self.snap[k] = (t, _snapshot(self.model, self.u, self.state,
+                                             out0["contact"]["tn"] if contact_section
+                                             else None), {})
+        # a progress line every ~5 s of a run past ~5 s (the job's log; logging only)
+        self.ticker = StepProgress(log, "sliding: ")
+        self.critical, self.warned = [], False  # critical_factor at the starts of sliding and after
+        self.slow, self.stop_reason = 0, ""     # steps in a row below stall_fraction of their cap
+
+    def begin(self, n, dt):
+        t = self.t
+        self.step_start = time.perf_counter()
+        self.iterations = 0
+        self.phase = self.motion.phase(t)
+        self.cap = self.caps[self.motion.segment(t)]
+        self.proposed = min(dt, self.cap)
+        grid = self.grid
+        knot = float(grid[np.searchsorted(grid, t + 1e-12 * max(abs(t), 1.0), side="right")])
+        return self.cap, knot
+
+    def attempt(self, n, t_new, cuts):
+        sm, state, iface = self.sm, self.state, self.iface
+        h = t_new - self.t
+        w_new, d_new = self.motion(t_new)
+        data = dict(h=h, w_new=w_new, d_new=d_new)
+        u0 = sm.predict(self.u, self.out_last, w_new - self.w, d_new - self.delta)
+        damped = 0
+        try:
+            try:
+                u_new, out, its = sm.solve_step(u0, w_new, d_new, state, iface, h, self.f_ref)
+            except StepFailed as exc:
+                if not (self.phase == "sliding" and h < self.stall_fraction * self.cap):
+                    raise
+                # a sliding step cut to where its steps would stall: through the
+                # slip instability
+                self.iterations += exc.iterations
+                u_new, out, its, damped = sm.solve_through_slip(self.u, w_new, d_new, state,
+                                                                iface, h, self.f_ref)
+            self.iterations += its
+            step_inel = float(np.max(equivalent_strain(
+                out["state"].inelastic_strain - state.inelastic_strain)))
+            if step_inel > self.max_inel:
+                return Trial(t_new, f"inelastic strain step {step_inel:.3g} > {self.max_inel:g}",
+                             data=data)
+        except StepFailed as exc:
+            self.iterations += exc.iterations
+            return Trial(t_new, str(exc), data=data)
+        rec = sm.record(u_new, w_new, d_new, out)
+        rec["critical_shear_factor"] = math.nan
+        if self.phase == "sliding":
+            rec["critical_shear_factor"] = sm.critical_factor(
+                u_new, w_new, d_new, out, _direction(self.motion, self.d_knots, self.t))
+        if rec["overflow"]:
+            raise ContactZoneError(
+                f"step {n} (t = {t_new:.6g} s): the contact reached the edge of the "
+                f"candidate zone (radius {self.model.contact_radius:.4g} m); give a larger "
+                f"contact_radius")
+        data.update(u_new=u_new, out=out, rec=rec, damped=damped, step_inel=step_inel)
+        return Trial(t_new, data=data)
+
+    def failure(self, cuts, trial):
+        d = trial.data
+        return cuts.error(d["w_new"], self.w,
+                          f"t = {trial.t_new:.6g} s, delta = {d['d_new']:.6g} m: {trial.reason}")
+
+    def cut(self, n, dt, trial):
+        self.say(f"step {n}: cut to dt = {dt:.4g} s ({trial.reason})")
+
+    def accept(self, n, trial, cuts):
+        d = trial.data
+        sm, model, motion, friction = self.sm, self.model, self.motion, self.friction
+        h, out, rec, damped, iterations = d["h"], d["out"], d["rec"], d["damped"], self.iterations
+        self.iface = sm.commit(out, self.iface)
+        self.f_ref = float(np.linalg.norm(out["contact"]["fc"]))
+        self.u, self.t, self.w, self.delta, self.state = (d["u_new"], trial.t_new, d["w_new"],
+                                                          d["d_new"], out["state"])
+        u, t, w, delta, state, phase = self.u, self.t, self.w, self.delta, self.state, self.phase
+        # the converged state with the dragged anchors, for the next predictor
+        _, self.out_last = sm.evaluate(u, w, delta, state, self.iface, h)
+        rows = self.rows
+        rows.append(dict(rec, time=t, phase=phase, newton_iterations=iterations,
+                         step_cuts=cuts.count, damped_solves=damped, time_step=h,
+                         wall_time=time.perf_counter() - self.step_start))
+        for k, ts in self.snap_times.items():
+            if k not in self.snap and t >= ts * (1 - 1e-12):
+                a_max = max(r["contact_area"] for r in rows)
+                a_ref = math.sqrt(a_max / math.pi) if a_max > 0 else model.contact_radius / 2.5
+                self.snap[k] = (t, _snapshot(model, u, state, out["contact"]["tn"]
+                                             if self.contact_section else None),
+                                _largest_deformation(model, u, w, state, a_ref))
+        self.ticker.update(n, (t - motion.start) / (motion.end - motion.start),
+                           f"t = {t:.4g} of {motion.end:.4g} s ({phase}), approach {w:.4g} m, "
+                           f"slide {delta:.4g} m", iterations)
+        s_c = rec["critical_shear_factor"]
+        self.say(f"step {n}: t = {t:.6g} of {motion.end:.6g} s, w = {w:.4g} m, "
+                 f"delta = {delta:.4g} m, F_N = {rec['normal_force']:.4g} N, "
+                 f"F_T = {rec['tangential_force']:.4g} N, A = {rec['contact_area']:.4g} m^2, "
+                 f"{iterations} Newton iterations, {cuts.count} cuts"
+                 + (f", through the slip in {damped} damped solves" if damped else "")
+                 + ("" if math.isnan(s_c) else f", critical: {_critical_text(s_c, friction)}"))
+        if phase != "sliding" and motion.phase(t) == "sliding" and t < motion.end * (1 - 1e-12):
+            s_c = sm.critical_factor(u, w, delta, out, _direction(motion, self.d_knots, t))
+            self.say(f"start of sliding at t = {t:.6g} s: the sliding junction's tangent "
+                     + (f"turns singular at {_critical_text(s_c, friction)}"
+                        if math.isfinite(s_c) else
+                        f"stays regular up to {CRITICAL_FACTOR_BOUND:g} times the shear "
+                        "resistance"))
+        if not math.isnan(s_c):
+            self._critical(t, s_c)
+        # a step that ended on a time of the grid before its try's length grows from
+        # that length, not from the rest of the way to the grid time
+        reached = h if cuts.count else max(h, self.proposed)
+        dt = strain_limited(PACE.factor(iterations, cuts.count) * reached, h, d["step_inel"],
+                            self.max_inel)
+        self.slow = self.slow + 1 if reached < self.stall_fraction * self.cap else 0
+        stall = self.stall_steps
+        if self.slow >= stall and t < motion.end * (1 - 1e-12):  # not on the last step
+            self._stalled(n, (t - rows[-stall - 1]["time"]) / stall)
+            return Accepted(dt, stop=True)
+        return Accepted(dt)
+
+    def _critical(self, t, s_c):
+        """Keep the critical factor `s_c` of time `t`; warn the first time it is below 1."""
+        self.critical.append(s_c)
+        if s_c < 1.0 and not self.warned:
+            self.warned = True
+            log.warning("t = %.6g s: the sliding junction's tangent turns singular at %s, "
+                        "below the shear resistance of the scene: the sliding problem of "
+                        "this mesh is not unique near this state (Hassani et al. 2003); "
+                        "expect step cuts, stalls and forces that depend on the mesh",
+                        t, _critical_text(s_c, self.friction))
+
+    def _stalled(self, n, pace):
+        """Say why the run stops at step `n`, its last steps `pace` s long on average."""
+        t, critical, friction, stall = self.t, self.critical, self.friction, self.stall_steps
+        self.stop_reason = (
+            f"stalled at step {n} (t = {t:.6g} s, delta = {self.delta:.4g} m): the last "
+            f"{stall} steps advanced {pace:.3g} s each on average, under "
+            f"{self.stall_fraction:g} of the step cap {self.cap:.4g} s; the remaining "
+            f"{self.motion.end - t:.6g} s would take about {(self.motion.end - t) / pace:.3g} "
+            "more steps" + (f"; smallest critical factor {_critical_text(min(critical), friction)}"
+                            if critical else "")
+            + ("; past it the sliding problem is not unique: a lower shear resistance, "
+               "or a constant shear strength (asperity_sliding_junction), slides"
+               if critical and min(critical) < 1.0 else ""))
+        log.warning("%s", self.stop_reason)
+        self.say(f"stopped: {self.stop_reason}")
 
 
 def press_3d(geometry, material, approach, accuracy="standard", mesh: MeshSpec | None = None,
