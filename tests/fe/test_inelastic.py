@@ -290,7 +290,7 @@ def test_plane_strain_ridge_elastic_round_trip():
 @pytest.fixture(scope="module")
 def plastic_point():
     """A model and a trial field with yielding points and contact."""
-    from asperity.fe.drivers.inelastic import InelasticModel, elastic_part
+    from asperity.fe.drivers.inelastic_model import InelasticModel, elastic_part
     from asperity.fe.presets import resolve
     from asperity.fe.drivers.elastic import adapted_model
 

@@ -16,8 +16,8 @@ import pytest
 
 from asperity.fe import CosineHill, Paraboloid
 from asperity.fe.materials.bodner_partom import BodnerPartom
-from asperity.fe.drivers.inelastic import (History, bdf2_coefficients, local_errors,
-                                   solve_asperity_history)
+from asperity.fe.drivers.inelastic import History, solve_asperity_history
+from asperity.fe.solvers.time_error import bdf2_coefficients, local_errors
 from asperity.fe.materials.j2 import J2Plasticity
 from asperity.fe.presets import ACCURACY
 
