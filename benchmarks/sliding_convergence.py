@@ -7,7 +7,7 @@ per preset (one BLAS thread, `nice`), and compares:
 * the normal and tangential force histories of each preset with the next finer one,
   over the pressing phase (0 < t <= 1800 s) and the sliding phase (t > 1800 s): for
   presets with the same steps (as `standard` and `fine`: every run's steps land on the
-  times of `solid3d.step_grid`, the same for both) at the step times both runs reached,
+  times of `flat_motion.step_grid`, the same for both) at the step times both runs reached,
   else the finer history interpolated linearly in time onto the coarser one's step
   times (``compared_at``); the largest difference divided by the largest force of the finer
   run in that phase ("largest relative difference"); also the difference of the phase
@@ -160,9 +160,9 @@ def patch_diagnostics(tn, tx, vw, x, facets, fw, stress, dv, before=None) -> dic
 
 def _hook_diagnostics(path: Path):
     """Write `patch_diagnostics` of every recorded step to `path` (one JSON a line)."""
-    import asperity.fe.drivers.solid3d as s3
+    from asperity.fe.drivers.sliding_model import SlidingModel
 
-    record = s3.SlidingModel.record
+    record = SlidingModel.record
     sink = open(path, "w")
     last = {}
 
@@ -179,7 +179,7 @@ def _hook_diagnostics(path: Path):
         sink.flush()
         return rec
 
-    s3.SlidingModel.record = recorded
+    SlidingModel.record = recorded
 
 
 class _Reached(Exception):
@@ -549,7 +549,8 @@ def stalls(names, out: Path, law: dict | None, study: bool) -> list:
     than `solid3d.STALL_FRACTION` of their segment's step cap (STALL_STEPS of them stop a
     run), the step where it ended, and how the run ended (finished, reached its --until,
     or stopped: by hand, --timeout or a stall)."""
-    from asperity.fe.drivers.solid3d import STALL_FRACTION, step_caps
+    from asperity.fe.drivers.flat_motion import step_caps
+    from asperity.fe.drivers.solid3d import STALL_FRACTION
 
     sc = scene()
     rows = []

@@ -141,7 +141,7 @@ def test_inelastic_history_progress(monkeypatch, caplog):
 def test_sliding_progress(monkeypatch, caplog):
     from asperity.fe import (FlatMotion, FrictionLaw, LinearElastic, Paraboloid,
                              ShearResistance, solve_sliding)
-    from asperity.fe.drivers.solid3d import MeshSpec
+    from asperity.fe.discretization.half_model_mesh import MeshSpec
 
     a = math.sqrt(0.005)
     spec = MeshSpec(half_width=8 * a, depth=8 * a, coarse_size=8 * a / 3, tip_size=a,

@@ -20,7 +20,8 @@ from asperity.fe import LinearElastic
 from asperity.fe.discretization.geometry import EllipticParaboloid, Paraboloid
 from asperity.fe.materials.j2 import J2Plasticity
 from asperity.fe.presets import resolve
-from asperity.fe.drivers.solid3d import MeshSpec, build_mesh, press_3d
+from asperity.fe.discretization.half_model_mesh import MeshSpec, build_mesh
+from asperity.fe.drivers.solid3d import press_3d
 from asperity.references.hertz import elliptic_hertz
 
 E_, NU = 1000.0, 0.3

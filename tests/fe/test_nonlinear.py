@@ -39,7 +39,7 @@ points to their vertices (weighted gaps and slips, P1 tractions; 07f898e), the
 two sliding cases were re-recorded on that commit: a different discretization
 of the contact, so different forces; 32 iterations instead of 38, and with 3
 iterations allowed 11 cuts and 105 iterations instead of 24 and 205.  When the
-sliding steps came to land on a grid of times (`solid3d.step_grid`, e9ae880), the two
+sliding steps came to land on a grid of times (`flat_motion.step_grid`, e9ae880), the two
 sliding cases were re-recorded on that commit: other steps, so other forces; 33
 iterations instead of 32 (the steps on the grid: 1/6 to 5/6 instead of 5/24 to 7/8),
 and with 3 iterations allowed 10 cuts and 100 iterations in 40 steps instead of 11,
@@ -113,7 +113,7 @@ def _bodner_partom_plane_strain():
 
 
 def _sliding(accuracy="draft"):
-    from asperity.fe.drivers.solid3d import MeshSpec
+    from asperity.fe.discretization.half_model_mesh import MeshSpec
 
     a = math.sqrt(0.005)
     spec = MeshSpec(half_width=8 * a, depth=8 * a, coarse_size=8 * a / 3, tip_size=a,
@@ -331,7 +331,9 @@ def test_the_line_searches_rescue_a_diverging_newton():
 def test_the_sliding_trace_sees_every_iteration():
     """The monitor hook: the 3-D solver's trace has one entry per iteration,
     the last one converged."""
-    from asperity.fe.drivers.solid3d import HalfModel, MeshSpec, SlidingModel, build_mesh
+    from asperity.fe.discretization.half_model import HalfModel
+    from asperity.fe.discretization.half_model_mesh import MeshSpec, build_mesh
+    from asperity.fe.drivers.sliding_model import SlidingModel
 
     a = math.sqrt(0.005)
     spec = MeshSpec(half_width=8 * a, depth=8 * a, coarse_size=8 * a / 3, tip_size=a,

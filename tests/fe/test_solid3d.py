@@ -17,9 +17,11 @@ from asperity.fe.presets import resolve
 from asperity.fe.discretization.geometry import CosineHill, Paraboloid
 from asperity.fe.materials.elastic import equivalent_strain, von_mises
 from asperity.fe.contact.sliding import FrictionLaw, ShearResistance
-from asperity.fe.drivers.solid3d import (DEVELOPED_SLIP, SLIP_DAMPING, STALL_FRACTION, FlatMotion,
-                                 HalfModel, MeshSpec, SlidingModel, build_mesh, solve_prescribed,
-                                 solve_sliding, step_grid)
+from asperity.fe.discretization.half_model import HalfModel
+from asperity.fe.discretization.half_model_mesh import MeshSpec, build_mesh
+from asperity.fe.drivers.flat_motion import FlatMotion, step_grid
+from asperity.fe.drivers.sliding_model import DEVELOPED_SLIP, SLIP_DAMPING, SlidingModel
+from asperity.fe.drivers.solid3d import STALL_FRACTION, solve_prescribed, solve_sliding
 from asperity.references.hertz import hertz_response
 
 MPA = 1e6
@@ -127,7 +129,7 @@ def test_contact_nodes_are_the_facets_p2_nodes_with_hats_on_their_sub_triangles(
     integrates a vertex's hat to 1/24 and a midpoint's to 1/8, a third of their
     sub-triangles (1e-14); the weighted heights vz0 lie within the body's range on the
     facets."""
-    from asperity.fe.drivers.solid3d import _subtriangle_hats, _subtriangle_rule
+    from asperity.fe.discretization.half_model import _subtriangle_hats, _subtriangle_rule
 
     m = hill_model
     f = m.hm.reference.facets[:, m.cfacets]
@@ -554,7 +556,7 @@ def test_a_stalled_run_stops_and_keeps_its_steps(caplog):
     left: 22 steps."""
     mot = FlatMotion.press_and_slide(0.05e-6, 0.1e-6, (0.0, 100.0), (100.0, 200.0))
     law = FrictionLaw(ShearResistance.coulomb(0.3), 1e-8)
-    with caplog.at_level("WARNING", logger="asperity.fe.drivers.solid3d"):
+    with caplog.at_level("WARNING", logger="asperity.fe.drivers.sliding_march"):
         ds = solve_sliding(HILL, BodnerPartom.sae_1020(), mot, law, accuracy="draft",
                            stall_steps=2, stall_fraction=0.999)
     ref = solve_sliding(HILL, BodnerPartom.sae_1020(), mot, law, accuracy="draft", max_steps=2)
@@ -586,7 +588,7 @@ def test_viscoplastic_asperity_press_and_slide(caplog):
     coefficient of the junction (`critical_factor` < 1): recorded and warned."""
     mot = FlatMotion.press_and_slide(0.05e-6, 0.1e-6, (0.0, 720.0), (720.0, 940.0))
     law = FrictionLaw(ShearResistance.coulomb(20.0), 1e-8)
-    with caplog.at_level("WARNING", logger="asperity.fe.drivers.solid3d"):
+    with caplog.at_level("WARNING", logger="asperity.fe.drivers.sliding_march"):
         ds = solve_sliding(HILL, BodnerPartom.sae_1020(), mot, law, accuracy="draft")
     assert ds.attrs["completed"] == 1 and ds.attrs["stop_reason"] == ""
     for name in ("normal_force", "tangential_force", "max_inelastic_strain"):

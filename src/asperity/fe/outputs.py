@@ -80,7 +80,7 @@ VARIABLES: dict[str, tuple[str, str]] = {
     "damped_solves": ("1", "3-D sliding: damped solves of a step taken through the slip "
                            "instability, where Newton failed below the stall fraction of "
                            "the step cap (0: plain Newton; "
-                           "solid3d.SlidingModel.solve_through_slip)"),
+                           "sliding_model.SlidingModel.solve_through_slip)"),
     "time_step": ("s", "time step of the accepted step"),
     "integration_order": ("1", "time integration of the step: 1 backward Euler, 2 BDF2 "
                                "(0: initial state)"),

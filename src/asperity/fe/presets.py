@@ -235,7 +235,7 @@ INELASTIC_ACCURACY: dict[str, dict] = {
 #: distance, at most ``coarse_fraction`` x the footprint radius;
 #: ``depth_grading`` None, the finest region is a ball about the apex, a
 #: number, it is a disc on the surface and the edge grows by that per unit
-#: depth (`solid3d.MeshSpec`); time steps per segment of the motion (caps:
+#: depth (`half_model_mesh.MeshSpec`); time steps per segment of the motion (caps:
 #: cuts may add steps); Newton tolerance; the largest change of the
 #: equivalent inelastic strain in a step.
 SLIDING_ACCURACY: dict[str, dict] = {

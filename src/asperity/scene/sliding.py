@@ -78,7 +78,7 @@ class Sliding:
         return build(self.material, () if self.material.model == "elastic" else ("plasticity",))
 
     def motion(self):
-        from asperity.fe.drivers.solid3d import FlatMotion
+        from asperity.fe.drivers.flat_motion import FlatMotion
 
         return FlatMotion.press_and_slide(self.approach, self.slide, self.press_time, self.slide_time)
 
