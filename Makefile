@@ -25,8 +25,10 @@ reproduce: $(STAMP)
 
 # One pytest-xdist worker per core; a test file stays on one worker, so its
 # module fixtures (the workflow runs) are computed once; files are handed out
-# longest first (the order of tests/conftest.py, not xdist's by test count).
-PYTEST := $(BIN)/python -m pytest -q -n $(CORES) --dist loadfile --no-loadscope-reorder
+# longest first (the order of tests/conftest.py, not xdist's by test count). The 25
+# slowest tests are listed at the end (where the suite's time goes).
+PYTEST := $(BIN)/python -m pytest -q -n $(CORES) --dist loadfile --no-loadscope-reorder \
+	--durations=25
 
 # The whole test suite (what CI runs).
 test: $(STAMP)
