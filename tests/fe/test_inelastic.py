@@ -343,7 +343,7 @@ def _j2_sphere_steps(tolerance):
 
 
 def test_a_tighter_newton_tolerance_does_not_shorten_the_steps(monkeypatch):
-    import asperity.fe.drivers.inelastic as inelastic
+    import asperity.fe.drivers.inelastic_model as inelastic_model
 
     loose, tight = _j2_sphere_steps(1e-8), _j2_sphere_steps(1e-10)
     # the tighter tolerance costs iterations ...
@@ -352,5 +352,5 @@ def test_a_tighter_newton_tolerance_does_not_shorten_the_steps(monkeypatch):
     np.testing.assert_array_equal(tight.time_step.values, loose.time_step.values)
     np.testing.assert_allclose(tight.force.values[1:], loose.force.values[1:], rtol=1e-7)
     # counted to its own tolerance (the rule before), the tighter run takes other steps
-    monkeypatch.setattr(inelastic, "PACE_TOLERANCE", 0.0)
+    monkeypatch.setattr(inelastic_model, "PACE_TOLERANCE", 0.0)
     assert _j2_sphere_steps(1e-10).attrs["steps"] != loose.attrs["steps"]

@@ -18,7 +18,8 @@ import pytest
 
 from asperity.fe import ConvergenceError, CosineHill, LinearElastic, Paraboloid, solve_asperity
 from asperity.fe.materials.bodner_partom import BodnerPartom
-from asperity.fe.drivers.inelastic import History, RuptureError, solve_asperity_history
+from asperity.fe.drivers.inelastic import History, solve_asperity_history
+from asperity.fe.errors import RuptureError
 from asperity.fe.materials.j2 import J2Plasticity
 
 from .test_inelastic import _loading, _unloading
