@@ -7,7 +7,7 @@ script measures it (CPU time of this process, `time.process_time`):
    13.6 um at d = 0.3 nm), at `draft` (the scene's preset) and at
    `standard`.  Their specs come from the scene's plan, built by Snakemake
    in a fresh copy of the workflow;
-2. `asperity.fe.drivers.adhesive.smooth_aluminum_curves` (Fig. 7.6: R = 15.4, 30,
+2. `asperity.studies.adhesion.smooth_aluminum_curves` (Fig. 7.6: R = 15.4, 30,
    60 um at d = 0.3 nm), at draft, one radius at a time;
 3. the flat end of report 7.3's range, R = 150 and 300 um at d = 0.3 nm
    (Tabor parameter 10 and 13), pressed to 10 nm, at draft
@@ -73,8 +73,9 @@ from asperity.population import samples  # noqa: E402
 from asperity.fe import ConvergenceError  # noqa: E402
 from asperity.fe import BodnerPartom, LennardJones, LinearElastic, Paraboloid  # noqa: E402
 from asperity.fe.drivers import adhesive  # noqa: E402
+from asperity.fe.solvers.adhesive import AdhesiveNewton  # noqa: E402
 from asperity.population.kinds.adhesive import on_levels  # noqa: E402
-from asperity.fe.drivers.adhesive import smooth_aluminum_curves  # noqa: E402
+from asperity.studies.adhesion import smooth_aluminum_curves  # noqa: E402
 from asperity.references.adhesion import jkr_jump_off, maugis_pull_off  # noqa: E402
 
 SCENE = "smooth_aluminum_adhesion"
@@ -174,21 +175,21 @@ def meshes_row(runs: dict, radius: float = 150e-6, w_max: float = 10e-9) -> dict
     out = {}
     for name, overrides in runs.items():
         sizes = []
-        tangent = adhesive.AdhesiveNewton.tangent
+        tangent = AdhesiveNewton.tangent
 
         def recorded(newton, *args, **kwargs):
             T = tangent(newton, *args, **kwargs)
             sizes.append(T.nodes.size)
             return T
 
-        adhesive.AdhesiveNewton.tangent = recorded
+        AdhesiveNewton.tangent = recorded
         try:
             ds, cpu = timed(lambda: adhesive.solve_asperity_adhesive(
                 Paraboloid(radius), LinearElastic(ALLOY.E, ALLOY.nu),
                 LennardJones(1.0, 0.3e-9), w_max=w_max,
                 accuracy=dict(base="draft", **overrides)))
         finally:
-            adhesive.AdhesiveNewton.tangent = tangent
+            AdhesiveNewton.tangent = tangent
         out[name] = (ds, dict(overrides, cpu_time_s=cpu,
                               active_nodes_median=float(np.median(sizes)),
                               meshes=int(ds.attrs["meshes"]),

@@ -1,6 +1,6 @@
 """What the adhesive step test sees in contact at a large Tabor parameter.
 
-`asperity.fe.drivers.adhesive.AdhesiveModel.continuity` takes a step whose energy balances
+`asperity.fe.drivers.adhesive_model.AdhesiveModel.continuity` takes a step whose energy balances
 as continuous if the surface stayed within d/2 + 2 |dw| of the tangent predictor,
 or else if the state halfway lies within d/2 + |dw| of the secant
 (`AdhesiveModel.midpoint`). This script runs one adhesive aluminum asperity
@@ -30,6 +30,8 @@ from benchmarks.scenes import _commit  # noqa: E402
 
 from asperity.fe import BodnerPartom, LennardJones, LinearElastic, Paraboloid  # noqa: E402
 from asperity.fe.drivers import adhesive  # noqa: E402
+from asperity.fe.drivers.adhesive_model import AdhesiveModel  # noqa: E402
+from asperity.fe.solvers.adhesive import predictor  # noqa: E402
 
 ALLOY = BodnerPartom.aluminum_6061_t4()  # the aluminum of Fig. 7.6 (report 6.3.1)
 RESULTS = Path(__file__).with_name("results")
@@ -44,27 +46,27 @@ def main(argv: list[str] | None = None) -> int:
     args = ap.parse_args(argv)
 
     rows = []
-    midpoint = adhesive.AdhesiveModel.midpoint
+    midpoint = AdhesiveModel.midpoint
 
     def recorded(self, old, new, pre):
         out = midpoint(self, old, new, pre)
         d = self.adhesion.d
         rows.append(dict(w_over_d=old.w / d, dw_over_d=(new.w - old.w) / d,
                          predictor_over_d=float(np.max(np.abs(
-                             new.u - adhesive._predictor(old, new.w)))) / d,
+                             new.u - predictor(old, new.w)))) / d,
                          secant_over_d=out[2] / d,
                          touching=bool(old.contact_force > 0 and new.contact_force > 0),
                          verdict=out[0]))
         return out
 
-    adhesive.AdhesiveModel.midpoint = recorded
+    AdhesiveModel.midpoint = recorded
     law = LennardJones(1.0, 0.3e-9)
     t0 = time.process_time()
     ds = adhesive.solve_asperity_adhesive(
         Paraboloid(args.radius * 1e-6), LinearElastic(ALLOY.E, ALLOY.nu),
         law, w_max=args.w_max * 1e-9, accuracy=args.accuracy)
     cpu = time.process_time() - t0
-    adhesive.AdhesiveModel.midpoint = midpoint
+    AdhesiveModel.midpoint = midpoint
 
     dw = np.abs([r["dw_over_d"] for r in rows])
     off = np.array([r["predictor_over_d"] for r in rows])

@@ -15,7 +15,8 @@ from scipy.integrate import quad
 
 from asperity.fe import LennardJones, LinearElastic, Paraboloid, solve_asperity_adhesive
 from asperity.fe.contact.adhesion import adhesion_zone, composite_gauss, derjaguin_force
-from asperity.fe.drivers.adhesive import adhesive_model, adhesive_path
+from asperity.fe.drivers.adhesive_model import adhesive_model
+from asperity.fe.drivers.adhesive_trace import adhesive_path
 from asperity.population.kinds.adhesive import interpolate_adhesive
 from asperity.references.adhesion import jkr_jump_off, maugis_pull_off
 
@@ -306,7 +307,8 @@ def test_plane_strain_rigid_cylinder_against_quadrature():
 
 
 def test_smooth_aluminum_curves_stack_radii():
-    from asperity.fe import BodnerPartom, smooth_aluminum_curves
+    from asperity.fe import BodnerPartom
+    from asperity.studies.adhesion import smooth_aluminum_curves
 
     radii = (1e-6, 2e-6)  # small radii keep the test quick (mu = 1.9, 2.4)
     ds = smooth_aluminum_curves(radii=radii, w_max=2e-9, accuracy="draft")
@@ -366,7 +368,7 @@ def test_steps_off_the_predictor_pass_by_the_secant_and_land_on_the_branch(monke
     through a state solved halfway (`AdhesiveModel.midpoint`) instead of being
     bisected.  The states must be those of a path with steps half as long, and the
     jumps the same."""
-    from asperity.fe.drivers.adhesive import AdhesiveModel
+    from asperity.fe.drivers.adhesive_model import AdhesiveModel
 
     verdicts = []
     midpoint = AdhesiveModel.midpoint
@@ -401,19 +403,19 @@ def test_steps_off_the_predictor_pass_by_the_secant_and_land_on_the_branch(monke
 
 def test_retraction_retraces_the_approach_where_it_was_continuous():
     """Retracting, the levels the approach reached without a jump are its states
-    (`adhesive._retrace`: an elastic body's equilibria along a branch do not depend
+    (`adhesive_trace._retrace`: an elastic body's equilibria along a branch do not depend
     on the direction of travel).  Each retraced state must be the one the step
     control reaches when it solves that step from the state before (`_advance`):
     no jump, the same force to the Newton tolerance (1e-6 of the forces at draft)
     and the same surface to 1e-4 d; the level across the jump-in is solved, and
     the contact hangs on there (in contact, where the approach was not)."""
-    from asperity.fe.drivers.adhesive import _advance, _trace
+    from asperity.fe.drivers.adhesive_trace import _advance, trace
     from asperity.fe.presets import resolve
 
     pre = resolve("adhesive", "draft")
     path = adhesive_path(LAW, 12 * D, steps_per_d=pre["steps_per_d"], far_steps=pre["far_steps"])
     model = adhesive_model(Paraboloid(R), material_for(3.0), LAW, float(path.max()), pre)
-    records = _trace(model, path, pre)
+    records = trace(model, path, pre)
     levels = [r for r in records if r.requested]
     top = int(np.argmax(path))
     up, down = levels[:top + 1], levels[top + 1:]
@@ -439,9 +441,9 @@ def test_retraction_retraces_the_approach_where_it_was_continuous():
 
 def _on_same_nodes(a, b):
     """The difference of two states' surfaces on b's nodes."""
-    from asperity.fe.drivers.adhesive import _on_nodes
+    from asperity.fe.solvers.adhesive import on_nodes
 
-    return _on_nodes(a, b.model) - b.u
+    return on_nodes(a, b.model) - b.u
 
 
 def test_meshes_left_behind_drop_their_factors_and_evaluate_the_same():
@@ -452,13 +454,13 @@ def test_meshes_left_behind_drop_their_factors_and_evaluate_the_same():
     made anew, their contact radius and field maxima are the same to 1e-12."""
     from dataclasses import replace
 
-    from asperity.fe.drivers.adhesive import _evaluate, _trace
+    from asperity.fe.drivers.adhesive_trace import evaluate_states, trace
     from asperity.fe.presets import resolve
 
     pre = resolve("adhesive", dict(base="draft", follow_above=0))
     path = adhesive_path(LAW, 12 * D, steps_per_d=pre["steps_per_d"], far_steps=pre["far_steps"])
     model = adhesive_model(Paraboloid(R), material_for(3.0), LAW, float(path.max()), pre)
-    states = [r.state for r in _trace(model, path, pre)]
+    states = [r.state for r in trace(model, path, pre)]
     models = list({id(s.model): s.model for s in states}.values())
     assert len(models) >= 2  # measured: 2
     # at most the current mesh holds factors (none if the path came back to a mesh it
@@ -468,7 +470,7 @@ def test_meshes_left_behind_drop_their_factors_and_evaluate_the_same():
     left = [s for s in states if s.model is not states[-1].model]
     assert all(s.fields is not None for s in left)
     again = [replace(s, fields=None) for s in left]
-    _evaluate(again)
+    evaluate_states(again)
     for s, t in zip(left, again):
         for name, value in s.fields.items():
             assert t.fields[name] == pytest.approx(value, rel=1e-12, abs=0.0), name

@@ -1,6 +1,7 @@
-"""The adhesive path through a fold (`asperity.fe.drivers.adhesive._FoldPath`, module docstring
-"Control and jumps"): where the bisection in w stalls, the branch is followed by its arc
-length to the fold and the jump solved from there.
+"""The adhesive path through a fold (`asperity.fe.solvers.arclength`;
+`asperity.fe.drivers.adhesive_trace`, "Control and jumps"): where the bisection in w
+stalls, the branch is followed by its arc length to the fold and the jump solved from
+there.
 
 Checked by forcing it (the bisection allowed 2 halvings instead of MAX_HALVINGS) on a
 case the bisection alone passes, against that run. The asperity that needed it, R = 150 um
@@ -15,7 +16,9 @@ import numpy as np
 import pytest
 
 from asperity.fe import LennardJones, LinearElastic, Paraboloid, solve_asperity_adhesive
-from asperity.fe.drivers import adhesive
+from asperity.fe.drivers import adhesive_model, adhesive_trace
+from asperity.fe.solvers import arclength
+from asperity.fe.solvers.adhesive import AdhesiveNewton, predictor
 from asperity.references.adhesion import jkr_jump_off
 
 D = 0.3e-9
@@ -50,15 +53,15 @@ def test_forced_fold_path_finds_the_bisections_jumps(monkeypatch, plain):
     must be the same jumps as the bisection's (draft)."""
     mu = MU
     passes = []
-    through = adhesive._through_fold
+    through = arclength.through_fold
 
     def counted(*args):
         out = through(*args)
         passes.append(out)
         return out
 
-    monkeypatch.setattr(adhesive, "MAX_HALVINGS", 2)
-    monkeypatch.setattr(adhesive, "_through_fold", counted)
+    monkeypatch.setattr(adhesive_trace, "MAX_HALVINGS", 2)
+    monkeypatch.setattr(adhesive_trace, "through_fold", counted)
     forced = run()
     # the fold path took over, and jumped at least twice (in and off)
     assert sum(bool(p[2]) for p in passes) >= 2
@@ -86,7 +89,7 @@ def test_forced_fold_path_finds_the_bisections_jumps(monkeypatch, plain):
 
 def test_a_jump_off_the_predictor_misses_lands_from_the_approach(monkeypatch, plain):
     """The jump from the jump-off fold solved from the approach's state out of
-    contact (`adhesive._Landing`) where it fails from the tangent predictor: forced
+    contact (`arclength.Landing`) where it fails from the tangent predictor: forced
     by failing the jump solves from the predictor at every fold the fold path finds
     beyond -7 d (JKR's jump-off is at -8.04 d; the approach jumps in at -3 d), with
     the fold path forced as above. It must land where the predictor lands: the same
@@ -94,8 +97,7 @@ def test_a_jump_off_the_predictor_misses_lands_from_the_approach(monkeypatch, pl
     from asperity.fe.errors import StepFailed
 
     folds, predicted, guesses = [], [], []
-    fold, predictor = adhesive._FoldPath.fold, adhesive._predictor
-    guess, solve = adhesive._Landing.guess, adhesive.AdhesiveNewton.solve
+    fold, guess, solve = arclength.FoldPath.fold, arclength.Landing.guess, AdhesiveNewton.solve
 
     def found(self, state, goal):
         out = fold(self, state, goal)
@@ -119,11 +121,12 @@ def test_a_jump_off_the_predictor_misses_lands_from_the_approach(monkeypatch, pl
             raise StepFailed("forced: the predictor misses", 1)
         return solve(self, w, u0, max_iterations)
 
-    monkeypatch.setattr(adhesive, "MAX_HALVINGS", 2)
-    monkeypatch.setattr(adhesive._FoldPath, "fold", found)
-    monkeypatch.setattr(adhesive, "_predictor", marked)
-    monkeypatch.setattr(adhesive._Landing, "guess", landing)
-    monkeypatch.setattr(adhesive.AdhesiveNewton, "solve", missing)
+    monkeypatch.setattr(adhesive_trace, "MAX_HALVINGS", 2)
+    monkeypatch.setattr(arclength.FoldPath, "fold", found)
+    for caller in (arclength, adhesive_model, adhesive_trace):  # every module using the predictor
+        monkeypatch.setattr(caller, "predictor", marked)
+    monkeypatch.setattr(arclength.Landing, "guess", landing)
+    monkeypatch.setattr(AdhesiveNewton, "solve", missing)
     landed = run()
     assert predicted and guesses and all(guesses)  # forced, and the landing had a state
     assert landed.attrs["jumps"] == plain.attrs["jumps"] == 2
@@ -138,7 +141,7 @@ def test_a_jump_off_the_predictor_misses_lands_from_the_approach(monkeypatch, pl
 
 
 def test_the_landing_guess_is_the_branch_out_of_contact():
-    """`_Landing.guess` on made-up states (two meshes): u = 0 where the undeformed
+    """`Landing.guess` on made-up states (two meshes): u = 0 where the undeformed
     tip is beyond the cut-off, an approach state's own u at its w (interpolated onto
     the nodes asked for), linear in w between two, and None above the last state
     out of contact; states in contact are not used."""
@@ -150,7 +153,7 @@ def test_the_landing_guess_is_the_branch_out_of_contact():
     a = NS(w=-10 * D, u=np.array([2.0, 1.0, 0.0]), contact_force=0.0, model=coarse)
     b = NS(w=-6 * D, u=np.array([4.0, 3.0, 2.0, 1.0, 0.0]), contact_force=0.0, model=fine)
     touching = NS(w=-2 * D, u=np.zeros(5), contact_force=1e-6, model=fine)
-    land = adhesive._Landing([b, touching, a], law)
+    land = arclength.Landing([b, touching, a], law)
     np.testing.assert_array_equal(land.guess(-20 * D, fine), np.zeros(5))
     np.testing.assert_array_equal(land.guess(-15 * D, fine), np.zeros(5))
     np.testing.assert_allclose(land.guess(-10 * D, fine), [2.0, 1.5, 1.0, 0.5, 0.0], rtol=1e-15)

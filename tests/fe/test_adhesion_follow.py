@@ -1,4 +1,4 @@
-"""Meshes that follow the contact (`asperity.fe.drivers.adhesive`, module docstring "Mesh"),
+"""Meshes that follow the contact (`asperity.fe.drivers.adhesive_model`, module docstring "Mesh"),
 meant for the flat asperities of report 7.3 (R up to 300 um at d = 0.3 nm).
 
 The fine band is a window around the cohesive zone, moved (surface displacement
@@ -14,7 +14,7 @@ import numpy as np
 import pytest
 
 from asperity.fe import BodnerPartom, LennardJones, LinearElastic, Paraboloid, solve_asperity_adhesive
-from asperity.fe.drivers import adhesive
+from asperity.fe.drivers import adhesive_model
 from asperity.fe.presets import resolve
 from asperity.population.kinds.adhesive import on_levels
 
@@ -52,7 +52,7 @@ def two_bands():
     zone, as at R >= 150 um with the preset's margins: the bands of each new mesh are
     recorded."""
     bands = []
-    window_for = adhesive.AdhesiveModel.window_for
+    window_for = adhesive_model.AdhesiveModel.window_for
 
     def recorded(model, state):
         out = window_for(model, state)
@@ -61,7 +61,7 @@ def two_bands():
         return out
 
     with pytest.MonkeyPatch.context() as mp:
-        mp.setattr(adhesive.AdhesiveModel, "window_for", recorded)
+        mp.setattr(adhesive_model.AdhesiveModel, "window_for", recorded)
         ds = solve_asperity_adhesive(Paraboloid(15.4e-6), MAT, LAW, w_max=W_MAX,
                                      accuracy=dict(FOLLOWING, follow_margin_elements=6.0))
     return ds, bands
@@ -88,7 +88,7 @@ def test_contact_edge_band_agrees_with_the_whole_band(pair, two_bands):
     split = [b for b in bands if len(b) == 2]
     assert len(split) >= 5
     for (lo, hi, h), (lo_e, hi_e, h_e) in split:  # the edge's band inside the ring's
-        assert h_e == adhesive.EDGE_COARSENING * h and hi_e < lo
+        assert h_e == adhesive_model.EDGE_COARSENING * h and hi_e < lo
     _agree(fixed, ds)
     for af, a2 in on_levels(fixed, ds, "contact_radius", 0.1 * D):
         ok = np.isfinite(af) & (af > 0)
@@ -126,7 +126,7 @@ def test_mesh_change_in_the_middle_of_a_jump_in(pair):
     re-solved there.  It must land on the branch the fixed mesh jumps to: the
     same force, contact radius and tip at the flat, and at the same interference to
     the resolution with which a path locates a jump, ``min_step * d`` of the preset
-    (the bisection in w stops there, adhesive module docstring)."""
+    (the bisection in w stops there, `adhesive_trace` module docstring)."""
     R, fixed, moving = pair
     (kf,) = _main_jumps(fixed)[0]
     (km,) = _main_jumps(moving)[0]

@@ -12,7 +12,7 @@ round-off of a history (1e-9 relative; a stiffness, a difference quotient of
 forces, 1e-5), which differs between processors' BLAS kernels.
 
 One deliberate change since: the adhesive path retries a steep position once
-before bisecting (`adhesive._advance`), so the adhesive case's iteration
+before bisecting (`adhesive_trace._advance`), so the adhesive case's iteration
 counts were re-recorded after it (297 instead of 279 in all, one path level
 73 instead of 63); its states, cuts, forces and areas are the recorded ones
 of 8ed8f79 unchanged. Likewise when a step off its predictor became
@@ -21,7 +21,7 @@ continuous by the secant through a state solved halfway
 iterations, two levels changed (65 instead of 73, 71 instead of 65), its
 states, cuts, forces and areas those of 8ed8f79 to the last digit. And when
 the retraction took the approach's states over the levels the approach
-reached continuously (`adhesive._retrace`), re-recorded on 368e012: 265
+reached continuously (`adhesive_trace._retrace`), re-recorded on 368e012: 265
 iterations (seven retraction levels with none instead of 3-5), the same
 cuts and positions; those levels' forces and areas are the approach's,
 within 2.7e-7 of the largest force of the states solved before (the

@@ -40,7 +40,7 @@ variables of every driver's Dataset), `analytic` (Hertz), `errors`
 """
 
 from asperity.fe.contact.adhesion import LennardJones
-from asperity.fe.drivers.adhesive import smooth_aluminum_curves, solve_asperity_adhesive
+from asperity.fe.drivers.adhesive import solve_asperity_adhesive
 from asperity.fe.materials.bodner_partom import BodnerPartom
 from asperity.fe.errors import ContactZoneError, ConvergenceError, RuptureError, StepFailed
 from asperity.fe.discretization.geometry import (CosineHill, Cylinder, EllipticParaboloid,
@@ -78,7 +78,6 @@ __all__ = [
     "hertz",
     "penalty_error",
     "press_3d",
-    "smooth_aluminum_curves",
     "solve_asperity",
     "solve_asperity_adhesive",
     "solve_asperity_history",

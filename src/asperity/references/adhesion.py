@@ -2,8 +2,8 @@
 Maugis-Dugdale pull-off (report 3.4.1; Johnson, Kendall and Roberts, Proc. R. Soc.
 Lond. A 324 (1971) 301; Maugis, J. Colloid Interface Sci. 150 (1992) 243).
 
-They size the adhesive finite element model's mesh (`asperity.fe.drivers.adhesive`) and are
-what its jump-off and pull-off are checked against.
+They size the adhesive finite element model's mesh (`asperity.fe.drivers.adhesive_model`) and
+are what its jump-off and pull-off are checked against.
 """
 
 from __future__ import annotations

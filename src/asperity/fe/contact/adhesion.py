@@ -63,7 +63,7 @@ of separation, so it is integrated with its own rule: every facet of the
 candidate zone gets a composite Gauss rule (`composite_gauss`:
 `subdivisions` equal parts of `gauss_points` points, default 2 x 5 = the
 report's 10 points per direction), while the penalty keeps its nodal rule.
-With the adhesive mesh graded to the ring (`asperity.fe.drivers.adhesive`) the
+With the adhesive mesh graded to the ring (`asperity.fe.drivers.adhesive_model`) the
 separation varies by a fraction of d across a facet; convergence of the
 rule is tested (tests/fe/test_adhesion.py).  Points beyond the cut-off
 contribute exactly zero (they are evaluated, which costs little, rather

@@ -87,7 +87,8 @@ def law(adhesion: Adhesion | Mapping[str, float]):
 
 def reach(adhesion: Adhesion) -> float:
     """Largest gap -w [m] at which the law acts: the tip at the cut-off separation,
-    w = d - s_c (the first level of `asperity.fe.drivers.adhesive.adhesive_path`)."""
+    w = d - s_c (the first level of `asperity.fe.drivers.adhesive_trace.adhesive_path`).
+    """
     lj = law(adhesion)
     return float(lj.range - lj.d)
 
@@ -153,7 +154,7 @@ def interpolate_adhesive(ds: xr.Dataset, grid, branch: str = "approach",
     """
     from scipy.interpolate import PchipInterpolator
 
-    from asperity.fe.drivers.adhesive import retract_indices
+    from asperity.fe.drivers.adhesive_trace import retract_indices
 
     grid = np.asarray(grid, dtype=float)
     b = ds["branch"].values.astype(str)
