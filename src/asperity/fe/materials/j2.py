@@ -21,13 +21,13 @@ with the consistent tangent
 N = s_tr / |s_tr|, P_dev = I - (1/3) 1 x 1 (Simo and Hughes, *Computational
 Inelasticity*, 1998, 3.3, boxes 3.1-3.2).  The return is done in Mandel
 components (shears times sqrt 2), where the tensor norm is the Euclidean one,
-and the tangent converted back.  Arrays as in `asperity.fe.materials.elastic` and
-`asperity.fe.materials.bodner_partom`: strains / stresses (n, *shape), tangents
-(n, n, *shape), tensor shear components; n = 4, (11, 22, 33, 12) for the
-axisymmetric and plane-strain bodies, or n = 6, (11, 22, 33, 12, 13, 23) for
-the three-dimensional one (`solid3d`; ``initial_state(shape, components=6)``),
-the same equations with the identity and P_dev of 6 components (those of
-`bodner_partom`'s 6-component path); vectorized over all points.
+and the tangent converted back (`asperity.fe.materials.tensors`).  Arrays as in
+`asperity.fe.materials.elastic` and `asperity.fe.materials.bodner_partom`: strains
+/ stresses (n, *shape), tangents (n, n, *shape), tensor shear components; n = 4,
+(11, 22, 33, 12) for the axisymmetric and plane-strain bodies, or n = 6, (11, 22,
+33, 12, 13, 23) for the three-dimensional one (`solid3d`; ``initial_state(shape,
+components=6)``), the same equations with the identity and P_dev of 6 components
+(those of `bodner_partom`'s 6-component path); vectorized over all points.
 """
 
 from __future__ import annotations
@@ -37,9 +37,9 @@ from dataclasses import dataclass, fields
 
 import numpy as np
 
-from asperity.fe.materials.bodner_partom import (COMPONENTS, from_mandel, identity_of,
-                                                 tangent_from_mandel, to_mandel)
 from asperity.fe.materials.elastic import IsotropicElasticity
+from asperity.fe.materials.tensors import (COMPONENTS, from_mandel, identity_of,
+                                           tangent_from_mandel, to_mandel)
 
 
 @dataclass
