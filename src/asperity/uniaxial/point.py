@@ -4,8 +4,8 @@ The 1-D stress state of the 3-D model: the axial component (11) has its
 strain or its stress prescribed as a piecewise linear function of time, the
 other stresses (22, 33, 12) are zero.  With the implicit integrator the free
 strains are found by Newton's method with the consistent tangent at each
-step; the explicit integrator (report 3.6) takes the mixed control in rate
-form.
+step (`asperity.fe.solvers.mixed`); the explicit integrator (report 3.6)
+takes the mixed control in rate form.
 
 Adaptive steps (implicit): after each backward-Euler step the report's
 indicator (3.36) is evaluated with the rates at both ends of the step,
@@ -39,6 +39,7 @@ import numpy as np
 import xarray as xr
 
 from asperity.fe.materials.bodner_partom import BodnerPartom
+from asperity.fe.solvers.mixed import solve_mixed_point
 
 __all__ = [
     "run_uniaxial",
@@ -132,43 +133,6 @@ def _indicator(material, r0, r1, new, h, control):
     if getattr(material, "damage", False):
         E = max(E, 0.5 * h * abs(float(r1["damage"] - r0["damage"])) / (float(new.damage) + 1e-4))
     return E if np.isfinite(E) else math.inf
-
-
-def _solve_mixed(material, state, h, eps0, control, target, scale, tol, maxit=40):
-    """Implicit step: find the free strains with zero lateral (and target axial) stress."""
-    free = [1, 2, 3] if control == "strain" else [0, 1, 2, 3]
-    sig_t = np.zeros(4)
-    eps = np.array(eps0, float)
-    if control == "strain":
-        eps[0] = target
-    else:
-        sig_t[0] = target
-    atol = tol * (abs(target) * (control == "stress") + scale)
-    D = None
-    Dff = None
-    for it in range(maxit):
-        # Newton with the consistent tangent of the first iterate (the
-        # strain hardly moves afterwards; saves the tangent computations)
-        with np.errstate(all="ignore"):
-            sig, Dk, new = material.update(eps, state, h, tangent=D is None or it % 4 == 0)
-        if Dk is not None:
-            D = Dk
-            if not np.all(np.isfinite(D)):
-                return False, None, None, None
-            Dff = D[np.ix_(free, free)]
-        if not (np.all(new.converged) and np.all(np.isfinite(sig))):
-            return False, None, None, None
-        r = sig[free] - sig_t[free]
-        if np.max(np.abs(r)) <= atol:
-            return True, sig, D, new
-        try:
-            d = np.linalg.solve(Dff, r)
-        except np.linalg.LinAlgError:
-            return False, None, None, None
-        eps[free] -= d
-        if not np.all(np.isfinite(eps)):
-            return False, None, None, None
-    return False, None, None, None
 
 
 def run_uniaxial(material, history, integrator: str = "implicit", control: str = "strain",
@@ -280,8 +244,8 @@ def run_uniaxial(material, history, integrator: str = "implicit", control: str =
                 rhs = ds[free] - D_last[np.ix_(free, [0])] @ de[:1] * (control == "strain")
                 eps0 = eps0 + de
                 eps0[free] += np.linalg.solve(D_last[np.ix_(free, free)], rhs)
-            ok, sig, D, new = _solve_mixed(material, state, h, eps0, control, target, scale,
-                                           newton_tol)
+            ok, sig, D, new = solve_mixed_point(material, state, h, eps0, control, target,
+                                                scale, newton_tol)
             if not ok:
                 n_rej += 1
                 dt = 0.25 * h
