@@ -16,19 +16,25 @@ Drivers: `solve_asperity` (elastic), `solve_asperity_history`
 (inelastic), `solve_asperity_adhesive` (adhesive), `solve_sliding` (3-D
 sliding).  Packages by concern, each importing only those below it:
 
-- `drivers`: what a job runs (`elastic`, `inelastic` with `remesh`,
-  `adhesive`, `solid3d`), the time-marching ones through `march`;
+- `drivers`: what a job runs (`elastic`; `inelastic` with `inelastic_model`,
+  `history_march` and `remesh`; `adhesive` with `adhesive_model` and
+  `adhesive_trace`; `solid3d` with `flat_motion`, `sliding_model` and
+  `sliding_march`), the time-marching ones through `march`;
 - `solvers`: `nonlinear` (the one Newton iteration and step control of every
-  driver, line searches), `newton` (the elastic contact problem, Uzawa);
+  driver, line searches), `newton` (the elastic contact problem, Uzawa),
+  `adhesive` (the adhesive problem's Newton), `arclength` (through folds),
+  `mixed` (a material point under mixed control), `time_error` (BDF2 and the
+  time-integration error), `linear` (the 3-D model's reused LU);
 - `contact`: the laws of the surface against the flat (`penalty`: penalty law,
   contact points, contact edge; `adhesion`: Lennard-Jones; `sliding`: the
   resistance of the junction);
 - `discretization`: `geometry` (profiles), `mesh` (graded curved meshes,
   refinement), `adapt` (ZZ estimator, marking), `assembly` (P2 fields,
   stiffness, condensation onto the surface), `kinematics` (small and finite
-  strain);
-- `materials`: `elastic`, `j2`, `bodner_partom` (stress and tangent at
-  quadrature points);
+  strain), `half_model_mesh` and `half_model` (the 3-D half model);
+- `materials`: `elastic`, `j2`, `bodner_partom` (with `bodner_partom_state`,
+  `bodner_partom_implicit`, `bodner_partom_explicit`), `tensors` (stress and
+  tangent at quadrature points);
 
 and beside them `presets` (accuracy of every kind of model), `outputs` (the
 variables of every driver's Dataset), `analytic` (Hertz), `errors`

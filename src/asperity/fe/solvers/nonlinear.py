@@ -9,8 +9,8 @@ loop (`newton`); what differs is passed in as a `Problem`:
   (a constitutive update that did not converge at some point);
 * the Newton direction, each problem with its own linear algebra: the
   dense Cholesky of the condensed stiffness (`newton`), the Schur
-  complement on the active surface nodes (`adhesive._Tangent`), SuperLU
-  (`inelastic`), SuperLU reused as a GMRES preconditioner (`solid3d`);
+  complement on the active surface nodes (`adhesive.AdhesiveTangent`), SuperLU
+  (`inelastic_model`), SuperLU reused as a GMRES preconditioner (`linear.ReusedLU`);
 * the line search: backtracking on an energy (`EnergySearch`: Armijo,
   with a decrease of the residual accepted where energy differences drown
   in round-off, and trial points optionally projected, `Problem.project`)
