@@ -280,3 +280,41 @@ def test_a_tabulated_law_of_hertz_asperities_is_hertz(peaks):
     a = interacting_interface(pk.x, pk.y, pk.height, pk.curvature, h, E_STAR, L)
     b = interacting_interface(pk.x, pk.y, pk.height, pk.curvature, h, E_STAR, L, law=law, accept=1e-2)
     np.testing.assert_allclose(b.nominal_pressure, a.nominal_pressure, rtol=1e-2)
+
+
+def test_a_separation_newton_cannot_reach_is_approached_in_half_steps(peaks):
+    """Where Newton from the last state does not converge (it can cycle between contact
+    sets at the kinks of the semismooth equations: the elliptic law on an anisotropic
+    map, scene anisotropic_reference), the flat approaches in halved steps of
+    separation; the state reached is the equilibrium a converging solve gives, to the
+    tolerance.  Here Newton is made to refuse any step longer than 0.2 sigma."""
+    from asperity.homogenize.interacting import _approach
+
+    pk, L, sigma = peaks
+    model = InteractingAsperities(pk.x, pk.y, pk.height, pk.curvature, E_STAR, L)
+    top = float(pk.height.max())
+    tried = []
+
+    class Short(InteractingAsperities):
+        def solve(self, separation, start=None, **kw):
+            reached = top if start is None else self._reached
+            tried.append(separation)
+            if reached - separation > 0.2 * sigma:
+                raise RuntimeError("too long a step")
+            state = super().solve(separation, start, **kw)
+            self._reached = separation
+            return state
+
+    short = Short(pk.x, pk.y, pk.height, pk.curvature, E_STAR, L)
+    solve = dict(tolerance=1e-10, max_iterations=100, accept=None)
+    h = 1.2 * sigma
+    state = _approach(short, top, None, h, solve)
+    direct = model.solve(h, tolerance=1e-10)
+    scale = top - h
+    np.testing.assert_allclose(state.interference, direct.interference, rtol=0, atol=1e-9 * scale)
+    assert state.force.sum() == pytest.approx(direct.force.sum(), rel=1e-8)
+    assert state.residual <= 1e-10 * scale
+    # halved down to steps of at most 0.2 sigma, the iterations of every half step counted
+    assert len(tried) > 1 and state.iterations > direct.iterations
+    with pytest.raises(RuntimeError, match="too long"):
+        _approach(short, top, None, h, solve, halvings=0)

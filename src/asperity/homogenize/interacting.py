@@ -77,7 +77,11 @@ iteration to iteration; only its block of the Jacobian,
 J_CC = I + dU/dw, dU_ij/dw_j = K_ij dF_j/dw + F_j dg/da (r_ij, a_j) da_j/dw,
 is factorized (dense, n_c x n_c), the other interferences follow linearly;
 a backtracking line search on |R| keeps the steps from overshooting.
-Converged when max |R_i| <= tolerance (max z - h).  The normal stiffness is
+Converged when max |R_i| <= tolerance (max z - h).  Where Newton from the last
+solution does not converge (it can cycle between contacting sets at the kinks
+of the equations: elongated spots on a map with a lay), the separation is
+approached in halved steps from the last one solved, each from the state the
+previous half step reached (`_approach`).  The normal stiffness is
 that of the linearized system at the solution: dw_C/dh = -J_CC^-1 1,
 k = -dp/dh = sum_C dF/dw J_CC^-1 1 / (Lx Ly).
 
@@ -504,6 +508,30 @@ class InteractingAsperities:
         return merge_spots(self.x[c], self.y[c], np.sqrt(state.area[c] / np.pi), self.period)
 
 
+#: halvings of a separation step whose Newton does not converge (`_approach`)
+APPROACH_HALVINGS = 6
+
+
+def _approach(model: "InteractingAsperities", h_from: float, w_from, h_to: float, solve: dict,
+              halvings: int = APPROACH_HALVINGS) -> "Equilibrium":
+    """The equilibrium at separation `h_to` from the one at `h_from` (interferences `w_from`,
+    None: the rigid start).  Newton from there first; where it does not converge (it can
+    cycle between contact sets at the kinks of the semismooth equations), the step in
+    separation is halved and the flat approaches in two half steps, each from the state the
+    last one reached, at most `halvings` times deep; the iterations of every half step are
+    counted in the result's."""
+    try:
+        return model.solve(h_to, w_from, **solve)
+    except RuntimeError:
+        if halvings == 0:
+            raise
+    mid = 0.5 * (h_from + h_to)
+    half = _approach(model, h_from, w_from, mid, solve, halvings - 1)
+    state = _approach(model, mid, half.interference, h_to, solve, halvings - 1)
+    state.iterations += half.iterations
+    return state
+
+
 def interacting_interface(x, y, heights, curvatures, separations, contact_modulus: float, period, *,
                           law=None, tolerance: float = 1e-10, max_iterations: int = 100,
                           near_field: str = "edge", accept: float | None = None) -> xr.Dataset:
@@ -548,10 +576,11 @@ def interacting_interface(x, y, heights, curvatures, separations, contact_modulu
     names = ("nominal_pressure", "contact_area_ratio", "contact_count", "normal_stiffness",
              "mean_gap", "merged_load_fraction", "asperities_in_contact", "iterations", "residual")
     out = {name: np.full(h.size, np.nan) for name in names}
-    w = None
+    w, reached = None, float(np.max(model.z))  # the flat touching the highest summit
     for k in np.argsort(h)[::-1]:  # largest separation first: the loading path
-        state = model.solve(h[k], w, tolerance=tolerance, max_iterations=max_iterations, accept=accept)
-        w = state.interference
+        state = _approach(model, reached, w, h[k], dict(
+            tolerance=tolerance, max_iterations=max_iterations, accept=accept))
+        w, reached = state.interference, h[k]
         total = state.force.sum()
         labels = model.spots(state)
         members = np.bincount(labels) if labels.size else np.zeros(0, dtype=np.int64)
