@@ -85,6 +85,14 @@ SAFETY, MAX_GROWTH, MIN_FACTOR, REJECT = 0.9, 2.0, 0.2, 2.0
 PACE = Pace(fast=4, growth=MAX_GROWTH, slow=10, shrink=0.7)
 
 
+def error_factor(err: float, tol: float, order: int) -> float:
+    """The time-error controller's factor on the step of an error indicator `err`
+    against the tolerance `tol` for a method of `order`: 0.9 (tol / E)^(1/(p+1)), at
+    least ``MIN_FACTOR`` (a rejected step's retry; an accepted one grows by at most
+    ``MAX_GROWTH``)."""
+    return max(MIN_FACTOR, SAFETY * (tol / err) ** (1.0 / (order + 1)))
+
+
 class HistoryMarch(Marching):
     """The steps of `solve_asperity_history` for `march`: a try solves the step's
     equilibrium with BDF2 or backward Euler and checks its interference and inelastic
@@ -193,7 +201,7 @@ class HistoryMarch(Marching):
             reason = "inelastic strain step too large"
         elif err > REJECT * tol:
             reason = f"time error {err:.3g} above the tolerance {tol:g}"
-            shrink = max(MIN_FACTOR, SAFETY * (tol / err) ** (1.0 / (order + 1)))
+            shrink = error_factor(err, tol, order)
             self.error_rejections += 1
         if reason is not None:
             return Trial(t_new, reason, shrink, data=data)
@@ -282,7 +290,7 @@ class HistoryMarch(Marching):
         if math.isnan(err) or err <= 0:
             fac = MAX_GROWTH
         else:
-            fac = min(MAX_GROWTH, max(MIN_FACTOR, SAFETY * (tol / err) ** (1.0 / (order + 1))))
+            fac = min(MAX_GROWTH, error_factor(err, tol, order))
         dt = PACE.factor(d["paced"], cuts.count, fac) * h
         v = self.history.velocity(t)
         if v > 0:
