@@ -148,6 +148,8 @@ _CORES = os.environ.get("CORES", "2")
 STUDIES = {
     "scenes": ("scenes.py", ["--accuracy", "standard", "--cores", _CORES, "--full"],
                "wall time of each scene from an empty copy, then of the whole default run"),
+    "profile": ("profile_run.py", ["--accuracy", "draft", "--cores", _CORES],
+                "where a whole run's wall time goes: start-up, imports, assembly, solves, I/O, figures"),
     "jobs": ("job_overhead.py", ["--cores", _CORES],
              "what a job pays before it computes: Snakemake per script job, each script's imports"),
     "adhesion": ("adhesion_cost.py", [], "CPU time of the adhesive jobs"),

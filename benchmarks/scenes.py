@@ -111,20 +111,22 @@ def job_seconds_by_rule(text: str) -> dict[str, float]:
     return {k: v for k, v in total.most_common() if k != "all"}
 
 
-def _env() -> dict:
-    env = dict(os.environ)
+def _env(extra: dict | None = None) -> dict:
+    env = {**os.environ, **(extra or {})}
     for var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
         env[var] = "1"  # parallel jobs share the cores; BLAS threads slow FE many-fold
     return env
 
 
-def run_snakemake(workdir: Path, command: list[str], timeout: float | None) -> dict:
-    """Run `command` (starting with 'snakemake') in `workdir`; wall time, jobs, outcome."""
+def run_snakemake(workdir: Path, command: list[str], timeout: float | None,
+                  env: dict | None = None) -> dict:
+    """Run `command` (starting with 'snakemake') in `workdir`, with `env` added to the
+    environment; wall time, jobs, outcome."""
     argv = [str(SNAKEMAKE), *command[1:]]
     t0 = time.perf_counter()
     try:
         proc = subprocess.run(argv, cwd=workdir, capture_output=True, text=True,
-                              timeout=timeout, env=_env())
+                              timeout=timeout, env=_env(env))
         returncode, stdout, stderr = proc.returncode, proc.stdout, proc.stderr
     except subprocess.TimeoutExpired as err:
         returncode = None
