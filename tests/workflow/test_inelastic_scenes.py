@@ -16,7 +16,8 @@ pytestmark = [pytest.mark.workflow, pytest.mark.slow]
 
 SCENES = ["steel_glass_bead_representative", "rough_aluminum", "smooth_aluminum",
           "smooth_aluminum_elastic"]
-ONLY = ("--config", f"scenes=[{','.join(SCENES)}]", "accuracy=draft")
+#: the scenes alone: the accuracy studies of `rule all` are not read here
+ONLY = ("--config", f"scenes=[{','.join(SCENES)}]", "accuracy=draft", "studies=False")
 
 
 @pytest.fixture(scope="module")

@@ -22,8 +22,10 @@ SCENES = ["profile_cosine", "profile_quasirandom", "expectation_unit", "greenwoo
           "asperity_shape", "asperity_shape_hertz", "asperity_shape_coupled"]
 
 
-#: this module's scenes only (the inelastic scenes have their own module)
-ONLY = ("--config", f"scenes=[{','.join(SCENES)}]")
+#: this module's scenes only (the inelastic scenes have their own module), and of the
+#: accuracy studies the one read here (Bodner-Partom's is test_uniaxial_workflow's)
+ONLY = ("all", "results/accuracy/hertz.nc", "--config", f"scenes=[{','.join(SCENES)}]",
+        "studies=False")
 
 
 @pytest.fixture(scope="module")
