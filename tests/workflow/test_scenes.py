@@ -231,8 +231,13 @@ def test_figures_are_pngs(run):
 
 
 def test_nothing_changed_runs_no_job(run):
+    """The issue's "Nothing changed: no job, and `snakemake -n` says so": exit status 0
+    (`snakemake` checks it), Snakemake's own "Nothing to be done" message, and no job in
+    its job table, with the plan checkpoints re-evaluated from plan.nc."""
     proc = snakemake(run, "-n", *ONLY)
-    assert planned_jobs(proc) == {}, proc.stdout
+    text = proc.stdout + proc.stderr
+    assert "Nothing to be done" in text, text[-3000:]
+    assert planned_jobs(proc) == {}, text[-3000:]
 
 
 def test_homogenization_change_reruns_only_downstream(run):
