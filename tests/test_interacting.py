@@ -8,8 +8,9 @@ from scipy.integrate import quad
 from scipy.optimize import brentq, fsolve
 from scipy.special import zeta
 
+from asperity.homogenize.asperity_laws import hertz_law
 from asperity.homogenize.interacting import (InteractingAsperities, PeriodicKernel, _phi, hertz_displacement,
-                                             hertz_law, interacting_interface, merge_spots)
+                                             interacting_interface, merge_spots)
 from asperity.surface.maps import map_peaks
 from asperity.surface.synthetic import gaussian_map
 
@@ -261,7 +262,7 @@ def test_a_tabulated_law_of_hertz_asperities_is_hertz(peaks):
     the law is Hertz at the grid's points (1e-12), between them within the linear
     interpolation's error (1e-2 on this grid), its slopes those of its own segments (1e-6),
     and the coupled interface within 1 % of Hertz's law."""
-    from asperity.homogenize.interacting import tabulated_law
+    from asperity.homogenize.asperity_laws import tabulated_law
 
     pk, L, sigma = peaks
     grid = np.concatenate([[0.0], np.geomspace(1e-4, 5.0, 240) * sigma])

@@ -2,7 +2,8 @@
 
 `integrate`: the expectation integrals of eqs. 2.5-2.7 (trapezoid or Gauss
 cells, or a sum over a map's peaks) and the interface response versus
-separation built from a table of asperity responses.  `validity`: where the
+separation built from a table of asperity responses (`table`: the responses on their
+grid, interpolated).  `validity`: where the
 homogenized interface holds (extrapolated responses, yield, small strain,
 independent asperities).
 """

@@ -37,6 +37,8 @@ from typing import Any, Callable, NamedTuple
 import numpy as np
 import xarray as xr
 
+from asperity.homogenize.table import (ResponseTable, check_interference, check_reach,
+                                       interpolate_points, interpolate_tensor, response_table)
 from asperity.peaks import FixedCurvatureDensity, JointDensity, SampledDensity
 
 __all__ = [
@@ -58,7 +60,6 @@ _MACRO = {
     "contact_area": ("contact_area_ratio", "1", "real contact area per unit nominal area n E^(contact_area)"),
     "stiffness": ("normal_stiffness", "Pa/m", "normal contact stiffness per unit nominal area n E^(stiffness)"),
 }
-_DEFAULT_UNITS = {"force": "N", "contact_area": "m^2", "stiffness": "N/m", "contact_radius": "m"}
 
 
 def _reference_rule(cells: int, rule: str):
@@ -268,137 +269,6 @@ def expectation(
 # interface response: homogenization of an asperities dataset over separations
 
 
-def _lerp(a, b, t, finite=False):
-    """(1 - t) a + t b, exact at t = 0 and t = 1 even if the other end is infinite.
-
-    With ``finite=True`` (no inf/nan in the table) the cheaper a + t (b - a).
-    """
-    if finite:
-        return a + t * (b - a)
-    with np.errstate(invalid="ignore", over="ignore"):
-        mid = (1.0 - t) * a + t * b
-    return np.where(t == 0.0, a, np.where(t == 1.0, b, mid))
-
-
-def _axis_weights(grid: np.ndarray, x):
-    """Indices lo, hi and fraction t of linear interpolation on `grid`, clamped at the ends.
-
-    A single-point grid means independence of that variable (lo = hi = 0).
-    """
-    x = np.asarray(x, dtype=float)
-    if grid.size == 1:
-        zero = np.zeros(x.shape, dtype=np.intp)
-        return zero, zero, np.zeros(x.shape)
-    xc = np.clip(x, grid[0], grid[-1])
-    lo = np.clip(np.searchsorted(grid, xc, side="right") - 1, 0, grid.size - 2)
-    t = (xc - grid[lo]) / (grid[lo + 1] - grid[lo])
-    return lo, lo + 1, t
-
-
-class _Table(NamedTuple):
-    names: list
-    units: list
-    heights: np.ndarray
-    curvatures: np.ndarray
-    interference: np.ndarray
-    data: np.ndarray  # (Nh, Nk, Nw, V)
-    finite: bool  # no inf/nan in data: plain linear interpolation
-
-
-def _table(asperities: xr.Dataset) -> _Table:
-    dims = ("height", "curvature", "interference")
-    for d in dims:
-        if d not in asperities.dims:
-            raise ValueError(f"asperities dataset lacks dimension {d!r} (needs {dims})")
-    names = [str(v) for v in asperities.data_vars]
-    if not names:
-        raise ValueError("asperities dataset has no data variables")
-    ds = asperities.sortby(["height", "curvature"])
-    arrays, units = [], []
-    for name in names:
-        da = ds[name]
-        if set(da.dims) - set(dims):
-            raise ValueError(f"variable {name!r} has dimensions {da.dims} beyond {dims}")
-        units.append(str(da.attrs.get("units", _DEFAULT_UNITS.get(name, ""))))
-        missing = {d: ds.sizes[d] for d in dims if d not in da.dims}
-        da = da.astype(float).expand_dims(missing).transpose(*dims)
-        arrays.append(np.asarray(da.values))
-    data = np.stack(arrays, axis=-1)
-    zc = np.asarray(ds["height"].values, dtype=float)
-    kc = np.asarray(ds["curvature"].values, dtype=float)
-    wc = np.asarray(ds["interference"].values, dtype=float)
-    for label, c in (("height", zc), ("curvature", kc)):
-        if c.size > 1 and np.any(np.diff(c) <= 0.0):
-            raise ValueError(f"{label} coordinate has repeated values")
-    if wc.size == 0 or np.any(np.diff(wc) <= 0.0):
-        raise ValueError("interference coordinate must be strictly increasing")
-    if wc[0] > 0.0:  # X = 0 at w = 0, linear up to the first interference
-        wc = np.concatenate([[0.0], wc])
-        data = np.concatenate([np.zeros(data[:, :, :1].shape), data], axis=2)
-    return _Table(names, units, zc, kc, wc, data, bool(np.isfinite(data).all()))
-
-
-def _check_reach(reach: float, table: _Table) -> float:
-    """The attraction range (>= 0) against the table: it must start at w <= -reach."""
-    reach = float(reach)
-    if not (np.isfinite(reach) and reach >= 0.0):
-        raise ValueError(f"reach must be a finite non-negative interference, got {reach!r}")
-    if table.interference[0] < 0.0 and reach == 0.0:
-        raise ValueError("negative interferences in the asperity table need reach > 0 "
-                         "(the gap up to which asperities out of contact still act)")
-    if table.interference[0] > -reach * (1.0 - 1e-9):
-        raise ValueError(f"reach {reach:.6g} needs the interference grid to start at "
-                         f"-{reach:.6g} or below; it starts at {table.interference[0]:.6g}")
-    return reach
-
-
-def _check_interference(w_needed: float, table: _Table):
-    w_max = table.interference[-1]
-    if w_needed > w_max * (1.0 + 1e-9):
-        raise ValueError(
-            f"the quadrature needs asperity responses up to interference {w_needed:.6g}, "
-            f"but the interference grid ends at {w_max:.6g}; extend the grid to at least "
-            "z_max - min(separation), or raise the smallest separation / lower z_max"
-        )
-
-
-def _interp_tensor(table: _Table, z, w, k_nodes):
-    """X at (z, kappa, w) with z, w of shape (S, Pz) and kappa nodes (Pk,): (S, Pz, Pk, V)."""
-    d = table.data
-    fin = table.finite
-    klo, khi, kt = _axis_weights(table.curvatures, k_nodes)
-    dk = _lerp(d[:, klo], d[:, khi], kt[None, :, None, None], fin)  # (Nh, Pk, Nw, V)
-    dk = np.moveaxis(dk, 2, 1)  # (Nh, Nw, Pk, V)
-    hlo, hhi, ht = _axis_weights(table.heights, z)
-    wlo, whi, wt = _axis_weights(table.interference, w)
-    wt = wt[..., None, None]
-    at_hlo = _lerp(dk[hlo, wlo], dk[hlo, whi], wt, fin)
-    if table.heights.size == 1:  # independent of height
-        return at_hlo
-    at_hhi = _lerp(dk[hhi, wlo], dk[hhi, whi], wt, fin)
-    return _lerp(at_hlo, at_hhi, ht[..., None, None], fin)
-
-
-def _interp_points(table: _Table, z, k, w):
-    """X at scattered points (z, kappa, w), broadcast shape B: (*B, V)."""
-    d = table.data
-    fin = table.finite
-    hlo, hhi, ht = _axis_weights(table.heights, z)
-    klo, khi, kt = _axis_weights(table.curvatures, k)
-    wlo, whi, wt = _axis_weights(table.interference, w)
-    ht, kt, wt = (t[..., None] for t in (ht, kt, wt))
-
-    def at(hi_, ki_):
-        return _lerp(d[hi_, ki_, wlo], d[hi_, ki_, whi], wt, fin)
-
-    def at_height(hi_):
-        return _lerp(at(hi_, klo), at(hi_, khi), kt, fin)
-
-    if table.heights.size == 1:  # independent of height
-        return at_height(hlo)
-    return _lerp(at_height(hlo), at_height(hhi), ht, fin)
-
-
 _CHUNK = 2_000_000  # elements of (separation, z-node, kappa-node, variable) held at once
 
 
@@ -490,8 +360,8 @@ def interface_response(
     h = np.atleast_1d(np.asarray(separations, dtype=float))
     if h.ndim != 1 or not np.isfinite(h).all():
         raise ValueError("separations must be a 1-D array of finite numbers")
-    table = _table(asperities)
-    reach = _check_reach(reach, table)
+    table = response_table(asperities)
+    reach = check_reach(reach, table)
     if contact is not None and contact not in table.names:
         raise ValueError(f"contact variable {contact!r} is not in the asperities dataset")
 
@@ -545,7 +415,7 @@ def interface_response(
     )
 
 
-def _peaks_response(table: _Table, density, h, reach: float = 0.0):
+def _peaks_response(table: ResponseTable, density, h, reach: float = 0.0):
     if not isinstance(density, SampledDensity):
         raise ValueError('rule "peaks" needs a SampledDensity (a list of peaks)')
     z = density.heights[None, :]
@@ -553,21 +423,21 @@ def _peaks_response(table: _Table, density, h, reach: float = 0.0):
     w = z - h[:, None]  # (S, N)
     acting = w > -reach if reach > 0.0 else w > 0.0
     if acting.any():
-        _check_interference(float(w[acting].max()), table)
+        check_interference(float(w[acting].max()), table)
     nv = table.data.shape[-1]
     n_peaks = z.shape[1]
     step = max(1, _CHUNK // max(1, n_peaks * nv))
     raw = np.empty((h.size, nv))
     for s in range(0, h.size, step):  # memory guard only: chunks of separations
         sl = slice(s, s + step)
-        x = _interp_points(table, z, k, np.maximum(w[sl], -reach))
+        x = interpolate_points(table, z, k, np.maximum(w[sl], -reach))
         with np.errstate(invalid="ignore"):
             x = np.where(acting[sl, :, None], x, 0.0)
         raw[sl] = x.mean(axis=1)
     return raw, (w > 0.0).mean(axis=1), 1.0
 
 
-def _cell_response(table: _Table, density, h, bounds, cells, rule, reach: float = 0.0):
+def _cell_response(table: ResponseTable, density, h, bounds, cells, rule, reach: float = 0.0):
     if bounds is None:
         bounds = _default_bounds(density)
     if _is_fixed(density):
@@ -605,7 +475,7 @@ def _cell_response(table: _Table, density, h, bounds, cells, rule, reach: float 
     w = z - h[:, None]
     active = wz > 0.0
     if active.any():
-        _check_interference(float(w[active].max()), table)
+        check_interference(float(w[active].max()), table)
     w = np.maximum(w, -reach)
 
     nv = table.data.shape[-1]
@@ -617,7 +487,7 @@ def _cell_response(table: _Table, density, h, bounds, cells, rule, reach: float 
         sl = slice(s, s + step)
         g = pdf(z[sl], k_nodes) * wz[sl, :, None] * wk  # (s, Pz, Pk): f w dz dkappa
         raw_count[sl] = g[:, touching].sum(axis=(1, 2))
-        x = _interp_tensor(table, z[sl], w[sl], k_nodes)
+        x = interpolate_tensor(table, z[sl], w[sl], k_nodes)
         with np.errstate(invalid="ignore", over="ignore"):
             x = np.where(g[..., None] != 0.0, x, 0.0)
         raw[sl] = np.einsum("spk,spkv->sv", g, x)

@@ -129,18 +129,18 @@ def fe_law(asperities: xr.Dataset, surface_ds: xr.Dataset):
     """The law of each summit from the scene's finite element asperities (asperities.nc on
     height, curvature, interference): force and contact area interpolated at the summit's
     height and mean curvature on the table's interference grid (linear, as the
-    homogenization does: `asperity.homogenize.integrate`), `tabulated_law` between."""
-    from asperity.homogenize.integrate import _interp_points, _table
-    from asperity.homogenize.interacting import tabulated_law
+    homogenization does: `asperity.homogenize.table`), `tabulated_law` between."""
+    from asperity.homogenize.asperity_laws import tabulated_law
+    from asperity.homogenize.table import interpolate_points, response_table
 
-    table = _table(asperities[["force", "contact_area"]])
+    table = response_table(asperities[["force", "contact_area"]])
     grid = table.interference
     if grid[0] < 0:
         raise ValueError("route.law fe: asperities with attraction before contact (adhesion) "
                          "are not coupled by the interacting route")
     z = surface_ds["height"].values[:, None]
     k = surface_ds["curvature"].values[:, None]
-    values = _interp_points(table, z, k, grid[None, :])  # (summits, levels, [force, area])
+    values = interpolate_points(table, z, k, grid[None, :])  # (summits, levels, [force, area])
     return tabulated_law(grid, values[..., 0], values[..., 1])
 
 
@@ -160,7 +160,7 @@ def asperity_law(kind: str, z, dx: float, dy: float, surface_ds: xr.Dataset, mod
     * ``fe``: the scene's finite element asperities at the summit's mean curvature
       (`fe_law`; elastic, J2 or Bodner-Partom as the scene's effects and material say).
     """
-    from asperity.homogenize.interacting import hertz_law
+    from asperity.homogenize.asperity_laws import hertz_law
     from asperity.references.hertz import elliptic_hertz
     from asperity.references.sneddon import profile_law
     from asperity.surface.summits import summit_profiles
