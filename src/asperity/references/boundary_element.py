@@ -195,6 +195,42 @@ def _solve(system, offset: float, start: np.ndarray, upper: float | None, tolera
     return result, force, gap
 
 
+#: the variables of `solve_map`'s dataset: units, long name
+_VARIABLES = {
+    "nominal_pressure": ("Pa", "nominal pressure: total force over the nominal (defined) area"),
+    "contact_area_ratio": ("1", "real contact area ratio A/A0: contacting cells over defined cells"),
+    "contact_count": ("1/m^2", "contact patches (connected contacting cells, eight neighbours) per unit area"),
+    "mean_gap": ("m", "mean gap between the flat and the deformed surface over the defined cells"),
+    "normal_stiffness": ("Pa/m", "normal stiffness -dp/dh: the force increment of an approach with "
+                                 "the contacting cells held (flowing cells at the hardness excluded)"),
+    "max_pressure": ("Pa", "largest pressure of a cell"),
+    "cells_per_patch": ("1", "contacting cells per contact patch (resolution of the contacts)"),
+    "flowing_area_ratio": ("1", "share of the nominal area at the hardness (flowing)"),
+    "yielded_fraction": ("1", "share of the real contact area pressed beyond the yield pressure "
+                              "(elastic solution)"),
+    "iterations": ("1", "conjugate-gradient iterations of the solve"),
+}
+
+
+def _checked(heights, dx, dy, separations, contact_modulus, hardness, boundary):
+    """The map and the separations of `solve_map` as arrays, its inputs checked (ValueError)."""
+    z = np.array(heights, dtype=float)
+    if z.ndim != 2 or min(z.shape) < 2:
+        raise ValueError(f"heights must be a 2-D map of at least 2 x 2 points; got shape {z.shape}")
+    if boundary not in BOUNDARIES:
+        raise ValueError(f"boundary must be one of {BOUNDARIES}; got {boundary!r}")
+    if not (dx > 0 and dy > 0):
+        raise ValueError(f"grid spacings must be positive; got dx = {dx!r}, dy = {dy!r}")
+    if not contact_modulus > 0:
+        raise ValueError(f"contact modulus must be positive; got {contact_modulus!r}")
+    if hardness is not None and not hardness > 0:
+        raise ValueError(f"hardness must be positive; got {hardness!r}")
+    h = np.asarray(separations, dtype=float)
+    if h.ndim != 1 or h.size == 0 or not np.all(np.isfinite(h)):
+        raise ValueError("separations must be a non-empty 1-D array of finite numbers")
+    return z, h
+
+
 def solve_map(
     heights,
     dx: float,
@@ -251,20 +287,7 @@ def solve_map(
     BoundaryElementError
         The solver did not converge at a separation (named in the message).
     """
-    z = np.array(heights, dtype=float)
-    if z.ndim != 2 or min(z.shape) < 2:
-        raise ValueError(f"heights must be a 2-D map of at least 2 x 2 points; got shape {z.shape}")
-    if boundary not in BOUNDARIES:
-        raise ValueError(f"boundary must be one of {BOUNDARIES}; got {boundary!r}")
-    if not (dx > 0 and dy > 0):
-        raise ValueError(f"grid spacings must be positive; got dx = {dx!r}, dy = {dy!r}")
-    if not contact_modulus > 0:
-        raise ValueError(f"contact modulus must be positive; got {contact_modulus!r}")
-    if hardness is not None and not hardness > 0:
-        raise ValueError(f"hardness must be positive; got {hardness!r}")
-    h = np.asarray(separations, dtype=float)
-    if h.ndim != 1 or h.size == 0 or not np.all(np.isfinite(h)):
-        raise ValueError("separations must be a non-empty 1-D array of finite numbers")
+    z, h = _checked(heights, dx, dy, separations, contact_modulus, hardness, boundary)
     defined = np.isfinite(z)
     n_defined = int(defined.sum())
     if n_defined == 0:
@@ -334,22 +357,8 @@ def solve_map(
             out["yielded_fraction"][k] = 0.0
         out["iterations"][k] = result.nit
     cpu = time.process_time() - start
-    meta = {
-        "nominal_pressure": ("Pa", "nominal pressure: total force over the nominal (defined) area"),
-        "contact_area_ratio": ("1", "real contact area ratio A/A0: contacting cells over defined cells"),
-        "contact_count": ("1/m^2", "contact patches (connected contacting cells, eight neighbours) per unit area"),
-        "mean_gap": ("m", "mean gap between the flat and the deformed surface over the defined cells"),
-        "normal_stiffness": ("Pa/m", "normal stiffness -dp/dh: the force increment of an approach with "
-                                     "the contacting cells held (flowing cells at the hardness excluded)"),
-        "max_pressure": ("Pa", "largest pressure of a cell"),
-        "cells_per_patch": ("1", "contacting cells per contact patch (resolution of the contacts)"),
-        "flowing_area_ratio": ("1", "share of the nominal area at the hardness (flowing)"),
-        "yielded_fraction": ("1", "share of the real contact area pressed beyond the yield pressure "
-                                  "(elastic solution)"),
-        "iterations": ("1", "conjugate-gradient iterations of the solve"),
-    }
     ds = xr.Dataset(
-        {name: ("separation", out[name], attrs(*meta[name])) for name in names
+        {name: ("separation", out[name], attrs(*_VARIABLES[name])) for name in names
          if (hardness is not None or name != "flowing_area_ratio")
          and (yield_pressure is not None or name != "yielded_fraction")},
         coords={"separation": ("separation", h, attrs(
