@@ -41,7 +41,7 @@ with variance (report 2.3.2, eq. 2.4 for a profile along theta)::
 
 the quadratic form of the slope covariance M = [[m20, m11], [m11, m02]] (m20 =
 var z_x, m11 = cov(z_x, z_y), m02 = var z_y: ``asperity.surface.maps.map_statistics``
-or ``asperity.surface.statistics.directional_moments``).  Its extremes are the
+or ``asperity.surface.directional.directional_moments``).  Its extremes are the
 eigenvalues of M, lambda = (m20 + m02)/2 -+ sqrt(((m20 - m02)/2)^2 + m11^2), at its
 eigenvectors: the steepest direction theta_max = atan2(2 m11, m20 - m02) / 2 and the
 lay (the direction of the smallest slope, along the grooves) theta_max + pi/2.

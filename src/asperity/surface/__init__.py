@@ -4,7 +4,9 @@
 * `filters` -- the Gaussian profile and areal filters of ISO 16610-21/-61;
 * `missing` -- undefined points: masks, runs, complete neighbourhoods, harmonic in-fill;
 * `statistics` -- profile statistics by sampling, counting and spectrum on
-  the dimension ``estimator``, directional moments and invariants (2.3);
+  the dimension ``estimator`` (2.3.1);
+* `directional` -- the spectral moments of an anisotropic surface from
+  profiles in several directions, and their invariants (2.3.2);
 * `spectra` -- periodograms with a choice of window, the radially averaged
   PSD of maps, autocorrelation (2.2, 2.3.1);
 * `maps` -- map statistics and the peaks of maps (2.4.3);
@@ -13,6 +15,7 @@
   profiles (2.6.1), anisotropic series (2.3.2), Gaussian random maps.
 """
 
+from asperity.surface.directional import *  # noqa: F401,F403
 from asperity.surface.distribution import *  # noqa: F401,F403
 from asperity.surface.filters import *  # noqa: F401,F403
 from asperity.surface.form import *  # noqa: F401,F403
@@ -21,7 +24,9 @@ from asperity.surface.missing import *  # noqa: F401,F403
 from asperity.surface.spectra import *  # noqa: F401,F403
 from asperity.surface.statistics import *  # noqa: F401,F403
 from asperity.surface.synthetic import *  # noqa: F401,F403
-from asperity.surface import distribution, filters, form, maps, missing, spectra, statistics, synthetic
+from asperity.surface import (directional, distribution, filters, form, maps, missing, spectra, statistics,
+                              synthetic)
 
-__all__ = [name for module in (distribution, filters, form, maps, missing, spectra, statistics, synthetic)
+__all__ = [name for module in (distribution, filters, form, maps, missing, spectra, statistics, directional,
+                               synthetic)
            for name in module.__all__]

@@ -22,10 +22,10 @@ from __future__ import annotations
 import numpy as np
 import xarray as xr
 
+from asperity.surface.directional import INVARIANT_TEXT, INVARIANT_UNITS, MOMENT_UNITS, moment_invariants
 from asperity.surface.missing import complete_neighbourhood, defined_heights
-from asperity.surface.statistics import (DEFAULT_ORDER, INVARIANT_TEXT, INVARIANT_UNITS, MOMENT_UNITS,
-                                         _check_order, _spacing, derivatives, mean_and_deviation,
-                                         moment_invariants, stencil)
+from asperity.surface.statistics import (DEFAULT_ORDER, _check_order, _spacing, derivatives, mean_and_deviation,
+                                         stencil)
 
 __all__ = ["AXES", "map_statistics", "map_peaks"]
 

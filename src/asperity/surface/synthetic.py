@@ -17,7 +17,8 @@ import math
 
 import numpy as np
 
-from asperity.surface.statistics import FOURTH_ORDER, complete_moments
+from asperity.surface.directional import FOURTH_ORDER
+from asperity.surface.statistics import complete_moments
 
 __all__ = [
     "quasirandom_series",
