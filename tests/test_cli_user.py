@@ -19,8 +19,9 @@ import yaml
 from scipy import stats
 
 import asperity
-from asperity.cli import main, workflow_root
+from asperity.cli import main
 from asperity.io.netcdf import read_dataset, write_dataset
+from asperity.new_scene import workflow_root
 from asperity.scene import Material, Units, check_scene
 from tests.scene_defaults import filled_scene
 
