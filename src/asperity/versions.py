@@ -38,13 +38,14 @@ VERSIONS: dict[str, int] = {
     # friction (workflow/rules/friction.smk)
     "friction": 2,
     "laws": 1,
-    # uniaxial, sliding, plane strain, accuracy
+    # uniaxial, sliding, plane strain, accuracy, the studies of workflow/rules/studies.smk
     "uniaxial": 1,
     "accuracy_bodner_partom": 2,
     "sliding": 12,
     "plane_strain": 3,
     "accuracy_hertz": 1,
     "accuracy_scenes": 1,
+    "adhesion_curves": 1,
     # the deterministic reference (workflow/rules/reference.smk)
     "reference": 2,
     "reference_comparison": 3,

@@ -77,26 +77,59 @@ def adhesion_figure(interface: xr.Dataset, asperities: xr.Dataset,
     axes[2].set(xlabel=f"nominal pressure [{pressure_unit}]", ylabel="real contact area ratio A/A0",
                 title="Fig. 7.9")
     # Fig. 7.6: the computed asperities
-    ax = axes[3]
-    curv = asperities["curvature"].values
-    for j, k in enumerate(curv):
+    paths = []
+    for j, k in enumerate(asperities["curvature"].values):
         valid = asperities["path_valid"].values[j].astype(bool)
-        w = asperities["path_interference"].values[j][valid] / ls_
-        F = asperities["path_force"].values[j][valid]
-        br = asperities["path_branch"].values[j][valid].astype(str)
-        ratio = float(asperities["pull_off_force"][j] / asperities["pull_off_force_dmt"][j])
+        paths.append((1.0 / k, asperities["path_interference"].values[j][valid],
+                      asperities["path_force"].values[j][valid],
+                      asperities["path_branch"].values[j][valid].astype(str)))
+    _curves_panel(axes[3], paths, asperities, float(asperities.attrs.get("reach", np.nan)), ls_,
+                  length_unit)
+    return finish(fig, axes, fontsize=7)
+
+
+def _curves_panel(ax, paths, pull: xr.Dataset, reach: float, ls_: float, length_unit: str) -> None:
+    """Fig. 7.6 on `ax`: load against interference of each asperity, `paths` its (tip
+    radius, interference, force, branch) on approach (solid) and retraction (dashed),
+    its pull-off (``pull_off_force``, ``pull_off_interference`` of `pull`, in the same
+    order) against DMT's 2 pi R W; x from the cut-off to a few times it (`reach`)."""
+    for j, (radius, w, F, br) in enumerate(paths):
+        ratio = float(pull["pull_off_force"][j] / pull["pull_off_force_dmt"][j])
         for branch in ("approach", "retract"):
             m = br == branch
-            ax.plot(w[m], F[m], color=f"C{j}", ls=STYLE[branch]["ls"],
-                    label=(f"R = {1e6 / k:.3g} um: pull-off {ratio:.3f} x 2πRW"
+            ax.plot(w[m] / ls_, F[m], color=f"C{j}", ls=STYLE[branch]["ls"],
+                    label=(f"R = {1e6 * radius:.3g} um: pull-off {ratio:.3f} x 2πRW"
                            if branch == "approach" else None))
-        ax.plot(float(asperities["pull_off_interference"][j]) / ls_,
-                -float(asperities["pull_off_force"][j]), "v", color=f"C{j}")
+        ax.plot(float(pull["pull_off_interference"][j]) / ls_, -float(pull["pull_off_force"][j]), "v",
+                color=f"C{j}")
     ax.axhline(0.0, color="k", lw=0.6)
-    reach = float(asperities.attrs.get("reach", np.nan)) / ls_
     if np.isfinite(reach):  # where the adhesion acts: from the cut-off to a few times it
-        ax.set_xlim(-1.3 * reach, 3.0 * reach)
-    ax.set_yscale("symlog", linthresh=float(asperities["pull_off_force"].min()))
+        ax.set_xlim(-1.3 * reach / ls_, 3.0 * reach / ls_)
+    ax.set_yscale("symlog", linthresh=float(pull["pull_off_force"].min()))
     ax.set(xlabel=f"interference [{length_unit}] (negative: gap)", ylabel="force [N]",
            title="Fig. 7.6: computed asperities (dashed: retraction, ▼ pull-off)")
+
+
+def curves_figure(curves: xr.Dataset) -> plt.Figure:
+    """Fig. 7.6 from `asperity.studies.adhesion.smooth_aluminum_curves` (dims radius,
+    step): each asperity's load against interference, approach and retraction, its
+    pull-off against DMT's 2 pi R W and JKR's 3/2 pi R W (the ratios on the right)."""
+    fig, axes = subplots(1, 2, figsize=(12, 4.6))
+    paths = []
+    for j, radius in enumerate(curves["radius"].values):
+        valid = curves["valid"].values[j].astype(bool)
+        paths.append((radius, curves["interference"].values[j][valid], curves["force"].values[j][valid],
+                      curves["branch"].values[j][valid].astype(str)))
+    _curves_panel(axes[0], paths, curves, np.nan, 1e-9, "nm")  # the whole path, cut-off to w_max
+    R = curves["radius"].values * 1e6
+    for name, label, marker in (("pull_off_force_dmt", "DMT 2πRW", "s"),
+                                ("pull_off_force_jkr", "JKR 3/2 πRW", "D")):
+        axes[1].plot(R, curves["pull_off_force"].values / curves[name].values, marker=marker,
+                     label=f"computed / {label}")
+    axes[1].axhline(1.0, color="k", lw=0.6)
+    axes[1].set(xlabel="tip radius R [um]", ylabel="pull-off force ratio",
+                title=f"Tabor parameter {curves['tabor_parameter'].values.min():.2g} to "
+                      f"{curves['tabor_parameter'].values.max():.2g}")
+    fig.suptitle("Report 7.3, Fig. 7.6: smooth elastic aluminum asperities with adhesion "
+                 f"({curves.attrs.get('accuracy', '')})")
     return finish(fig, axes, fontsize=7)
