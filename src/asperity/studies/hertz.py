@@ -92,6 +92,119 @@ def _run_record(ds: xr.Dataset) -> dict:
     )
 
 
+def _var(dims, values, units, long_name):
+    """A Dataset variable tuple: `values` as an array with its units and long name."""
+    return (dims, np.asarray(values), dict(units=units, long_name=long_name))
+
+
+def _study_runs(presets: Sequence[str], refinement: Sequence[dict] | None
+                ) -> tuple[list[str], list[str], list[tuple]]:
+    """The runs of the study: their labels, kinds and (label, accuracy) pairs, the
+    presets first; unknown presets and duplicate labels fail before any run."""
+    refinement = DEFAULT_REFINEMENT if refinement is None else tuple(refinement)
+    presets = tuple(presets)
+    for p in presets:
+        resolve("elastic", p)  # unknown names fail before any run
+    members = [resolve("elastic", m) for m in refinement]
+    labels = list(presets) + [f"refine-{i + 1}" for i in range(len(members))]
+    if len(set(labels)) != len(labels):
+        raise ValueError(f"run labels must be unique, got {labels}")
+    kinds = ["preset"] * len(presets) + ["refinement"] * len(members)
+    runs = [(p, p) for p in presets] + list(zip(labels[len(presets):], refinement))
+    return labels, kinds, runs
+
+
+def _solve_runs(geometries: dict, material, w: np.ndarray, runs: list[tuple],
+                kinds: list[str]) -> tuple[np.ndarray, np.ndarray, dict[str, np.ndarray]]:
+    """Force and contact radius (body, run, step) and the scalars (body, run) of every
+    run: both bodies for a preset, the paraboloid only for a refinement member."""
+    nb, nr, ns = len(BODIES), len(runs), len(w)
+    force = np.full((nb, nr, ns), np.nan)
+    contact_radius = np.full((nb, nr, ns), np.nan)
+    scalars = {k: np.full((nb, nr), np.nan)
+               for k in ("dofs", "wall_time", "estimated_error", "sweeps")}
+    for j, (label, accuracy) in enumerate(runs):
+        bodies = BODIES if kinds[j] == "preset" else ("paraboloid",)
+        for body in bodies:
+            i = BODIES.index(body)
+            rec = _run_record(solve_asperity(geometries[body], material, w, accuracy=accuracy))
+            force[i, j] = rec["force"]
+            contact_radius[i, j] = rec["contact_radius"]
+            for k in scalars:
+                scalars[k][i, j] = rec[k]
+    return force, contact_radius, scalars
+
+
+def _accuracy_variables(w: np.ndarray, ref: dict, force: np.ndarray,
+                        contact_radius: np.ndarray, scalars: dict[str, np.ndarray],
+                        kinds: list[str], runs: list[tuple]) -> dict:
+    """The study's variables on ``body``, ``run`` and ``step``: the runs' results and
+    their errors against Hertz (`ref`)."""
+    force_error = force / ref["force"] - 1
+    radius_error = contact_radius / ref["contact_radius"] - 1
+    parameters = [repr(resolve("elastic", acc)) for _, acc in runs]
+    br, brs = ("body", "run"), ("body", "run", "step")
+    return dict(
+        interference=_var("step", w, "m",
+                          "interference of the rigid flat (approach from first touch)"),
+        hertz_force=_var("step", ref["force"], "N", "Hertz force 4/3 E' R^1/2 w^3/2"),
+        hertz_contact_radius=_var("step", ref["contact_radius"], "m",
+                                  "Hertz contact radius (R w)^1/2"),
+        force=_var(brs, force, "N", "total contact force (finite elements)"),
+        contact_radius=_var(brs, contact_radius, "m", "contact radius (finite elements)"),
+        force_error=_var(brs, force_error, "1",
+                         "relative force error against Hertz (FE / Hertz - 1)"),
+        radius_error=_var(brs, radius_error, "1",
+                          "relative contact radius error against Hertz (FE / Hertz - 1)"),
+        max_force_error=_var(br, np.max(np.abs(force_error), axis=-1), "1",
+                             "largest |relative force error| over the steps"),
+        max_radius_error=_var(br, np.max(np.abs(radius_error), axis=-1), "1",
+                              "largest |relative contact radius error| over the steps"),
+        dofs=_var(br, scalars["dofs"], "1", "degrees of freedom of the run's final mesh"),
+        wall_time=_var(br, scalars["wall_time"], "s",
+                       "total wall time of the run (meshing, adaptivity and all steps)"),
+        max_estimated_error=_var(br, scalars["estimated_error"], "1",
+                                 "largest ZZ estimate of the relative energy-norm error "
+                                 "over the steps"),
+        adaptive_sweeps=_var(br, scalars["sweeps"], "1", "adaptive refinement sweeps performed"),
+        kind=_var("run", np.array(kinds, dtype=object), "1",
+                  "'preset' (accuracy preset) or 'refinement' (member of the refinement sequence)"),
+        accuracy_parameters=_var("run", np.array(parameters, dtype=object), "1",
+                                 "resolved accuracy parameters of the run (repr of a dict)"),
+    )
+
+
+def _penalty_study(geometry, material, w: np.ndarray, factors: np.ndarray,
+                   penalty_accuracy: str | dict) -> tuple[dict, dict]:
+    """The penalty study's variables on ``penalty_factor`` and its attributes: the
+    penalty method against exact contact on the same mesh, and the runs' wall times."""
+    pe = penalty_error(geometry, material, w, accuracy=penalty_accuracy,
+                       penalty_factors=tuple(factors))
+    exact = solve_asperity(geometry, material, w, accuracy=penalty_accuracy, contact="exact")
+    times = [solve_asperity(geometry, material, w, accuracy=penalty_accuracy,
+                            penalty_factor=c).attrs["total_wall_time"] for c in factors]
+    pf = "penalty_factor"
+    data = dict(
+        penalty_force_error=_var(pf, np.abs(pe.force_error).max("step").values, "1",
+                                 "largest |penalty / exact - 1| of the force over the steps "
+                                 "(same mesh)"),
+        penalty_radius_error=_var(pf, np.abs(pe.radius_error).max("step").values, "1",
+                                  "largest |penalty / exact - 1| of the contact radius over "
+                                  "the steps (same mesh)"),
+        penalty_max_penetration=_var(pf, pe.max_penetration.max("step").values, "1",
+                                     "largest nodal penetration / interference over the steps"),
+        penalty_wall_time=_var(pf, times, "s",
+                               "total wall time of a complete penalty run with this factor"),
+        exact_wall_time=_var((), exact.attrs["total_wall_time"], "s",
+                             "total wall time of a complete run with exact contact "
+                             "(augmented Lagrangian)"),
+    )
+    penalty_attrs = dict(penalty_accuracy=penalty_accuracy if isinstance(penalty_accuracy, str)
+                         else repr(resolve("elastic", penalty_accuracy)),
+                         penalty_dofs=int(pe.attrs["dofs"]))
+    return data, penalty_attrs
+
+
 def hertz_accuracy_study(radius: float = 1.0, youngs_modulus: float = 1000.0,
                          poisson: float = 0.3,
                          interferences: Sequence[float] = (0.001, 0.002, 0.005, 0.01, 0.02),
@@ -132,104 +245,29 @@ def hertz_accuracy_study(radius: float = 1.0, youngs_modulus: float = 1000.0,
     w = np.asarray(interferences, dtype=float)
     if w.ndim != 1 or w.size == 0 or np.any(w <= 0):
         raise ValueError("interferences must be a non-empty 1-D sequence of positive values")
-    refinement = DEFAULT_REFINEMENT if refinement is None else tuple(refinement)
-    presets = tuple(presets)
-    for p in presets:
-        resolve("elastic", p)  # unknown names fail before any run
-    members = [resolve("elastic", m) for m in refinement]
-    labels = list(presets) + [f"refine-{i + 1}" for i in range(len(members))]
-    if len(set(labels)) != len(labels):
-        raise ValueError(f"run labels must be unique, got {labels}")
-    kinds = ["preset"] * len(presets) + ["refinement"] * len(members)
-    runs = [(p, p) for p in presets] + list(zip(labels[len(presets):], refinement))
+    labels, kinds, runs = _study_runs(presets, refinement)
 
     geometries = dict(paraboloid=Paraboloid(radius), sphere=Sphere(radius))
-    nb, nr, ns = len(BODIES), len(runs), len(w)
-    force = np.full((nb, nr, ns), np.nan)
-    contact_radius = np.full((nb, nr, ns), np.nan)
-    scalars = {k: np.full((nb, nr), np.nan)
-               for k in ("dofs", "wall_time", "estimated_error", "sweeps")}
-    for j, (label, accuracy) in enumerate(runs):
-        bodies = BODIES if kinds[j] == "preset" else ("paraboloid",)
-        for body in bodies:
-            i = BODIES.index(body)
-            rec = _run_record(solve_asperity(geometries[body], material, w, accuracy=accuracy))
-            force[i, j] = rec["force"]
-            contact_radius[i, j] = rec["contact_radius"]
-            for k in scalars:
-                scalars[k][i, j] = rec[k]
+    force, contact_radius, scalars = _solve_runs(geometries, material, w, runs, kinds)
 
     ref = hertz(radius, material, w)
-    force_error = force / ref["force"] - 1
-    radius_error = contact_radius / ref["contact_radius"] - 1
-    parameters = [repr(resolve("elastic", acc)) for _, acc in runs]
-
-    def var(dims, values, units, long_name):
-        return (dims, np.asarray(values), dict(units=units, long_name=long_name))
-
-    br, brs = ("body", "run"), ("body", "run", "step")
-    data = dict(
-        interference=var("step", w, "m", "interference of the rigid flat (approach from first touch)"),
-        hertz_force=var("step", ref["force"], "N", "Hertz force 4/3 E' R^1/2 w^3/2"),
-        hertz_contact_radius=var("step", ref["contact_radius"], "m",
-                                 "Hertz contact radius (R w)^1/2"),
-        force=var(brs, force, "N", "total contact force (finite elements)"),
-        contact_radius=var(brs, contact_radius, "m", "contact radius (finite elements)"),
-        force_error=var(brs, force_error, "1", "relative force error against Hertz (FE / Hertz - 1)"),
-        radius_error=var(brs, radius_error, "1",
-                         "relative contact radius error against Hertz (FE / Hertz - 1)"),
-        max_force_error=var(br, np.max(np.abs(force_error), axis=-1), "1",
-                            "largest |relative force error| over the steps"),
-        max_radius_error=var(br, np.max(np.abs(radius_error), axis=-1), "1",
-                             "largest |relative contact radius error| over the steps"),
-        dofs=var(br, scalars["dofs"], "1", "degrees of freedom of the run's final mesh"),
-        wall_time=var(br, scalars["wall_time"], "s",
-                      "total wall time of the run (meshing, adaptivity and all steps)"),
-        max_estimated_error=var(br, scalars["estimated_error"], "1",
-                                "largest ZZ estimate of the relative energy-norm error over the steps"),
-        adaptive_sweeps=var(br, scalars["sweeps"], "1", "adaptive refinement sweeps performed"),
-        kind=var("run", np.array(kinds, dtype=object), "1",
-                 "'preset' (accuracy preset) or 'refinement' (member of the refinement sequence)"),
-        accuracy_parameters=var("run", np.array(parameters, dtype=object), "1",
-                                "resolved accuracy parameters of the run (repr of a dict)"),
-    )
+    data = _accuracy_variables(w, ref, force, contact_radius, scalars, kinds, runs)
     coords = dict(
         body=("body", np.array(BODIES, dtype=object),
               dict(units="1", long_name="body: Hertz's paraboloid (half space with a "
                                         "paraboloidal gap) or the true sphere")),
         run=("run", np.array(labels, dtype=object),
              dict(units="1", long_name="accuracy preset or member of the refinement sequence")),
-        step=("step", np.arange(ns), dict(units="1", long_name="load step index")),
+        step=("step", np.arange(len(w)), dict(units="1", long_name="load step index")),
     )
 
     factors = np.asarray(penalty_factors, dtype=float)
     if factors.size:
-        geometry = geometries["paraboloid"]
-        pe = penalty_error(geometry, material, w, accuracy=penalty_accuracy,
-                           penalty_factors=tuple(factors))
-        exact = solve_asperity(geometry, material, w, accuracy=penalty_accuracy, contact="exact")
-        times = [solve_asperity(geometry, material, w, accuracy=penalty_accuracy,
-                                penalty_factor=c).attrs["total_wall_time"] for c in factors]
+        penalty_data, penalty_attrs = _penalty_study(geometries["paraboloid"], material, w,
+                                                     factors, penalty_accuracy)
+        data.update(penalty_data)
         pf = "penalty_factor"
-        data.update(
-            penalty_force_error=var(pf, np.abs(pe.force_error).max("step").values, "1",
-                                    "largest |penalty / exact - 1| of the force over the steps "
-                                    "(same mesh)"),
-            penalty_radius_error=var(pf, np.abs(pe.radius_error).max("step").values, "1",
-                                     "largest |penalty / exact - 1| of the contact radius over "
-                                     "the steps (same mesh)"),
-            penalty_max_penetration=var(pf, pe.max_penetration.max("step").values, "1",
-                                        "largest nodal penetration / interference over the steps"),
-            penalty_wall_time=var(pf, times, "s",
-                                  "total wall time of a complete penalty run with this factor"),
-            exact_wall_time=var((), exact.attrs["total_wall_time"], "s",
-                                "total wall time of a complete run with exact contact "
-                                "(augmented Lagrangian)"),
-        )
         coords[pf] = (pf, factors, dict(units="1", long_name="penalty factor c in kappa = c E' / h"))
-        penalty_attrs = dict(penalty_accuracy=penalty_accuracy if isinstance(penalty_accuracy, str)
-                             else repr(resolve("elastic", penalty_accuracy)),
-                             penalty_dofs=int(pe.attrs["dofs"]))
     else:
         penalty_attrs = {}
 

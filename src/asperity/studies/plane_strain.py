@@ -88,55 +88,23 @@ def _padded(values: np.ndarray, n: int) -> np.ndarray:
     return out
 
 
-def plane_strain_study(geometry, body, elastic, history, meshes: Mapping[str, dict],
-                       points: int = 24, kinematics: str = "small",
-                       progress=None) -> xr.Dataset:
-    """Force against interference of a plane-strain asperity, elastic and viscoplastic,
-    on each of `meshes` (module docstring).
-
-    Parameters
-    ----------
-    geometry
-        a plane-strain `asperity.fe.discretization.geometry.Profile` (`Cylinder`, `TruncatedV`).
-    body, elastic
-        the inelastic body (`BodnerPartom`, `J2Plasticity`) and its elastic twin
-        (`LinearElastic` with the same E and nu).
-    history
-        `asperity.fe.History`: the loading of the flat (interference against time).
-    meshes
-        mesh name -> accuracy preset (a dict `asperity.fe.presets.resolve` takes for
-        "elastic"); both bodies are meshed by it, so that they share the mesh, refined
-        to the elastic solutions as the report's (6.3.2).
-    points
-        interference levels of the elastic body, evenly spaced to the largest of the
-        history; they also drive the meshing of both bodies.
-    kinematics
-        of the inelastic body (`solve_asperity_history`): ``"small"`` (the report's
-        theory) or ``"finite"``; the elastic twin is linear, small strain.
-    progress
-        called with a message after each solve.
-
-    Returns a Dataset in SI on dims ``mesh``, ``body``, ``interference`` (the levels)
-    and ``step`` (the viscoplastic history, NaN-padded; with unloading, both branches),
-    with the CPU time of each solve, the degrees of freedom of each mesh, the largest
-    nonelastic strain of each mesh and where it was reached, for a history that unloads
-    the residual interference and the unloading stiffness of each mesh, for a cylinder
-    the Hertz half width, and on dims ``vertex``, ``triangle`` and ``corner`` each mesh
-    with the viscoplastic body's displacement and nonelastic strain at the end of the
-    history (`asperity.fe.drivers.inelastic.mesh_fields`, padded to the largest mesh).
-    """
-    from asperity.fe import solve_asperity, solve_asperity_history
-    from asperity.fe.analytic import hertz_line_half_width
-    from asperity.fe.drivers.inelastic import END_FIELDS
-    from asperity.fe.presets import resolve
-
+def _check_bodies(geometry, body, elastic) -> None:
+    """Refuse a body of revolution and an elastic twin without the body's E and nu."""
     if geometry.axisymmetric:
         raise ValueError("a plane-strain study needs a plane section (axisymmetric=False)")
     if abs(elastic.E - body.E) > 1e-12 * body.E or abs(elastic.nu - body.nu) > 1e-12:
         raise ValueError("the elastic twin must have the body's E and nu")
-    w_max = float(np.max(history.interferences))
-    unloads = float(history.interferences[-1]) < w_max
-    w = levels(w_max, points)
+
+
+def _solve_meshes(geometry, body, elastic, history, meshes: Mapping[str, dict],
+                  w: np.ndarray, w_max: float, unloads: bool, kinematics: str,
+                  progress) -> tuple:
+    """Solve both bodies on each mesh: the elastic results and the viscoplastic loading
+    branch on the levels `w` (grid), the elastic stiffness, CPU times, degrees of freedom,
+    inverted elements at the end and the viscoplastic histories (runs)."""
+    from asperity.fe import solve_asperity, solve_asperity_history
+    from asperity.fe.presets import resolve
+
     names = list(meshes)
     shape = (len(names), len(BODIES), len(w))
     grid = {k: np.full(shape, np.nan) for k in TRACKED}
@@ -174,7 +142,14 @@ def plane_strain_study(geometry, body, elastic, history, meshes: Mapping[str, di
                      + (f"residual interference {v.attrs['residual_interference']:.4g} m, "
                         if unloads else "")
                      + f"{inverted[i]} elements inside out at the end")
+    return grid, stiffness, cpu, dofs, inverted, runs
 
+
+def _study_dataset(names: list[str], w: np.ndarray, grid: dict[str, np.ndarray],
+                   stiffness: np.ndarray, cpu: np.ndarray, dofs: np.ndarray,
+                   runs: list[xr.Dataset]) -> xr.Dataset:
+    """The study's variables on ``mesh``, ``body``, ``interference`` and ``step``: both
+    bodies on the levels and the viscoplastic histories, NaN-padded to the longest."""
     steps = max(r.sizes["step"] for r in runs)
     per_step = {k: np.stack([_padded(r[k].values, steps) for r in runs])
                 for k in ("time", "interference", "force", "contact_radius",
@@ -183,7 +158,7 @@ def plane_strain_study(geometry, body, elastic, history, meshes: Mapping[str, di
     where = np.array([float(r["interference"].values[np.argmax(r["max_inelastic_strain"].values)])
                       for r in runs])
     dims3 = ("mesh", "body", "interference")
-    ds = xr.Dataset(
+    return xr.Dataset(
         {
             "force": (dims3, grid["force"], attrs("N/m", "contact force per unit length of the "
                                                   "section (both sides of the symmetry plane)")),
@@ -229,6 +204,14 @@ def plane_strain_study(geometry, body, elastic, history, meshes: Mapping[str, di
                                                           "history (0: untouched)")),
         },
     )
+
+
+def _with_end_fields(ds: xr.Dataset, runs: list[xr.Dataset],
+                     inverted: np.ndarray) -> xr.Dataset:
+    """`ds` with each mesh and the viscoplastic body on it at the end, its sizes and its
+    inverted elements."""
+    from asperity.fe.drivers.inelastic import END_FIELDS
+
     # each mesh and the viscoplastic body on it at the end (Figs. 6.15, 6.16, 6.19-6.21),
     # padded to the largest mesh: NaN, and -1 for the corners of missing triangles
     ends = xr.concat([r[list(END_FIELDS)] for r in runs], dim="mesh", join="outer",
@@ -243,6 +226,57 @@ def plane_strain_study(geometry, body, elastic, history, meshes: Mapping[str, di
                                attrs("1", "elements the viscoplastic body's displacement at the "
                                           "end turns inside out (det(I + grad u) <= 0: the "
                                           "small-strain solution past its range)"))
+    return ds
+
+
+def plane_strain_study(geometry, body, elastic, history, meshes: Mapping[str, dict],
+                       points: int = 24, kinematics: str = "small",
+                       progress=None) -> xr.Dataset:
+    """Force against interference of a plane-strain asperity, elastic and viscoplastic,
+    on each of `meshes` (module docstring).
+
+    Parameters
+    ----------
+    geometry
+        a plane-strain `asperity.fe.discretization.geometry.Profile` (`Cylinder`, `TruncatedV`).
+    body, elastic
+        the inelastic body (`BodnerPartom`, `J2Plasticity`) and its elastic twin
+        (`LinearElastic` with the same E and nu).
+    history
+        `asperity.fe.History`: the loading of the flat (interference against time).
+    meshes
+        mesh name -> accuracy preset (a dict `asperity.fe.presets.resolve` takes for
+        "elastic"); both bodies are meshed by it, so that they share the mesh, refined
+        to the elastic solutions as the report's (6.3.2).
+    points
+        interference levels of the elastic body, evenly spaced to the largest of the
+        history; they also drive the meshing of both bodies.
+    kinematics
+        of the inelastic body (`solve_asperity_history`): ``"small"`` (the report's
+        theory) or ``"finite"``; the elastic twin is linear, small strain.
+    progress
+        called with a message after each solve.
+
+    Returns a Dataset in SI on dims ``mesh``, ``body``, ``interference`` (the levels)
+    and ``step`` (the viscoplastic history, NaN-padded; with unloading, both branches),
+    with the CPU time of each solve, the degrees of freedom of each mesh, the largest
+    nonelastic strain of each mesh and where it was reached, for a history that unloads
+    the residual interference and the unloading stiffness of each mesh, for a cylinder
+    the Hertz half width, and on dims ``vertex``, ``triangle`` and ``corner`` each mesh
+    with the viscoplastic body's displacement and nonelastic strain at the end of the
+    history (`asperity.fe.drivers.inelastic.mesh_fields`, padded to the largest mesh).
+    """
+    from asperity.fe.analytic import hertz_line_half_width
+
+    _check_bodies(geometry, body, elastic)
+    w_max = float(np.max(history.interferences))
+    unloads = float(history.interferences[-1]) < w_max
+    w = levels(w_max, points)
+    names = list(meshes)
+    grid, stiffness, cpu, dofs, inverted, runs = _solve_meshes(
+        geometry, body, elastic, history, meshes, w, w_max, unloads, kinematics, progress)
+    ds = _study_dataset(names, w, grid, stiffness, cpu, dofs, runs)
+    ds = _with_end_fields(ds, runs, inverted)
     if unloads:
         ds["residual_interference"] = (
             "mesh", np.array([r.attrs["residual_interference"] for r in runs]),

@@ -135,6 +135,154 @@ def _indicator(material, r0, r1, new, h, control):
     return E if np.isfinite(E) else math.inf
 
 
+def _run_explicit(material, state, rows, times, values, control, steps, adaptive,
+                  explicit_tol, stop_at_rupture):
+    """Integrate with the explicit predictor-corrector over `steps` output intervals,
+    appending each interval's record to `rows`: (accepted, rejected, rupture time)."""
+    t0, T = float(times[0]), float(times[-1])
+    n_acc = 0
+    n_rej = 0
+    rupture_time = None
+    grid = np.union1d(np.linspace(t0, T, steps + 1), times)
+    mask = np.array([False, True, True, True]) if control == "strain" else np.ones(4, bool)
+    etol = explicit_tol if adaptive else math.inf
+    for ta, tb in zip(grid[:-1], grid[1:]):
+        target = float(np.interp(tb, times, values))
+        strain = np.array(state.strain, float)
+        stress = np.zeros(4)
+        if control == "strain":
+            strain[0] = target
+        else:
+            stress[0] = target
+        with np.errstate(all="ignore"):
+            _, state, info = material.explicit(strain, state, tb - ta, tol=etol,
+                                               stress=stress, stress_mask=mask)
+        n_acc += int(info["substeps"])
+        n_rej += int(info["rejected"])
+        if not np.all(state.converged):
+            raise UniaxialError(f"explicit integration did not reach t = {tb}")
+        rows.append(_record(state, float(tb), float(tb - ta)))
+        if stop_at_rupture and np.any(state.ruptured):
+            rupture_time = float(np.asarray(state.rupture_time))
+            break
+    return n_acc, n_rej, rupture_time
+
+
+def _predicted_strain(state, control, target, h, same_segment, prev_strain, prev_h, D_last):
+    """Predictor of the free strains of an implicit step: extrapolated along the segment,
+    or from the last consistent tangent at the start of a segment."""
+    eps0 = np.array(state.strain, float)
+    if same_segment:
+        eps0 = eps0 + (eps0 - prev_strain) * (h / prev_h)
+    elif D_last is not None:
+        free = [1, 2, 3] if control == "strain" else [0, 1, 2, 3]
+        ds = np.zeros(4)
+        de = np.zeros(4)
+        if control == "strain":
+            de[0] = target - float(state.strain[0])
+        else:
+            ds[0] = target - float(state.stress[0])
+        rhs = ds[free] - D_last[np.ix_(free, [0])] @ de[:1] * (control == "strain")
+        eps0 = eps0 + de
+        eps0[free] += np.linalg.solve(D_last[np.ix_(free, free)], rhs)
+    return eps0
+
+
+def _run_implicit(material, state, rows, times, values, control, steps, adaptive, tol,
+                  dt0, dt_min, dt_max, max_steps, newton_tol, stop_at_rupture):
+    """Integrate by backward Euler with adaptive (or uniform) steps, appending each
+    accepted step's record to `rows`: (accepted, rejected, rupture time)."""
+    t0, T = float(times[0]), float(times[-1])
+    n_acc = 0
+    n_rej = 0
+    rupture_time = None
+    has_rates = hasattr(material, "rates")
+    scale = float(material.stress_scale)
+    dt = float(dt0) if dt0 is not None else (T - t0) / steps
+    dt_min = dt_min if dt_min is not None else 1e-12 * (T - t0)
+    dt_max = dt_max if dt_max is not None else (T - t0)
+    r0 = material.rates(state) if has_rates else None
+    seg_steps = None
+    if not adaptive:
+        seg_steps = np.maximum(1, np.round(steps * np.diff(times) / (T - t0))).astype(int)
+    t = t0
+    prev_strain = None
+    prev_h = None
+    D_last = material.tangent() if hasattr(material, "tangent") else None
+    while t < T - 1e-12 * (T - t0):
+        if n_acc + n_rej >= max_steps:
+            raise UniaxialError(f"more than {max_steps} steps")
+        k = int(np.searchsorted(times, t, side="right"))  # next breakpoint index
+        k = min(k, len(times) - 1)
+        t_bp = float(times[k])
+        if seg_steps is not None:
+            h = (times[k] - times[k - 1]) / seg_steps[k - 1]
+        else:
+            h = min(dt, dt_max)
+        truncated = False
+        if t + h >= t_bp - 0.05 * h:
+            truncated = t + h > t_bp
+            h = t_bp - t
+        target = float(np.interp(t + h, times, values))
+        # predictor of the free strains
+        same_segment = prev_strain is not None and t > float(times[k - 1]) + 1e-12 * (T - t0)
+        eps0 = _predicted_strain(state, control, target, h, same_segment, prev_strain, prev_h,
+                                 D_last)
+        ok, sig, D, new = solve_mixed_point(material, state, h, eps0, control, target,
+                                            scale, newton_tol)
+        if not ok:
+            n_rej += 1
+            dt = 0.25 * h
+            if seg_steps is not None:
+                raise UniaxialError(f"step at t = {t} did not converge (adaptive=False)")
+            if dt < dt_min:
+                raise UniaxialError(f"step below dt_min at t = {t}")
+            continue
+        r1 = material.rates(new) if has_rates else None
+        E = _indicator(material, r0, r1, new, h, control) if seg_steps is None else 0.0
+        if E > tol:
+            n_rej += 1
+            dt = h * max(0.2, 0.9 * math.sqrt(tol / E))
+            if dt < dt_min:
+                raise UniaxialError(f"step below dt_min at t = {t}")
+            continue
+        # accept
+        prev_strain = np.array(state.strain, float)
+        prev_h = h
+        state, r0, D_last = new, r1, D
+        t = t + h
+        n_acc += 1
+        rows.append(_record(state, t, h))
+        fac = 2.0 if E <= 0 else min(2.0, max(0.2, 0.9 * math.sqrt(tol / E)))
+        dt = fac * (dt if truncated else h)
+        if stop_at_rupture and np.any(state.ruptured):
+            rupture_time = float(np.asarray(state.rupture_time))
+            break
+    return n_acc, n_rej, rupture_time
+
+
+def _uniaxial_dataset(rows, material, integrator, control, n_acc, n_rej, wall, rupture_time):
+    """The Dataset of the records `rows` on dim ``step``, with the run's attributes."""
+    data = {k: ("step", np.array([r[k] for r in rows], float)) for k in _VARS}
+    ds = xr.Dataset(data, coords={"step": np.arange(len(rows))})
+    for k, (u, ln) in _VARS.items():
+        ds[k].attrs.update(units=u, long_name=ln)
+    ds["step"].attrs.update(units="1", long_name="step index (0: initial state)")
+    ds.attrs.update(
+        title="uniaxial material point test",
+        integrator=integrator,
+        control=control,
+        material=getattr(material, "name", "") or type(material).__name__,
+        steps=int(n_acc),
+        rejected_steps=int(n_rej),
+        wall_time=float(wall),
+        ruptured=int(rupture_time is not None),
+    )
+    if rupture_time is not None:
+        ds.attrs["rupture_time"] = rupture_time
+    return ds
+
+
 def run_uniaxial(material, history, integrator: str = "implicit", control: str = "strain",
                  steps: int = 100, adaptive: bool = True, *, tol: float = 1e-3,
                  explicit_tol: float = 1e-5, dt0: float | None = None,
@@ -166,134 +314,25 @@ def run_uniaxial(material, history, integrator: str = "implicit", control: str =
     if control not in ("strain", "stress"):
         raise ValueError("control is 'strain' or 'stress'")
     times, values = _check_history(history)
-    t0, T = float(times[0]), float(times[-1])
+    t0 = float(times[0])
     wall0 = _time.perf_counter()
     state = material.initial_state(())
     rows = [_record(state, t0, 0.0)]
-    n_acc = 0
-    n_rej = 0
-    rupture_time = None
 
     if integrator == "explicit":
         if not hasattr(material, "explicit"):
             raise ValueError(f"{type(material).__name__} has no explicit integrator")
-        grid = np.union1d(np.linspace(t0, T, steps + 1), times)
-        mask = np.array([False, True, True, True]) if control == "strain" else np.ones(4, bool)
-        etol = explicit_tol if adaptive else math.inf
-        for ta, tb in zip(grid[:-1], grid[1:]):
-            target = float(np.interp(tb, times, values))
-            strain = np.array(state.strain, float)
-            stress = np.zeros(4)
-            if control == "strain":
-                strain[0] = target
-            else:
-                stress[0] = target
-            with np.errstate(all="ignore"):
-                _, state, info = material.explicit(strain, state, tb - ta, tol=etol,
-                                                   stress=stress, stress_mask=mask)
-            n_acc += int(info["substeps"])
-            n_rej += int(info["rejected"])
-            if not np.all(state.converged):
-                raise UniaxialError(f"explicit integration did not reach t = {tb}")
-            rows.append(_record(state, float(tb), float(tb - ta)))
-            if stop_at_rupture and np.any(state.ruptured):
-                rupture_time = float(np.asarray(state.rupture_time))
-                break
+        n_acc, n_rej, rupture_time = _run_explicit(
+            material, state, rows, times, values, control, steps, adaptive, explicit_tol,
+            stop_at_rupture)
     else:
-        has_rates = hasattr(material, "rates")
-        scale = float(material.stress_scale)
-        dt = float(dt0) if dt0 is not None else (T - t0) / steps
-        dt_min = dt_min if dt_min is not None else 1e-12 * (T - t0)
-        dt_max = dt_max if dt_max is not None else (T - t0)
-        r0 = material.rates(state) if has_rates else None
-        seg_steps = None
-        if not adaptive:
-            seg_steps = np.maximum(1, np.round(steps * np.diff(times) / (T - t0))).astype(int)
-        t = t0
-        prev_strain = None
-        prev_h = None
-        D_last = material.tangent() if hasattr(material, "tangent") else None
-        while t < T - 1e-12 * (T - t0):
-            if n_acc + n_rej >= max_steps:
-                raise UniaxialError(f"more than {max_steps} steps")
-            k = int(np.searchsorted(times, t, side="right"))  # next breakpoint index
-            k = min(k, len(times) - 1)
-            t_bp = float(times[k])
-            if seg_steps is not None:
-                h = (times[k] - times[k - 1]) / seg_steps[k - 1]
-            else:
-                h = min(dt, dt_max)
-            truncated = False
-            if t + h >= t_bp - 0.05 * h:
-                truncated = t + h > t_bp
-                h = t_bp - t
-            target = float(np.interp(t + h, times, values))
-            # predictor of the free strains
-            eps0 = np.array(state.strain, float)
-            same_segment = prev_strain is not None and t > float(times[k - 1]) + 1e-12 * (T - t0)
-            if same_segment:
-                eps0 = eps0 + (eps0 - prev_strain) * (h / prev_h)
-            elif D_last is not None:
-                free = [1, 2, 3] if control == "strain" else [0, 1, 2, 3]
-                ds = np.zeros(4)
-                de = np.zeros(4)
-                if control == "strain":
-                    de[0] = target - float(state.strain[0])
-                else:
-                    ds[0] = target - float(state.stress[0])
-                rhs = ds[free] - D_last[np.ix_(free, [0])] @ de[:1] * (control == "strain")
-                eps0 = eps0 + de
-                eps0[free] += np.linalg.solve(D_last[np.ix_(free, free)], rhs)
-            ok, sig, D, new = solve_mixed_point(material, state, h, eps0, control, target,
-                                                scale, newton_tol)
-            if not ok:
-                n_rej += 1
-                dt = 0.25 * h
-                if seg_steps is not None:
-                    raise UniaxialError(f"step at t = {t} did not converge (adaptive=False)")
-                if dt < dt_min:
-                    raise UniaxialError(f"step below dt_min at t = {t}")
-                continue
-            r1 = material.rates(new) if has_rates else None
-            E = _indicator(material, r0, r1, new, h, control) if seg_steps is None else 0.0
-            if E > tol:
-                n_rej += 1
-                dt = h * max(0.2, 0.9 * math.sqrt(tol / E))
-                if dt < dt_min:
-                    raise UniaxialError(f"step below dt_min at t = {t}")
-                continue
-            # accept
-            prev_strain = np.array(state.strain, float)
-            prev_h = h
-            state, r0, D_last = new, r1, D
-            t = t + h
-            n_acc += 1
-            rows.append(_record(state, t, h))
-            fac = 2.0 if E <= 0 else min(2.0, max(0.2, 0.9 * math.sqrt(tol / E)))
-            dt = fac * (dt if truncated else h)
-            if stop_at_rupture and np.any(state.ruptured):
-                rupture_time = float(np.asarray(state.rupture_time))
-                break
+        n_acc, n_rej, rupture_time = _run_implicit(
+            material, state, rows, times, values, control, steps, adaptive, tol, dt0, dt_min,
+            dt_max, max_steps, newton_tol, stop_at_rupture)
 
     wall = _time.perf_counter() - wall0
-    data = {k: ("step", np.array([r[k] for r in rows], float)) for k in _VARS}
-    ds = xr.Dataset(data, coords={"step": np.arange(len(rows))})
-    for k, (u, ln) in _VARS.items():
-        ds[k].attrs.update(units=u, long_name=ln)
-    ds["step"].attrs.update(units="1", long_name="step index (0: initial state)")
-    ds.attrs.update(
-        title="uniaxial material point test",
-        integrator=integrator,
-        control=control,
-        material=getattr(material, "name", "") or type(material).__name__,
-        steps=int(n_acc),
-        rejected_steps=int(n_rej),
-        wall_time=float(wall),
-        ruptured=int(rupture_time is not None),
-    )
-    if rupture_time is not None:
-        ds.attrs["rupture_time"] = rupture_time
-    return ds
+    return _uniaxial_dataset(rows, material, integrator, control, n_acc, n_rej, wall,
+                             rupture_time)
 
 
 # ------------------------------------------------------------ named tests
