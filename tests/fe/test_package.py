@@ -1,5 +1,6 @@
 """`asperity.fe` exports every geometry, material and driver; its modules share
-only public names; its packages hold one concern each."""
+only public names; its packages hold one concern each; the whole package keeps to a
+newcomer's budgets of lines."""
 
 import ast
 import importlib
@@ -79,10 +80,11 @@ def _function_lines(node) -> int:
 
 
 def test_modules_and_functions_keep_to_their_budgets():
+    """Every module of the package, `asperity.fe` and the rest."""
     over = []
-    for path in sorted(FE.rglob("*.py")):
+    for path in sorted(FE.parent.rglob("*.py")):
         text = path.read_text()
-        name = path.relative_to(FE)
+        name = path.relative_to(FE.parent)
         if text.count("\n") > MODULE_LINES:
             over.append(f"{name}: {text.count(chr(10))} lines > {MODULE_LINES}")
         for node in ast.walk(ast.parse(text)):
