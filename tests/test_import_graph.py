@@ -68,3 +68,22 @@ def test_no_import_cycle():
         tuple(graphlib.TopologicalSorter(import_graph()).static_order())
     except graphlib.CycleError as err:
         pytest.fail("import cycle: " + " -> ".join(err.args[1]))
+
+
+#: the stages whose every job draws (their modules may import matplotlib at the top)
+DRAWING_STAGES = {"figures", "accuracy", "studies"}
+
+
+def test_data_jobs_start_without_matplotlib():
+    """A stage that computes data imports the plots in its figure functions only: a job
+    that writes a netCDF file starts without matplotlib (about 0.4 s a process)."""
+    import subprocess
+    import sys
+
+    stages = sorted(p.stem for p in (SRC / "asperity" / "stages").glob("*.py")
+                    if p.stem != "__init__" and p.stem not in DRAWING_STAGES)
+    assert {"friction", "population", "reference", "routes", "surface"} <= set(stages)
+    code = ("import sys\n" + "".join(f"import asperity.stages.{s}\n" for s in stages)
+            + "print(sorted(m for m in sys.modules if m.split('.')[0] == 'matplotlib'))")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert out.stdout.strip() == "[]", out.stdout

@@ -9,9 +9,9 @@ from typing import Any, Mapping
 import xarray as xr
 
 from asperity import friction, laws, scene
-from asperity.plots import friction as friction_plots
 
 Config = Mapping[str, Any]
+# the figure functions import their plots (matplotlib) themselves: the data jobs start without
 
 
 def friction_dataset(interface: xr.Dataset, surface: xr.Dataset, friction_cfg: Config,
@@ -31,11 +31,15 @@ def laws_dataset(interface: xr.Dataset, laws_cfg: Config, units_cfg: Config) -> 
 
 def friction_figure(friction_ds: xr.Dataset, units_cfg: Config,
                     others: Mapping[str, xr.Dataset] | None = None):
+    from asperity.plots import friction as friction_plots
+
     return friction_plots.friction_figure(friction_ds, others or {},
                                           pressure_unit=units_cfg["pressure"],
                                           length_unit=units_cfg["length"])
 
 
 def laws_figure(laws_ds: xr.Dataset, units_cfg: Config):
+    from asperity.plots import friction as friction_plots
+
     return friction_plots.laws_figure(laws_ds, pressure_unit=units_cfg["pressure"],
                                       length_unit=units_cfg["length"])

@@ -10,10 +10,10 @@ from typing import Any, Callable, Mapping
 import xarray as xr
 
 from asperity.studies.plane_strain import plane_strain_study
-from asperity.plots import plane_strain as plane_strain_plots
 from asperity.scene.plane_strain import PlaneStrain
 
 Config = Mapping[str, Any]
+# the figure functions import their plots (matplotlib) themselves: the data jobs start without
 log = logging.getLogger("asperity")
 
 
@@ -60,8 +60,12 @@ def plane_strain_dataset(scene_name: str, scene: Config, accuracy: str,
 
 
 def plane_strain_figure(ds: xr.Dataset, units_cfg: Config):
+    from asperity.plots import plane_strain as plane_strain_plots
+
     return plane_strain_plots.plane_strain_figure(ds, units_cfg["length"])
 
 
 def plane_strain_mesh_figure(ds: xr.Dataset, units_cfg: Config):
+    from asperity.plots import plane_strain as plane_strain_plots
+
     return plane_strain_plots.plane_strain_mesh_figure(ds, units_cfg["length"])

@@ -28,7 +28,6 @@ from asperity.population.density import height_scale
 from asperity.references.hertz import plane_strain_modulus
 from asperity import scene
 from asperity.scene import length_factor
-from asperity.plots.reference import reference_figure as _reference_figure
 # the map as the surface stage reads and prepares it (in-fill, form, filter): the script of
 # the reference rule calls this module only
 from asperity.stages.surface import prepared_roughness, reading  # noqa: F401
@@ -37,6 +36,7 @@ from asperity.units import attrs
 log = logging.getLogger("asperity")
 
 Config = Mapping[str, Any]
+# the figure functions import their plots (matplotlib) themselves: the data jobs start without
 
 #: `<scene>+<route>`: the scene of one statistical route of a reference scene
 ROUTE_SEPARATOR = "+"
@@ -332,5 +332,7 @@ def comparison_dataset(reference: xr.Dataset, interfaces: Mapping[str, xr.Datase
 def reference_figure(reference: xr.Dataset, comparison: xr.Dataset, units_cfg: Config):
     """Pressure against separation and contact area against pressure, every route beside
     the boundary-element solution."""
-    return _reference_figure(reference, comparison, length_unit=units_cfg["length"],
-                             pressure_unit=units_cfg["pressure"])  # the schema fills it in
+    from asperity.plots.reference import reference_figure as draw
+
+    return draw(reference, comparison, length_unit=units_cfg["length"],
+                pressure_unit=units_cfg["pressure"])  # the schema fills it in

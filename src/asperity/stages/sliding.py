@@ -8,10 +8,10 @@ from typing import Any, Callable, Mapping
 import xarray as xr
 
 from asperity.fe.drivers.solid3d import solve_sliding
-from asperity.plots import sliding as sliding_plots
 from asperity.scene import Sliding, Units
 
 Config = Mapping[str, Any]
+# the figure functions import their plots (matplotlib) themselves: the data jobs start without
 
 
 def sliding_dataset(scene_name: str, sliding: Config, units_cfg: Config, accuracy: str,
@@ -31,4 +31,6 @@ def sliding_dataset(scene_name: str, sliding: Config, units_cfg: Config, accurac
 
 
 def sliding_figure(ds: xr.Dataset, units_cfg: Config):
+    from asperity.plots import sliding as sliding_plots
+
     return sliding_plots.sliding_figure(ds, units_cfg["length"])

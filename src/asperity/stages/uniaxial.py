@@ -7,12 +7,12 @@ from typing import Any, Mapping
 
 import xarray as xr
 
-from asperity.plots import uniaxial as uniaxial_plots
 from asperity.scene import Units
 from asperity.scene.uniaxial import IntegratorStudy, tests
 from asperity.studies import uniaxial as uniaxial_study
 
 Config = Mapping[str, Any]
+# the figure functions import their plots (matplotlib) themselves: the data jobs start without
 
 
 def uniaxial_dataset(uniaxial: Config, units_cfg: Config) -> xr.Dataset:
@@ -21,6 +21,8 @@ def uniaxial_dataset(uniaxial: Config, units_cfg: Config) -> xr.Dataset:
 
 
 def uniaxial_figure(ds: xr.Dataset):
+    from asperity.plots import uniaxial as uniaxial_plots
+
     return uniaxial_plots.uniaxial_figure(ds)
 
 
@@ -30,4 +32,6 @@ def accuracy_dataset(study: Config) -> xr.Dataset:
 
 
 def accuracy_figure(ds: xr.Dataset):
+    from asperity.plots import uniaxial as uniaxial_plots
+
     return uniaxial_plots.uniaxial_accuracy_figure(ds)
