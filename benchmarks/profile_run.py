@@ -35,10 +35,7 @@ from __future__ import annotations
 
 import argparse
 import collections
-import datetime
 import json
-import os
-import platform
 import pstats
 import re
 import sys
@@ -49,7 +46,7 @@ import numpy as np
 import scipy.sparse
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))  # run as a script: `benchmarks` importable
-from benchmarks.scenes import _commit, full_command, run_snakemake  # noqa: E402
+from benchmarks.scenes import full_command, provenance, run_snakemake  # noqa: E402
 from benchmarks.workflow_copy import copy_workflow  # noqa: E402
 
 OUT = Path(__file__).with_name("results")
@@ -200,7 +197,7 @@ def main(argv: list[str] | None = None) -> int:
     command = full_command(args.accuracy, args.cores)
     if args.scenes:
         command += [f"scenes=[{','.join(args.scenes)}]", "studies=False"]
-    commit, dirty = _commit()
+    header = provenance(args.accuracy, args.cores)
     with tempfile.TemporaryDirectory(prefix="profile-run-") as tmp:
         workdir = copy_workflow(Path(tmp))
         profiles = args.keep.resolve() if args.keep else Path(tmp) / "asperity-profiles"
@@ -208,13 +205,7 @@ def main(argv: list[str] | None = None) -> int:
         run = run_snakemake(workdir, command, args.timeout, env={"ASPERITY_PROFILE": str(profiles)})
         jobs = read_profiles(profiles) if profiles.exists() else []
     result = {
-        "accuracy": args.accuracy,
-        "cores": args.cores,
-        "date": datetime.datetime.now().astimezone().isoformat(timespec="seconds"),
-        "commit": commit,
-        "uncommitted_changes": dirty,
-        "machine": {"platform": platform.platform(), "cpu_count": os.cpu_count(),
-                    "python": platform.python_version()},
+        **header,
         "run": {k: run[k] for k in ("command", "wall_time_s", "status", "jobs", "fe_jobs")},
         "summary": summarize(jobs, run["wall_time_s"], args.cores),
     }

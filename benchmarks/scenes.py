@@ -220,6 +220,22 @@ def _commit() -> tuple[str, bool]:
         return "unknown", True
 
 
+def provenance(accuracy: str, cores: int) -> dict:
+    """What a measurement of a run was made on: preset, cores, date, commit, machine (with
+    the 1-min load average before: other work on the machine skews the times)."""
+    commit, dirty = _commit()
+    return {
+        "accuracy": accuracy,
+        "cores": cores,
+        "date": datetime.datetime.now().astimezone().isoformat(timespec="seconds"),
+        "commit": commit,
+        "uncommitted_changes": dirty,
+        "machine": {"platform": platform.platform(), "cpu_count": os.cpu_count(),
+                    "python": platform.python_version(),
+                    "load_average_before": round(os.getloadavg()[0], 2)},
+    }
+
+
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--scenes", nargs="+", metavar="NAME",
@@ -236,17 +252,8 @@ def main(argv: list[str] | None = None) -> int:
     names = [] if args.no_scenes else (args.scenes or default_scenes())
     for name in names:
         scene_info(name)  # a missing scene file stops before any run
-    commit, dirty = _commit()
     result = {
-        "accuracy": args.accuracy,
-        "cores": args.cores,
-        "date": datetime.datetime.now().astimezone().isoformat(timespec="seconds"),
-        "commit": commit,
-        "uncommitted_changes": dirty,
-        "machine": {"platform": platform.platform(), "cpu_count": os.cpu_count(),
-                    "python": platform.python_version(),
-                    # 1-min load average before and after: other work on the machine skews the times
-                    "load_average_before": round(os.getloadavg()[0], 2)},
+        **provenance(args.accuracy, args.cores),
         "scenes": [],
         "full": None,
     }
