@@ -191,7 +191,7 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--timeout", type=float, default=None, help="s")
     parser.add_argument("--out", type=Path, help="JSON file (default benchmarks/results/profile-<preset>.json)")
     parser.add_argument("--keep", type=Path, metavar="DIR",
-                        help="keep the jobs' profiles in DIR (<pid>.prof for pstats or snakeviz)")
+                        help="keep the jobs' profiles in DIR (<host>-<pid>.prof for pstats or snakeviz)")
     args = parser.parse_args(argv)
 
     command = full_command(args.accuracy, args.cores)

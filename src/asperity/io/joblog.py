@@ -7,8 +7,8 @@ with status 1, so that the workflow manager sees it fail and the user sees no
 traceback; an interrupt is passed on as it is.
 
 With the environment variable ``ASPERITY_PROFILE`` naming a directory, a job also
-runs under :mod:`cProfile` and leaves there ``<pid>.prof`` (its profile) and
-``<pid>.json`` (its name, log, how long the process ran before the job began:
+runs under :mod:`cProfile` and leaves there ``<host>-<pid>.prof`` (its profile) and
+``<host>-<pid>.json`` (its name, log, how long the process ran before the job began:
 interpreter, Snakemake's preamble and imports, and the job's own time), which
 ``make bench CASE=profile`` sums over a whole run.
 """
@@ -20,6 +20,7 @@ import cProfile
 import json
 import logging
 import os
+import socket
 import sys
 import time
 import warnings
@@ -61,8 +62,9 @@ def _profiled(path: Path, name: str) -> Iterator[None]:
         record["job_s"] = time.perf_counter() - start
         out = Path(folder)
         out.mkdir(parents=True, exist_ok=True)
-        profiler.dump_stats(out / f"{os.getpid()}.prof")
-        (out / f"{os.getpid()}.json").write_text(json.dumps(record))
+        stem = f"{socket.gethostname()}-{os.getpid()}"  # unique on a cluster's nodes too
+        profiler.dump_stats(out / f"{stem}.prof")
+        (out / f"{stem}.json").write_text(json.dumps(record))
 
 
 @contextlib.contextmanager
