@@ -8,6 +8,8 @@ left out.
 
 import ast
 import graphlib
+import subprocess
+import sys
 from pathlib import Path
 
 import pytest
@@ -77,9 +79,6 @@ DRAWING_STAGES = {"figures", "accuracy", "studies"}
 def test_data_jobs_start_without_matplotlib():
     """A stage that computes data imports the plots in its figure functions only: a job
     that writes a netCDF file starts without matplotlib (about 0.4 s a process)."""
-    import subprocess
-    import sys
-
     stages = sorted(p.stem for p in (SRC / "asperity" / "stages").glob("*.py")
                     if p.stem != "__init__" and p.stem not in DRAWING_STAGES)
     assert {"friction", "population", "reference", "routes", "surface"} <= set(stages)
