@@ -283,6 +283,44 @@ def test_a_tabulated_law_of_hertz_asperities_is_hertz(peaks):
     np.testing.assert_allclose(b.nominal_pressure, a.nominal_pressure, rtol=1e-2)
 
 
+def test_a_shape_with_a_spheres_departure_from_hertz(peaks):
+    """`departure_law`: a model equal to its sphere leaves the base law as it is (1e-12); a
+    sphere whose model carries half of Hertz's force and twice its area halves the base's
+    force and doubles its area; the slopes are the derivatives of the forces and areas
+    (central differences, 1e-6); past the reach the two ratios keep their values there."""
+    from asperity.homogenize.asperity_laws import departure_law
+
+    pk, _, sigma = peaks
+    index = np.arange(pk.curvature.size)
+    base = hertz_law(E_STAR, 0.5 * pk.curvature)  # a blunter summit than its tip sphere
+    sphere = hertz_law(E_STAR, pk.curvature)
+    reach = np.full(index.size, 2.0 * sigma)
+    w = np.full(index.size, 0.7 * sigma)
+    same = departure_law(base, sphere, sphere, reach)(w, index)
+    for got, want in zip(same, base(w, index)):
+        np.testing.assert_allclose(got, want, rtol=1e-12)
+
+    def model(w, index):  # a softer sphere whose force falls from Hertz's as w grows
+        f, a, df, da = sphere(w, index)
+        s = 1.0 / (1.0 + w / sigma)
+        return f * s, a * (2.0 - s), df * s - f * s * s / sigma, da * (2.0 - s) + a * s * s / sigma
+
+    law = departure_law(base, model, sphere, reach)
+    f, a, df, da = law(w, index)
+    fb, ab = base(w, index)[:2]
+    s = 1.0 / 1.7
+    np.testing.assert_allclose(f, fb * s, rtol=1e-12)
+    np.testing.assert_allclose(a, ab * (2.0 - s), rtol=1e-12)
+    step = 1e-7 * sigma
+    for value, slope in ((0, df), (1, da)):
+        numeric = (law(w + step, index)[value] - law(w - step, index)[value]) / (2 * step)
+        np.testing.assert_allclose(slope, numeric, rtol=1e-6)
+    far = np.full(index.size, 3.0 * sigma)
+    held = 1.0 / 3.0  # the force ratio at the reach, 2 sigma
+    np.testing.assert_allclose(law(far, index)[0], base(far, index)[0] * held, rtol=1e-12)
+    np.testing.assert_allclose(law(far, index)[2], base(far, index)[2] * held, rtol=1e-12)
+
+
 def test_a_separation_newton_cannot_reach_is_approached_in_half_steps(peaks):
     """Where Newton from the last state does not converge (it can cycle between contact
     sets at the kinks of the semismooth equations: the elliptic law on an anisotropic

@@ -142,6 +142,68 @@ def test_the_interacting_route_by_each_law(surface):
                                ALUMINUM, _homogenization(), UNITS, VALIDITY)
 
 
+def test_the_fe_law_is_the_shape_law_with_the_spheres_departure(surface):
+    """``law: fe`` takes each summit's own shape and the finite element sphere's departure
+    from Hertz: a table of exact Hertz spheres gives the shape law's interface (the table's
+    linear interpolation within 1e-3); with a table at half of Hertz's force each summit
+    carries half of its shape's force on the same area (1e-3), also past the interference
+    the sphere was computed to (``extrapolated``: the ratio there is held); a table of
+    other shapes than spheres is refused, naming the key. A departure that depends on w/R
+    reaches tips outside the table's curvatures at their own w/R (1e-3)."""
+    import xarray as xr
+    import yaml
+
+    from asperity.homogenize.asperity_laws import hertz_law
+
+    z = surface
+    ds_map = _with_peaks(z)
+    modulus, _ = routes.contact_modulus_and_hardness(ALUMINUM, UNITS)
+    curvature = np.geomspace(0.3, 3.0, 61) * float(np.median(ds_map["curvature"].values))
+    grid = np.concatenate([[0.0], np.geomspace(1e-5, 6.0, 400) * float(z.std())])
+    hertz = hertz_law(modulus, curvature)
+    index = np.repeat(np.arange(curvature.size), grid.size)
+    force, area = (v.reshape(curvature.size, grid.size) for v in hertz(np.tile(grid, curvature.size), index)[:2])
+
+    def table(scale, extrapolated=None, geometry="sphere"):
+        data = {"force": (("curvature", "interference"), scale * force),
+                "contact_area": (("curvature", "interference"), area)}
+        if extrapolated is not None:
+            data["extrapolated"] = (("curvature", "interference"),
+                                    np.broadcast_to(extrapolated, force.shape).astype(np.int8))
+        config = yaml.safe_dump({"asperity": {"model": "fe", "geometry": geometry}})
+        return xr.Dataset(data, coords={"curvature": curvature, "interference": grid},
+                          attrs={"config": config}).expand_dims(height=[0.0])
+
+    def pressure(asperities=None, law="fe"):
+        return routes.route_interface(z, 1.25e-6, 1.25e-6, ds_map, route(kind="interacting", law=law),
+                                      ALUMINUM, _homogenization(), UNITS, VALIDITY,
+                                      asperities=asperities)["nominal_pressure"].values
+
+    np.testing.assert_allclose(pressure(table(1.0)), pressure(law="shape"), rtol=1e-3)
+    shape = routes.asperity_law("shape", z, 1.25e-6, 1.25e-6, ds_map, modulus)
+    index = np.arange(ds_map.sizes["peak"])
+    sigma = float(z.std())
+    beyond = grid > 0.1 * sigma  # computed to 0.1 sigma: the ratio 0.5 held past it
+    for asperities in (table(0.5), table(np.where(beyond, 0.25, 0.5), beyond)):
+        law = routes.asperity_law("fe", z, 1.25e-6, 1.25e-6, ds_map, modulus, asperities)
+        for w in (0.05 * sigma, 0.5 * sigma, 2.0 * sigma):
+            at = np.full(index.size, w)
+            np.testing.assert_allclose(law(at, index)[0], 0.5 * shape(at, index)[0], rtol=1e-3)
+            np.testing.assert_allclose(law(at, index)[1], shape(at, index)[1], rtol=1e-3)
+    # a departure of w/R alone (a sphere without a length of its own): tips outside the
+    # table's curvatures (some below it here) take it at their own w/R
+    tip = np.sqrt(np.prod(routes.principal_curvatures(ds_map), axis=0))
+    assert tip.min() < curvature[0]
+    law = routes.asperity_law("fe", z, 1.25e-6, 1.25e-6, ds_map, modulus,
+                              table(1.0 / (1.0 + 300.0 * grid[None, :] * curvature[:, None])))
+    for w in (0.05 * sigma, 0.5 * sigma):
+        at = np.full(index.size, w)
+        np.testing.assert_allclose(law(at, index)[0], shape(at, index)[0] / (1.0 + 300.0 * w * tip),
+                                   rtol=1e-3)
+    with pytest.raises(ValueError, match="asperity.geometry: sphere"):
+        pressure(table(1.0, geometry="cosine"))
+
+
 @pytest.mark.slow
 def test_a_stalled_newton_is_kept_only_close_to_the_solution():
     """A hard case: the synthetic reference map at 8 grid steps, its summits with their own

@@ -3,7 +3,8 @@
 A law is ``law(w, index)`` -> (force, contact area, dF/dw, dA/dw) of the asperities
 `index` at interferences `w` (arrays, broadcast; all zero at w <= 0): the Hertz sphere
 of each peak's curvature (report 6.1; `hertz_law`), or responses tabulated on one
-interference grid, e.g. the scene's finite element asperities (`tabulated_law`).
+interference grid, e.g. the scene's finite element asperities (`tabulated_law`), or a
+shape's law with a finite element sphere's departure from Hertz (`departure_law`).
 `asperity.homogenize.interacting` solves their equilibrium on the map's period;
 `asperity.stages.routes.asperity_law` picks the law a scene names.
 """
@@ -12,7 +13,7 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["hertz_law", "tabulated_law"]
+__all__ = ["hertz_law", "tabulated_law", "departure_law"]
 
 
 def hertz_law(contact_modulus: float, curvatures):
@@ -66,5 +67,36 @@ def tabulated_law(interference: np.ndarray, force: np.ndarray, area: np.ndarray)
             da = np.where(tip, area[index, 1] / first, da)
         touching = w > 0
         return tuple(np.where(touching, v, 0.0) for v in (f, a, df, da))
+
+    return law
+
+
+def departure_law(base, model, sphere, reach):
+    """``law(w, index)`` of asperities whose shape `base` describes, with the departure of
+    `model` from `sphere` (two laws of the same spherical tip, e.g. finite element and
+    Hertz): force F = F_base F_model / F_sphere and area A = A_base A_model / A_sphere,
+    their slopes by the product and quotient rules. Past each asperity's `reach` (m;
+    the largest interference `model` was computed to) the two ratios keep their values
+    there. A `model` equal to `sphere` gives `base` itself."""
+    reach = np.asarray(reach, dtype=float)
+
+    def ratio(value, slope, ref, ref_slope, held):
+        with np.errstate(divide="ignore", invalid="ignore"):
+            r = np.where(ref > 0, value / np.where(ref > 0, ref, 1.0), 1.0)
+            dr = np.where((ref > 0) & ~held, (slope * ref - value * ref_slope)
+                          / np.where(ref > 0, ref, 1.0) ** 2, 0.0)
+        return r, dr
+
+    def law(w, index):
+        w = np.asarray(w, dtype=float)
+        index = np.asarray(index, dtype=int)
+        held = w > reach[index]
+        wm = np.minimum(w, reach[index])
+        fb, ab, dfb, dab = base(w, index)
+        fm, am, dfm, dam = model(wm, index)
+        fs, as_, dfs, das = sphere(wm, index)
+        rf, drf = ratio(fm, dfm, fs, dfs, held)
+        ra, dra = ratio(am, dam, as_, das, held)
+        return fb * rf, ab * ra, dfb * rf + fb * drf, dab * ra + ab * dra
 
     return law

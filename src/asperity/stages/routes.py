@@ -31,6 +31,7 @@ from typing import Any, Mapping
 
 import numpy as np
 import xarray as xr
+import yaml
 
 from asperity import scene
 from asperity.homogenize import validity
@@ -125,23 +126,51 @@ def principal_curvatures(surface_ds: xr.Dataset) -> tuple[np.ndarray, np.ndarray
     return mean + half, mean - half
 
 
-def fe_law(asperities: xr.Dataset, surface_ds: xr.Dataset):
-    """The law of each summit from the scene's finite element asperities (asperities.nc on
-    height, curvature, interference): force and contact area interpolated at the summit's
-    height and mean curvature on the table's interference grid (linear, as the
-    homogenization does: `asperity.homogenize.table`), `tabulated_law` between."""
-    from asperity.homogenize.asperity_laws import tabulated_law
+def fe_law(asperities: xr.Dataset, surface_ds: xr.Dataset, shape, tip, modulus: float):
+    """The law of each summit with the scene's finite element asperities (asperities.nc on
+    height, curvature, interference; spheres): the summit's own `shape` law, with the
+    departure of the finite element sphere of its tip curvature `tip` from Hertz's sphere
+    (force and area ratios, `asperity.homogenize.asperity_laws.departure_law`), so that
+    plasticity (or rate, or an elastic mesh's error) is the sphere's and the shape is the
+    summit's. The sphere's force and area are interpolated at the summit's height and tip
+    curvature on the table's interference grid (linear, as the homogenization does:
+    `asperity.homogenize.table`); a tip sharper or blunter than the table's spheres takes
+    the departure of its nearest sphere at equal w/R (the self-similarity of a sphere of a
+    material without a length of its own, as the population's plan uses); past the
+    interference the sphere was computed to (the table's ``extrapolated`` points), the
+    ratios keep their last computed values."""
+    from asperity.homogenize.asperity_laws import departure_law, hertz_law, tabulated_law
     from asperity.homogenize.table import interpolate_points, response_table
 
+    geometry = (yaml.safe_load(asperities.attrs.get("config", "")) or {}).get("asperity", {}).get("geometry")
+    if geometry not in (None, "sphere"):
+        raise ValueError(f"route.law fe: the finite element asperities must be spheres (asperity.geometry: "
+                         f"sphere), whose departure from Hertz the summits' own shapes take; got {geometry!r}")
     table = response_table(asperities[["force", "contact_area"]])
     grid = table.interference
     if grid[0] < 0:
         raise ValueError("route.law fe: asperities with attraction before contact (adhesion) "
                          "are not coupled by the interacting route")
+    tip = np.asarray(tip, dtype=float)
     z = surface_ds["height"].values[:, None]
-    k = surface_ds["curvature"].values[:, None]
+    k = np.clip(tip, table.curvatures[0], table.curvatures[-1])[:, None]
     values = interpolate_points(table, z, k, grid[None, :])  # (summits, levels, [force, area])
-    return tabulated_law(grid, values[..., 0], values[..., 1])
+    reach = np.full(tip.size, grid[-1])
+    if "extrapolated" in asperities:
+        flags = response_table(asperities[["extrapolated"]].astype(float))
+        computed = interpolate_points(flags, z, k, grid[None, :])[..., 0] < 0.5
+        reach = grid[np.where(computed.any(axis=1), grid.size - 1 - np.argmax(computed[:, ::-1], axis=1), 0)]
+    # a tip sharper or blunter than the table's spheres: the sphere's departure at equal w/R
+    stretch = tip / k[:, 0]
+    table_sphere, table_hertz = tabulated_law(grid, values[..., 0], values[..., 1]), hertz_law(modulus, k[:, 0])
+
+    def at_equal_depth(law):
+        def scaled(w, index):
+            f, a, df, da = law(np.asarray(w) * stretch[index], index)
+            return f, a, df * stretch[index], da * stretch[index]
+        return scaled
+
+    return departure_law(shape, at_equal_depth(table_sphere), at_equal_depth(table_hertz), reach / stretch)
 
 
 def asperity_law(kind: str, z, dx: float, dy: float, surface_ds: xr.Dataset, modulus: float,
@@ -157,8 +186,9 @@ def asperity_law(kind: str, z, dx: float, dy: float, surface_ds: xr.Dataset, mod
     * ``elliptic``: Hertz's elliptic contact of the two principal curvatures (a ridge's
       smaller curvature taken as 1/100 of the larger);
     * ``hertz``: the sphere of the mean curvature, Hertz;
-    * ``fe``: the scene's finite element asperities at the summit's mean curvature
-      (`fe_law`; elastic, J2 or Bodner-Partom as the scene's effects and material say).
+    * ``fe``: the ``shape`` law with the departure from Hertz of the scene's finite element
+      sphere of the summit's tip curvature (`fe_law`; elastic, J2 or Bodner-Partom as the
+      scene's effects and material say).
     """
     from asperity.homogenize.asperity_laws import hertz_law
     from asperity.references.hertz import elliptic_hertz
@@ -171,11 +201,9 @@ def asperity_law(kind: str, z, dx: float, dy: float, surface_ds: xr.Dataset, mod
     k1, k2 = principal_curvatures(surface_ds)
     if kind == "hertz":
         return hertz_law(modulus, mean)
-    if kind == "fe":
-        if asperities is None:
-            raise ValueError("route.law fe needs the scene's finite element asperities "
-                             "(asperity: {model: fe, ...} and a population)")
-        return fe_law(asperities, surface_ds)
+    if kind == "fe" and asperities is None:
+        raise ValueError("route.law fe needs the scene's finite element asperities "
+                         "(asperity: {model: fe, geometry: sphere} and a population)")
     if kind == "elliptic":
         k2 = np.maximum(k2, k1 / 100.0)
 
@@ -189,7 +217,8 @@ def asperity_law(kind: str, z, dx: float, dy: float, surface_ds: xr.Dataset, mod
     tip = np.where(k2 > 0, np.sqrt(np.abs(k1 * k2)), mean)
     radii, slopes = summit_profiles(z, dx, dy, surface_ds["row"].values, surface_ds["column"].values,
                                     tip)
-    return profile_law(radii, slopes, modulus)
+    shape = profile_law(radii, slopes, modulus)
+    return shape if kind == "shape" else fe_law(asperities, surface_ds, shape, tip, modulus)
 
 
 def _anisotropic(h, surface_ds: xr.Dataset, route_cfg: Config, material_cfg: Config, units_cfg: Config,
