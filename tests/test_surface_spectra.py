@@ -128,9 +128,34 @@ def test_skewness_kurtosis_and_bearing_curve():
     values = z[defined] - z[defined].mean()
     assert d["bearing_height"][0] == pytest.approx(values.max(), rel=1e-12)
     assert d["bearing_height"][-1] == pytest.approx(values.min(), rel=1e-12)
-    assert d["bearing_height"][50] == pytest.approx(np.median(values), rel=1e-12)
+    half = int(np.flatnonzero(d["material_ratio"] == 0.5)[0])
+    assert d["bearing_height"][half] == pytest.approx(np.median(values), rel=1e-12)
     for mr, height in zip(d["material_ratio"][1:-1:10], d["bearing_height"][1:-1:10]):
         assert np.mean(values >= height) == pytest.approx(mr, abs=1.0 / values.size)
+
+
+def test_heights_at_material_ratios_resolve_the_tail():
+    """The bearing-area curve reaches ratios down to 1e-6 (ten a decade below 0.01), and
+    `bearing_heights` reads it at any ratio: at the curve's own ratios its heights (1e-12),
+    between them monotone; on 10^6 Gaussian heights the height above which a share r lies
+    within the sampling scatter of the normal quantile (r = 0.3 ... 1e-4: 2 %); a ratio
+    outside (0, 1] or below the curve's smallest is an error."""
+    rng = np.random.default_rng(2)
+    values = rng.standard_normal(1_000_000)
+    d = S.height_distribution(values)
+    ratios = d["material_ratio"]
+    assert ratios[1] == pytest.approx(1e-6) and np.all(np.diff(ratios) > 0)
+    assert np.count_nonzero((ratios > 0) & (ratios < 0.01)) == 40
+    inside = ratios[1:-1]
+    np.testing.assert_allclose(S.bearing_heights(ratios, d["bearing_height"], inside),
+                               d["bearing_height"][1:-1], rtol=1e-12)
+    r = np.geomspace(0.3, 1e-4, 11)
+    h = S.bearing_heights(ratios, d["bearing_height"], r)
+    assert np.all(np.diff(h) > 0)
+    np.testing.assert_allclose(h, stats.norm.isf(r) * values.std(), rtol=0.02)
+    for bad in (0.0, 1.5, 1e-7):
+        with pytest.raises(ValueError, match="material ratio"):
+            S.bearing_heights(ratios, d["bearing_height"], [bad])
 
 
 def load_integral(pdf, h):

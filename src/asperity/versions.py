@@ -20,7 +20,7 @@ VERSIONS: dict[str, int] = {
     "synthetic_profile": 1,
     "synthetic_profiles": 1,
     "synthetic_map": 1,
-    "surface": 2,
+    "surface": 3,
     "convergence": 1,
     # population (workflow/rules/population.smk): the plan, the samples by kind, the gather
     "plan": 3,

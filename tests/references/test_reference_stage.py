@@ -58,6 +58,39 @@ def test_periodic_separations_must_be_positive():
     assert np.allclose(stage.reference_separations(free, surface, SCENE["units"]), [0, 1e-6, 2e-6, 3e-6])
 
 
+def test_separations_in_material_ratios_of_the_map():
+    """Unit bearing: the separations are the heights above which the given shares of the
+    prepared map lie, spaced geometrically from start to stop (the curve's own ratios:
+    exact); the routes' scenes get the same ones from their own surface.nc
+    (`asperity.population.density.scene_separations`); a ratio outside (0, 1] or a
+    surface without the curve is an error naming the key."""
+    from asperity.population.density import scene_separations
+    from asperity.scene import Homogenization, Units
+    from asperity.surface.distribution import height_distribution
+
+    z = np.random.default_rng(3).gamma(2.0, size=20000) * 1e-6  # skewed heights
+    d = height_distribution(z)
+    surface = xr.Dataset({"sigma": ((), 1e-6), "bearing_height": ("material_ratio", d["bearing_height"])},
+                         coords={"material_ratio": d["material_ratio"]},
+                         attrs={"population_estimator": "map"})
+    section = {"start": 0.1, "stop": 0.001, "count": 3, "unit": "bearing"}
+    scene = filled_scene({**{k: v for k, v in SCENE.items() if k != "compare_with"},
+                          "reference": {"separations": section}})
+    h = stage.reference_separations(scene["reference"], surface, SCENE["units"])
+    values = z - z.mean()
+    np.testing.assert_allclose(h, np.quantile(values, 1.0 - np.array([0.1, 0.01, 0.001])), rtol=1e-12)
+    units = Units.from_section(SCENE["units"])
+    homogenization = Homogenization.from_section(filled("homogenization", {"separations": section}), units)
+    np.testing.assert_array_equal(scene_separations(homogenization, surface), h)
+    with pytest.raises(ValueError, match="homogenization.unloading_from: has no scale"):
+        homogenization.separation_scale(1e-6)  # an unloading separation in sigma or length only
+    with pytest.raises(ValueError, match="reference.separations: in unit bearing"):
+        stage.reference_separations({**scene["reference"], "separations": {**section, "start": 2.0}},
+                                    surface, SCENE["units"])
+    with pytest.raises(ValueError, match="reference.separations: unit bearing needs the bearing-area"):
+        stage.reference_separations(scene["reference"], surface.drop_vars("bearing_height"), SCENE["units"])
+
+
 def _reference(h, p, a, count, hardness_p=None):
     limits = ["elastic"] + (["hardness"] if hardness_p is not None else [])
     data = {"nominal_pressure": np.array([p] + ([hardness_p] if hardness_p is not None else [])),

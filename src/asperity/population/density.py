@@ -5,10 +5,12 @@ from __future__ import annotations
 
 import logging
 
+import numpy as np
 import xarray as xr
 
 from asperity import peaks
 from asperity.scene import Population
+from asperity.surface.distribution import bearing_heights
 
 log = logging.getLogger("asperity")
 
@@ -54,6 +56,21 @@ def population_stat(surface_ds: xr.Dataset, name: str) -> float:
     if "estimator" in value.dims:
         value = value.sel(estimator=surface_ds.attrs["population_estimator"])
     return float(value)
+
+
+def heights_at_ratios(surface_ds: xr.Dataset):
+    """``f(ratios)`` -> the heights [m] above which those shares of the prepared map lie
+    (its bearing-area curve in surface.nc, `asperity.surface.distribution.bearing_heights`):
+    the separations of unit ``bearing``; None where surface.nc has no curve."""
+    if "bearing_height" not in surface_ds:
+        return None
+    ratio, height = surface_ds["material_ratio"].values, surface_ds["bearing_height"].values
+    return lambda ratios: bearing_heights(ratio, height, ratios)
+
+
+def scene_separations(homogenization, surface_ds: xr.Dataset) -> np.ndarray:
+    """The separations [m] of a scene's `asperity.scene.Homogenization` on its surface."""
+    return homogenization.separations(height_scale(surface_ds), heights_at_ratios(surface_ds))
 
 
 def height_scale(surface_ds: xr.Dataset) -> float:

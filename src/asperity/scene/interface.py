@@ -22,7 +22,8 @@ class Homogenization:
     cells (heights x curvatures), height_range [m] and curvature_range [1/m] (None: the
     density's support), area [m^2] the nominal area A_0; the separations ``start``,
     ``stop``, ``count`` in ``separation_unit`` (``sigma``: of the surface's height
-    deviation; ``length``: the scene's length unit, ``length`` m each), and
+    deviation; ``length``: the scene's length unit, ``length`` m each; ``bearing``:
+    material ratios, `separation_values`), and
     unloading_from (in that unit; None: the smallest separation)."""
 
     rule: str
@@ -53,11 +54,38 @@ class Homogenization:
     def separation_scale(self, height_scale: float) -> float:
         """Metres per unit of the separations: `height_scale` (the surface's height
         deviation) in ``sigma``, else the length unit."""
+        if self.separation_unit == "bearing":
+            raise SceneError("homogenization.unloading_from", "has no scale in separations of unit "
+                             "bearing (material ratios)", "give the separations in sigma or length")
         return height_scale if self.separation_unit == "sigma" else self.length
 
-    def separations(self, height_scale: float) -> np.ndarray:
-        """The separations [m] of the interface."""
-        return np.linspace(self.start, self.stop, self.count) * self.separation_scale(height_scale)
+    def separations(self, height_scale: float, heights_at_ratios=None) -> np.ndarray:
+        """The separations [m] of the interface (`separation_values`)."""
+        return separation_values({"start": self.start, "stop": self.stop, "count": self.count,
+                                  "unit": self.separation_unit}, height_scale, self.length,
+                                 heights_at_ratios, "homogenization.separations")
+
+
+def separation_values(section: Config, height_scale: float, length: float, heights_at_ratios=None,
+                      key: str = "separations") -> np.ndarray:
+    """The separations [m] of a ``separations`` section: ``count`` from ``start`` to
+    ``stop``, evenly in ``sigma`` (`height_scale`, the height deviation of the prepared
+    surface) or in the length unit (`length` m each); in ``bearing``, start and stop are
+    material ratios (the share of the prepared map above the flat, 0 < r <= 1) spaced
+    geometrically, each separation the height above which that share lies
+    (`heights_at_ratios`, from the map's bearing-area curve): a plateau, a spike or a
+    skewed map then has its light-load contact inside the separations, wherever it lies
+    in sigma."""
+    start, stop, count, unit = section["start"], section["stop"], section["count"], section["unit"]
+    if unit != "bearing":
+        return np.linspace(start, stop, count) * (height_scale if unit == "sigma" else length)
+    if not (0 < start <= 1 and 0 < stop <= 1):
+        raise SceneError(key, f"in unit bearing, start and stop are material ratios in (0, 1]; "
+                              f"got {start!r} and {stop!r}", "e.g. start: 0.3, stop: 1.0e-4")
+    if heights_at_ratios is None:
+        raise SceneError(key, "unit bearing needs the bearing-area curve of a measured map "
+                              "(surface.nc: bearing_height)", "give the separations in sigma or length")
+    return np.asarray(heights_at_ratios(np.geomspace(start, stop, count)), dtype=float)
 
 
 @dataclass(frozen=True)

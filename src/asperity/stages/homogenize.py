@@ -15,7 +15,8 @@ import xarray as xr
 
 from asperity import homogenize, peaks, scene
 from asperity.homogenize import validity as validity_checks
-from asperity.population.density import bounds, height_scale, peak_density, population_density
+from asperity.population.density import (bounds, height_scale, peak_density, population_density,
+                                         scene_separations)
 from asperity.population.kinds import kind_of_plan
 from asperity.references import greenwood_williamson
 from asperity.unloading import family_table as unloading_family_table
@@ -62,7 +63,7 @@ def unloading_from(homogenization: scene.Homogenization, surface_ds: xr.Dataset)
     """Separation [m] from which the interface unloads: ``unloading_from`` (in the
     separations' unit) or the smallest separation."""
     if homogenization.unloading_from is None:
-        return float(homogenization.separations(height_scale(surface_ds)).min())
+        return float(scene_separations(homogenization, surface_ds).min())
     return float(homogenization.unloading_from) * homogenization.separation_scale(height_scale(surface_ds))
 
 
@@ -95,7 +96,7 @@ def interface_dataset(
     rule = homogenization.rule
     if isinstance(density, peaks.SampledDensity) and rule != "peaks":
         log.info("sampled density: rule %s over histogram cells", rule)
-    h = homogenization.separations(height_scale(surface_ds))
+    h = scene_separations(homogenization, surface_ds)
     if unloading is not None:
         # the unloading branch is steep (elastic rebound, 8.3): resolve the largest
         # rebound of the asperities present with REBOUND_POINTS more separations

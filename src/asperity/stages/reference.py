@@ -24,10 +24,11 @@ import xarray as xr
 
 from asperity.references import boundary_element
 from asperity.homogenize import validity
-from asperity.population.density import height_scale
+from asperity.population.density import height_scale, heights_at_ratios
 from asperity.references.hertz import plane_strain_modulus
 from asperity import scene
 from asperity.scene import length_factor
+from asperity.scene.interface import separation_values
 # the map as the surface stage reads and prepares it (in-fill, form, filter): the script of
 # the reference rule calls this module only
 from asperity.stages.surface import prepared_roughness, reading  # noqa: F401
@@ -92,10 +93,10 @@ def reference_hardness(material: Config, reference: Config, units_cfg: Config) -
 
 
 def reference_separations(reference: Config, surface_ds: xr.Dataset, units_cfg: Config) -> np.ndarray:
-    """The separations [m] of the reference section (in sigma of the map, or the length unit)."""
-    sep = reference["separations"]
-    scale = height_scale(surface_ds) if sep["unit"] == "sigma" else length_factor(units_cfg)
-    h = np.linspace(sep["start"], sep["stop"], sep["count"]) * scale
+    """The separations [m] of the reference section (in sigma of the map, the length unit, or
+    material ratios of the map: `asperity.scene.interface.separation_values`)."""
+    h = separation_values(reference["separations"], height_scale(surface_ds), length_factor(units_cfg),
+                          heights_at_ratios(surface_ds), "reference.separations")
     if reference["boundary"] == "periodic" and h.min() <= 0:
         raise ValueError("reference.separations: a periodic interface's mean gap equals the separation "
                          "and cannot be zero or negative (full contact); start above 0")

@@ -35,7 +35,7 @@ import yaml
 
 from asperity import scene
 from asperity.homogenize import validity
-from asperity.population.density import height_scale
+from asperity.population.density import scene_separations
 from asperity.references.hertz import plane_strain_modulus
 # the fewest contacting cells per patch at which the boundary elements resolve the contact
 from asperity.stages.reference import MIN_CELLS_PER_PATCH
@@ -65,8 +65,7 @@ def separations(homogenization_cfg: Config, surface_ds: xr.Dataset, units_cfg: C
     """The separations [m] of the scene (``homogenization.separations``; in ``sigma``, the
     standard deviation of the prepared heights, as the reference's)."""
     units = scene.Units.from_section(units_cfg)
-    return scene.Homogenization.from_section(homogenization_cfg, units).separations(
-        height_scale(surface_ds))
+    return scene_separations(scene.Homogenization.from_section(homogenization_cfg, units), surface_ds)
 
 
 def contact_modulus_and_hardness(material_cfg: Config, units_cfg: Config) -> tuple[float, float]:

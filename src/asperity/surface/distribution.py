@@ -11,7 +11,9 @@ distribution:
   defined points (heights about their mean); a Gaussian has 0 and 3;
 * the bearing-area (Abbott-Firestone) curve: the height c below which a
   share 1 - mr of the surface lies, against the material ratio mr (the
-  share of points at or above c).
+  share of points at or above c), every 0.01 and, below 0.01, ten ratios a
+  decade down to 1e-6, where the light-load contact lies
+  (`bearing_heights`: the separations of a scene in unit ``bearing``).
 
 The limits: the surface is called clearly non-Gaussian when |Sk| > 0.3, or
 Ku < 2.5, or Ku > 4.  The light-load contact of an asperity model is the
@@ -32,18 +34,20 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["SKEWNESS_LIMIT", "KURTOSIS_RANGE", "height_distribution", "gaussianity"]
+__all__ = ["SKEWNESS_LIMIT", "KURTOSIS_RANGE", "MATERIAL_RATIOS", "height_distribution", "gaussianity",
+           "bearing_heights"]
 
 SKEWNESS_LIMIT = 0.3
 KURTOSIS_RANGE = (2.5, 4.0)
-MATERIAL_RATIOS = np.linspace(0.0, 1.0, 101)
+#: the material ratios of the bearing-area curve: every 0.01, and ten a decade below 0.01
+MATERIAL_RATIOS = np.union1d(np.linspace(0.0, 1.0, 101), np.logspace(-6.0, -2.0, 41))
 
 
 def height_distribution(z, defined=None) -> dict:
     """Skewness, kurtosis, rms height (1/n) and the bearing-area curve of the defined heights.
 
     Returns a dict with ``rms`` (Rq), ``skewness``, ``kurtosis``,
-    ``material_ratio`` (0 ... 1 in steps of 0.01) and ``bearing_height``
+    ``material_ratio`` (`MATERIAL_RATIOS`) and ``bearing_height``
     (the height, about the mean, at which that share of the points is at
     or above it: the empirical quantile 1 - mr).
     """
@@ -73,3 +77,19 @@ def gaussianity(skewness: float, kurtosis: float) -> tuple[bool, str]:
     if not lo <= kurtosis <= hi:
         why.append(f"kurtosis {kurtosis:.3g} outside {lo:g} ... {hi:g}")
     return (not why), "; ".join(why)
+
+
+def bearing_heights(material_ratio, bearing_height, ratios) -> np.ndarray:
+    """The heights above which the shares `ratios` (0 < r <= 1) of a surface lie, from its
+    bearing-area curve (`height_distribution`: `bearing_height` on `material_ratio`),
+    interpolated linearly in the logarithm of the ratio between the curve's ratios."""
+    mr = np.asarray(material_ratio, dtype=float)
+    height = np.asarray(bearing_height, dtype=float)
+    r = np.asarray(ratios, dtype=float)
+    if np.any(~(r > 0)) or np.any(r > 1):
+        raise ValueError(f"material ratios must lie in (0, 1]; got {r.tolist()}")
+    if r.min() < mr[mr > 0].min():
+        raise ValueError(f"material ratio {r.min():g} below the bearing-area curve's smallest, "
+                         f"{mr[mr > 0].min():g}")
+    keep = mr > 0
+    return np.interp(np.log(r), np.log(mr[keep]), height[keep])
