@@ -88,6 +88,7 @@ def comparison(results: Path, scene: str) -> dict:
         "cells_per_patch": floats(ref["cells_per_patch"].sel(limit="elastic").values),
         "pressure_error": [floats(row) for row in cmp_["pressure_error"].values],
         "area_error": [floats(row) for row in cmp_["area_error"].values],
+        "reference_limit": [str(v) for v in cmp_["reference_limit"].values],
         "recommended_route": [str(v) for v in cmp_["recommended_route"].values],
         "recommended_error": floats(cmp_["recommended_error"].values),
         "scale": surface.attrs.get("scale"),

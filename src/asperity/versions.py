@@ -33,7 +33,7 @@ VERSIONS: dict[str, int] = {
     "expectation": 1,
     "unloading": 1,
     "interface": 3,
-    "route_interface": 2,
+    "route_interface": 3,
     "verification": 1,
     # friction (workflow/rules/friction.smk)
     "friction": 2,

@@ -408,7 +408,7 @@ def default_scale(dx: float, dy: float, z=None, *, defined=None, periodic: bool 
 
 
 def summit_profiles(z, dx: float, dy: float, rows, cols, curvatures, *, defined=None,
-                    tip_pixels: float = 2.0) -> tuple[np.ndarray, np.ndarray]:
+                    tip_pixels: float = 1.0) -> tuple[np.ndarray, np.ndarray]:
     """The axisymmetric profile of each summit, from the map's own shape below its tip.
 
     Each summit's region is its watershed basin on `z` (the map as the routes see it;
@@ -417,9 +417,12 @@ def summit_profiles(z, dx: float, dy: float, rows, cols, curvatures, *, defined=
     summit's grid height, defines the radius r = sqrt(A / pi) of an axisymmetric
     asperity with the same area at every depth, so f(r) is the depth at which the
     basin's area reaches pi r^2.  Within `tip_pixels` grid steps of the tip, where the
-    grid cannot resolve an area, f is the fitted paraboloid kappa r^2 / 2 (kappa the
-    summit's mean curvature); beyond, the bearing profile continues from it.  Past the
-    basin's whole area the profile is a wall (its neighbours' basins begin).
+    basin's area is a cell or two, f is the fitted paraboloid kappa r^2 / 2 (`curvatures`
+    kappa); beyond, the bearing profile continues from it.  The boundary elements see
+    the same grid: a summit whose top is flatter than its fitted curvature says (a top
+    of a few cells within a small depth) carries what its cells carry, which a
+    paraboloid over two grid steps would miss.  Past the basin's whole area the profile
+    is a wall (its neighbours' basins begin).
 
     Returns ``(radii, slopes)``: the common radial grid (m; a quarter of the smaller
     grid step apart) and f'(r) of each summit on it, the input of
