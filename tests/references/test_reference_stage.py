@@ -3,6 +3,8 @@ hardness rule, and the comparison of statistical routes with the reference."""
 
 from __future__ import annotations
 
+import re
+
 import numpy as np
 import pytest
 import xarray as xr
@@ -89,6 +91,14 @@ def test_separations_in_material_ratios_of_the_map():
                                     surface, SCENE["units"])
     with pytest.raises(ValueError, match="reference.separations: unit bearing needs the bearing-area"):
         stage.reference_separations(scene["reference"], surface.drop_vars("bearing_height"), SCENE["units"])
+    # past the mean plane (the skewed heights' mean lies at material ratio 0.406): a periodic
+    # interface cannot, and the error says where to start
+    below = {**section, "start": 0.6}
+    mean_plane = np.mean(values > 0)
+    with pytest.raises(ValueError, match="start below") as error:
+        stage.reference_separations({**scene["reference"], "separations": below}, surface, SCENE["units"])
+    said = float(re.search(r"start below ([0-9.]+)", str(error.value)).group(1))
+    assert said == pytest.approx(mean_plane, abs=2e-3)  # the curve's resolution, 0.01 here
 
 
 def _reference(h, p, a, count, hardness_p=None):

@@ -88,6 +88,23 @@ def separation_values(section: Config, height_scale: float, length: float, heigh
     return np.asarray(heights_at_ratios(np.geomspace(start, stop, count)), dtype=float)
 
 
+def check_positive(h, section: Config, heights_at_ratios=None, key: str = "separations") -> None:
+    """A periodic interface's mean gap equals its separation: every separation `h` [m] of
+    the ``separations`` `section` must be above 0 (the map's mean plane). The error says
+    where to start: above 0, or in unit ``bearing`` below the material ratio of the mean
+    plane."""
+    if np.min(h) > 0:
+        return
+    fix = "start above 0"
+    if section["unit"] == "bearing" and heights_at_ratios is not None:
+        ratios = np.geomspace(1e-6, 1.0, 601)
+        heights = np.asarray(heights_at_ratios(ratios), dtype=float)
+        mean_plane = float(np.interp(0.0, heights[::-1], ratios[::-1]))
+        fix = f"start below {mean_plane:.3g}, the material ratio of the map's mean plane"
+    raise SceneError(key, "a periodic interface's mean gap equals the separation and cannot be zero "
+                          "or negative (full contact)", fix)
+
+
 @dataclass(frozen=True)
 class Measurement:
     """A measured coefficient of friction: label, value, uncertainty, nominal_pressure

@@ -28,7 +28,7 @@ from asperity.population.density import height_scale, heights_at_ratios
 from asperity.references.hertz import plane_strain_modulus
 from asperity import scene
 from asperity.scene import length_factor
-from asperity.scene.interface import separation_values
+from asperity.scene.interface import check_positive, separation_values
 # the map as the surface stage reads and prepares it (in-fill, form, filter): the script of
 # the reference rule calls this module only
 from asperity.stages.surface import prepared_roughness, reading  # noqa: F401
@@ -97,9 +97,8 @@ def reference_separations(reference: Config, surface_ds: xr.Dataset, units_cfg: 
     material ratios of the map: `asperity.scene.interface.separation_values`)."""
     h = separation_values(reference["separations"], height_scale(surface_ds), length_factor(units_cfg),
                           heights_at_ratios(surface_ds), "reference.separations")
-    if reference["boundary"] == "periodic" and h.min() <= 0:
-        raise ValueError("reference.separations: a periodic interface's mean gap equals the separation "
-                         "and cannot be zero or negative (full contact); start above 0")
+    if reference["boundary"] == "periodic":
+        check_positive(h, reference["separations"], heights_at_ratios(surface_ds), "reference.separations")
     return h
 
 

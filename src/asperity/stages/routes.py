@@ -35,8 +35,9 @@ import yaml
 
 from asperity import scene
 from asperity.homogenize import validity
-from asperity.population.density import scene_separations
+from asperity.population.density import heights_at_ratios, scene_separations
 from asperity.references.hertz import plane_strain_modulus
+from asperity.scene.interface import check_positive
 # the fewest contacting cells per patch at which the boundary elements resolve the contact
 from asperity.stages.reference import MIN_CELLS_PER_PATCH
 # the map as the surface stage reads and prepares it: the script of the route rule calls
@@ -294,9 +295,8 @@ def route_interface(z: np.ndarray, dx: float, dy: float, surface_ds: xr.Dataset,
     if kind not in KINDS:
         raise ValueError(f"route.kind must be one of {', '.join(KINDS)}; got {kind!r}")
     h = separations(homogenization_cfg, surface_ds, units_cfg)
-    if h.min() <= 0:
-        raise ValueError("homogenization.separations: a periodic interface's mean gap equals the "
-                         "separation and cannot be zero or negative; start above 0")
+    check_positive(h, homogenization_cfg["separations"], heights_at_ratios(surface_ds),
+                   "homogenization.separations")
     modulus, hardness = contact_modulus_and_hardness(material_cfg, units_cfg)
     if kind == "boundary_elements":
         out = _boundary_elements(z, dx, dy, h, modulus, hardness, route_cfg)
