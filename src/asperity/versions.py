@@ -26,7 +26,7 @@ VERSIONS: dict[str, int] = {
     "plan": 3,
     "sample:hertz": 1,
     "sample:elastic": 1,
-    "sample:inelastic": 3,
+    "sample:inelastic": 4,
     "sample:adhesive": 6,
     "asperities": 4,
     # homogenize (workflow/rules/homogenize.smk)
