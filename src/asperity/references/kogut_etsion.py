@@ -28,12 +28,16 @@ __all__ = ["critical_interference", "kogut_etsion"]
 FULLY_PLASTIC = 110.0
 
 
+def _yield_pressure(poisson: float, yield_stress: float) -> float:
+    """K H [Pa]: the largest Hertz pressure at first yield (module docstring)."""
+    return (0.454 + 0.41 * poisson) * 2.8 * yield_stress
+
+
 def critical_interference(radius: float, contact_modulus: float, poisson: float,
                           yield_stress: float) -> float:
     """w_c [m] of a sphere of `radius` [m] against a rigid flat (module docstring), with
     the contact modulus E* [Pa] and the sphere's Poisson ratio and yield stress [Pa]."""
-    k = 0.454 + 0.41 * poisson
-    return (np.pi * k * 2.8 * yield_stress / (2.0 * contact_modulus)) ** 2 * radius
+    return (np.pi * _yield_pressure(poisson, yield_stress) / (2.0 * contact_modulus)) ** 2 * radius
 
 
 def kogut_etsion(interference, radius: float, contact_modulus: float, poisson: float,
@@ -42,8 +46,7 @@ def kogut_etsion(interference, radius: float, contact_modulus: float, poisson: f
     [m] (module docstring), with ``w_c`` [m]; NaN past 110 w_c, where the fits stop."""
     w = np.asarray(interference, dtype=float)
     wc = critical_interference(radius, contact_modulus, poisson, yield_stress)
-    k = 0.454 + 0.41 * poisson
-    pc = 2.0 / 3.0 * np.pi * k * 2.8 * yield_stress * radius * wc
+    pc = 2.0 / 3.0 * np.pi * _yield_pressure(poisson, yield_stress) * radius * wc
     ac = np.pi * radius * wc
     x = np.maximum(w, 0.0) / wc
     force = np.select([x <= 1.0, x <= 6.0, x <= FULLY_PLASTIC],

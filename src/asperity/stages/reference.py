@@ -95,10 +95,11 @@ def reference_hardness(material: Config, reference: Config, units_cfg: Config) -
 def reference_separations(reference: Config, surface_ds: xr.Dataset, units_cfg: Config) -> np.ndarray:
     """The separations [m] of the reference section (in sigma of the map, the length unit, or
     material ratios of the map: `asperity.scene.interface.separation_values`)."""
+    curve = heights_at_ratios(surface_ds)
     h = separation_values(reference["separations"], height_scale(surface_ds), length_factor(units_cfg),
-                          heights_at_ratios(surface_ds), "reference.separations")
+                          curve, "reference.separations")
     if reference["boundary"] == "periodic":
-        check_positive(h, reference["separations"], heights_at_ratios(surface_ds), "reference.separations")
+        check_positive(h, reference["separations"], curve, "reference.separations")
     return h
 
 

@@ -31,10 +31,10 @@ from typing import Any, Mapping
 
 import numpy as np
 import xarray as xr
-import yaml
 
 from asperity import scene
 from asperity.homogenize import validity
+from asperity.io.netcdf import scene_config
 from asperity.population.density import heights_at_ratios, scene_separations
 from asperity.references.hertz import plane_strain_modulus
 from asperity.scene.interface import check_positive
@@ -142,11 +142,12 @@ def fe_law(asperities: xr.Dataset, surface_ds: xr.Dataset, shape, tip, modulus: 
     from asperity.homogenize.asperity_laws import departure_law, hertz_law, tabulated_law
     from asperity.homogenize.table import interpolate_points, response_table
 
-    geometry = (yaml.safe_load(asperities.attrs.get("config", "")) or {}).get("asperity", {}).get("geometry")
+    geometry = scene_config(asperities).get("asperity", {}).get("geometry")
     if geometry not in (None, "sphere"):
         raise ValueError(f"route.law fe: the finite element asperities must be spheres (asperity.geometry: "
                          f"sphere), whose departure from Hertz the summits' own shapes take; got {geometry!r}")
-    table = response_table(asperities[["force", "contact_area"]])
+    names = ["force", "contact_area"] + (["extrapolated"] if "extrapolated" in asperities else [])
+    table = response_table(asperities[names].astype(float))
     grid = table.interference
     if grid[0] < 0:
         raise ValueError("route.law fe: asperities with attraction before contact (adhesion) "
@@ -154,12 +155,9 @@ def fe_law(asperities: xr.Dataset, surface_ds: xr.Dataset, shape, tip, modulus: 
     tip = np.asarray(tip, dtype=float)
     z = surface_ds["height"].values[:, None]
     k = np.clip(tip, table.curvatures[0], table.curvatures[-1])[:, None]
-    values = interpolate_points(table, z, k, grid[None, :])  # (summits, levels, [force, area])
-    reach = np.full(tip.size, grid[-1])
-    if "extrapolated" in asperities:
-        flags = response_table(asperities[["extrapolated"]].astype(float))
-        computed = interpolate_points(flags, z, k, grid[None, :])[..., 0] < 0.5
-        reach = grid[np.where(computed.any(axis=1), grid.size - 1 - np.argmax(computed[:, ::-1], axis=1), 0)]
+    values = interpolate_points(table, z, k, grid[None, :])  # (summits, levels, [force, area, ...])
+    computed = values[..., 2] < 0.5 if len(names) == 3 else np.ones(values.shape[:2], dtype=bool)
+    reach = grid[np.where(computed.any(axis=1), grid.size - 1 - np.argmax(computed[:, ::-1], axis=1), 0)]
     # a tip sharper or blunter than the table's spheres: the sphere's departure at equal w/R
     stretch = tip / k[:, 0]
     table_sphere, table_hertz = tabulated_law(grid, values[..., 0], values[..., 1]), hertz_law(modulus, k[:, 0])

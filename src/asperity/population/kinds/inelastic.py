@@ -40,20 +40,19 @@ from asperity.scene import Material, build, kinematics
 
 #: the first step of an inelastic history, as a fraction of the job's largest interference
 FIRST_STEP = 1e-4
-#: the one mesh of a job is adapted to the elastic contacts at MESH_LEVELS interferences
-#: from MESH_RANGE of its range up, and from the first yield if lower, with
-#: LEVELS_PER_DECADE more levels for each decade further down (`mesh_levels`)
-MESH_LEVELS, MESH_RANGE, LEVELS_PER_DECADE = 6, 0.01, 2
+#: the levels added to the one mesh's adaptation for each decade its range reaches below
+#: the default (`mesh_levels`)
+LEVELS_PER_DECADE = 2
 
 
 def mesh_levels(top: float, curvature: float, material: Material) -> np.ndarray:
-    """The interferences [m] the mesh of a job to `top` is adapted at: from MESH_RANGE of
-    it, or, for a body with a yield stress (J2), from the critical interference w_c of its
-    tip (`asperity.references.kogut_etsion.critical_interference`) where that is lower, so
-    that the onset of yield is resolved. A sphere of aluminum (E / Y = 250) pressed to a
-    quarter of its radius reaches 2,900 w_c: on a mesh from a hundredth of that, its force
-    at 1 and 2 w_c was 0.81 and 1.14 of Kogut and Etsion's; from w_c, within 2 % from 1 to
-    100 w_c (the changelog)."""
+    """The interferences [m] the one mesh of a job to `top` is adapted at: the finite
+    element default (`asperity.fe.drivers.inelastic.MESH_LEVELS` from `MESH_RANGE` of
+    `top`), reaching down to the critical interference w_c of the tip of a body with a
+    yield stress (J2; `asperity.references.kogut_etsion.critical_interference`) where
+    that is lower, with LEVELS_PER_DECADE more levels a decade, so that the onset of
+    yield is resolved (tests/fe/test_kogut_etsion.py)."""
+    from asperity.fe.drivers.inelastic import MESH_LEVELS, MESH_RANGE
     from asperity.references.hertz import plane_strain_modulus
     from asperity.references.kogut_etsion import critical_interference
 
