@@ -183,6 +183,8 @@ STUDIES = {
                   "the deterministic_reference scene: wall time, the routes' errors"),
     "routes": ("routes.py", [], "every route's error on every map against the boundary elements"),
     "scale": ("scale_study.py", [], "summits and the routes' error against the lateral scale"),
+    "j2-sphere": ("j2_sphere.py", [], "the J2 sphere beside Kogut and Etsion's fits and the "
+                  "hardness-limited boundary elements"),
     "sliding": ("sliding_convergence.py", [], "the sliding study at draft, standard and fine"),
     "remesh": ("remesh.py", ["--remesh", "on", "off"],
                "inelastic histories on meshes that follow the contact"),

@@ -369,6 +369,40 @@ def _pct(value, signed: bool = True) -> str:
     return f"{100 * value:+.0f}" if signed else f"{100 * value:.3g}"
 
 
+def _j2_sphere(name: str) -> str:
+    """The tables of `benchmarks/j2_sphere.py`: the J2 sphere beside Kogut and Etsion's fits
+    and the hardness-limited boundary elements of a paraboloid."""
+    d = _load(name)
+    if d is None:
+        return ""
+    m = d["material"]
+    text = ["\n## The J2 sphere beside its models\n\n",
+            f"The sphere of the reference scenes' aluminum (E = {m['youngs_modulus'] / 1e9:g} GPa, "
+            f"nu = {m['poisson']:g}, Y = {m['yield_stress'] / 1e6:g} MPa; `make bench CASE=j2-sphere`). "
+            "Pressed to 300 w_c, its force / area over Kogut and Etsion's fits (J. Appl. Mech. 2002); "
+            "pressed to R/4 as a population's job, its force over theirs on the job's mesh "
+            "(`mesh_levels`, from w_c) and on the finite element default (from a hundredth of the "
+            "range); and that job over the boundary elements of the paraboloid limited by the "
+            "hardness 2.8 Y (the J2 route's reference), force / area.\n\n"]
+    for preset, r in d["presets"].items():
+        ke, jobs = r["to_300_wc"], r["job_to_quarter_radius"]
+        text.append(f"**{preset}**\n\n| w / w_c | to 300 w_c, over the fits | job, mesh from w_c | "
+                    "job, default mesh |\n|---|---|---|---|\n")
+        for i, x in enumerate(ke["w_over_wc"]):
+            cells = [f"{ke['force_over_ke'][i]:.3f} / {ke['area_over_ke'][i]:.3f}"]
+            for job in ("mesh_levels", "fe_default"):
+                values = jobs[job]["force_over_ke"]
+                cells.append(f"{values[i]:.3f}" if i < len(values) else "-")
+            text.append(f"| {x:g} | " + " | ".join(cells) + " |\n")
+        h = r["against_hardness"]
+        text.append("\n| w / R | w / w_c | over the hardness-limited boundary elements |\n|---|---|---|\n")
+        for i, v in enumerate(h["w_over_r"]):
+            text.append(f"| {v:g} | {h['w_over_wc'][i]:.0f} | {h['force_ratio'][i]:.2f} / "
+                        f"{h['area_ratio'][i]:.2f} |\n")
+        text.append("\n")
+    return "".join(text) + _provenance(d, name)
+
+
 def _scale_study(name: str) -> str:
     """The table and figure of `benchmarks/scale_study.py`: what the lateral scale changes."""
     d = _load(name)
@@ -507,6 +541,7 @@ def verification_page() -> str:
                    "([theory](../theory/anisotropic.md)).\n")
         out.append(_band_summary("routes-anisotropic-draft.json"))
         out.append(_routes_table("routes-anisotropic-draft.json"))
+    out.append(_j2_sphere("j2-sphere.json"))
     out.append(_scale_study("scale-study.json"))
     out.append("\n## What a run costs\n")
     out.extend(_scenes_table(n) for n in ("scenes-draft.json", "scenes-standard.json"))
