@@ -244,3 +244,99 @@ def test_the_anisotropic_route_on_a_measured_map():
     assert np.all(np.isfinite(p)) and np.all(np.diff(p) < 0) and np.all(np.diff(a) < 0)
     assert not ds["valid"].values.any()
     assert all(str(v).startswith("gaussian_heights") for v in ds["validity"].values), ds["validity"].values
+
+
+def test_the_peak_pressure_curvature_gives_the_ellipses_peak_pressure():
+    """The sphere of `peak_pressure_curvature` has, at every interference, the Hertz peak
+    pressure p0 = 3 F / (2 pi a b) of the elliptic contact (1e-10); for t = 1 it is the
+    ellipse's own curvature (1e-12)."""
+    from asperity.homogenize.anisotropic import peak_pressure_curvature
+
+    w = np.geomspace(1e-4, 1e-1, 5)
+    for t in (1.0, 0.5, 0.25, 0.1):
+        e = elliptic_hertz(w, 2.0, 2.0 * t, 1.0)
+        p0 = 3 * e["force"] / (2 * math.pi * e["semi_axis_a"] * e["semi_axis_b"])
+        k = float(peak_pressure_curvature(np.array(2.0), np.array(t)))
+        s = hertz_response(w, k, 1.0, 0.0)
+        np.testing.assert_allclose(3 * s["force"] / (2 * s["contact_area"]), p0, rtol=1e-10)
+    assert float(peak_pressure_curvature(np.array(2.0), np.array(1.0))) == pytest.approx(2.0, rel=1e-12)
+
+
+def test_the_anisotropic_fe_law_is_elliptic_hertz_with_the_spheres_departure():
+    """route.law fe of the anisotropic route: a table of exact Hertz spheres gives the
+    elliptic route (the table's linear interpolation, 1e-3); a sphere whose force is
+    Hertz's / (1 + 300 w kappa) (a departure of w/R alone) divides each summit's force by
+    1 + 300 w kappa_p, kappa_p its peak-pressure curvature, on Hertz's area (against a
+    direct quadrature, 1e-3), its stiffness by the product rule (central differences of the
+    pressure, 2e-3); past the sphere's computed reach the ratio is held; without
+    asperities the route says what it needs."""
+    import xarray as xr
+    import yaml
+
+    from asperity.homogenize.anisotropic import peak_pressure_curvature, with_departure
+    from asperity.homogenize.asperity_laws import hertz_law
+    from asperity.stages import routes
+    from asperity.surface import map_statistics
+    from asperity.surface.synthetic import gaussian_map
+    from tests.references.test_routes import ALUMINUM, UNITS, VALIDITY, _homogenization, route
+
+    z = gaussian_map(256, 1.25e-6, 1e-6, 10e-6, 4, aspect=4.0)
+    surface_ds = map_statistics(z, 1.25e-6, 1.25e-6)
+    modulus, _ = routes.contact_modulus_and_hardness(ALUMINUM, UNITS)
+    sigma = float(z.std())
+    curvature = np.geomspace(1e3, 1e6, 31)
+    grid = np.concatenate([[0.0], np.geomspace(1e-5, 6.0, 400) * sigma])
+    index = np.repeat(np.arange(curvature.size), grid.size)
+    force, area = (v.reshape(curvature.size, grid.size)
+                   for v in hertz_law(modulus, curvature)(np.tile(grid, curvature.size), index)[:2])
+
+    def table(ratio, extrapolated=None):
+        data = {"force": (("curvature", "interference"), ratio * force),
+                "contact_area": (("curvature", "interference"), area + 0.0 * ratio)}
+        if extrapolated is not None:
+            data["extrapolated"] = (("curvature", "interference"),
+                                    np.broadcast_to(extrapolated, force.shape).astype(np.int8))
+        config = yaml.safe_dump({"asperity": {"model": "fe", "geometry": "sphere"}})
+        return xr.Dataset(data, coords={"curvature": curvature, "interference": grid},
+                          attrs={"config": config}).expand_dims(height=[0.0])
+
+    def interface(asperities=None, law="fe"):
+        return routes.route_interface(z, 1.25e-6, 1.25e-6, surface_ds, route(kind="anisotropic", law=law),
+                                      ALUMINUM, _homogenization(), UNITS, VALIDITY, asperities=asperities)
+
+    elliptic = interface(law="elliptic")
+    hertz_table = interface(table(1.0))
+    for name in ("nominal_pressure", "contact_area_ratio", "normal_stiffness"):
+        np.testing.assert_allclose(hertz_table[name].values, elliptic[name].values, rtol=1e-3)
+    assert hertz_table.attrs["law"] == "fe"
+
+    c = 300.0
+    soft = table(1.0 / (1.0 + c * grid[None, :] * curvature[:, None]))
+    got = interface(soft)
+    density = AnisotropicDensity.from_surface(surface_ds)
+    base = elliptic_law(modulus)
+
+    def exact(w, k1, t):
+        f, a, s, r = base(w, k1, t)
+        d = 1.0 + c * np.maximum(w, 0.0) * peak_pressure_curvature(k1, t)
+        return f / d, a, None, r
+
+    h = got["separation"].values
+    direct = anisotropic_interface(density, lambda w, k1, t: exact(w, k1, t)[:2] + (0 * w, 0 * w), h)
+    np.testing.assert_allclose(got["nominal_pressure"].values, direct["nominal_pressure"].values, rtol=1e-3)
+    np.testing.assert_allclose(got["contact_area_ratio"].values, elliptic["contact_area_ratio"].values,
+                               rtol=1e-3)
+    dh = 1e-4 * sigma
+    fd = -(anisotropic_interface(density, with_departure(base, routes.sphere_departure(soft, modulus)),
+                                 h + dh)["nominal_pressure"].values
+           - anisotropic_interface(density, with_departure(base, routes.sphere_departure(soft, modulus)),
+                                   h - dh)["nominal_pressure"].values) / (2 * dh)
+    np.testing.assert_allclose(got["normal_stiffness"].values, fd, rtol=2e-3)
+    # computed only to w kappa = 1e-3: the ratio there, 1 / (1 + 0.3), is held past it
+    reach = grid[None, :] * curvature[:, None] > 1e-3
+    held = routes.sphere_departure(table(np.where(reach, 0.1, 1.0 / (1.0 + c * grid[None, :]
+                                                                   * curvature[:, None])), reach), modulus)
+    rf = held(np.array([1e-4, 5e-3, 1e-1]))[0]  # the grid's last computed level, within 1e-3 of it
+    np.testing.assert_allclose(rf, [1 / 1.03, 1 / 1.3, 1 / 1.3], rtol=1e-3)
+    with pytest.raises(ValueError, match="route.law fe needs the scene's finite element asperities"):
+        interface(law="fe")

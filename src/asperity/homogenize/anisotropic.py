@@ -26,6 +26,17 @@ giving c_F, c_A, c_r once per ratio (`elliptic_law`).  ``hertz`` takes the spher
 mean curvature (kappa_1 + kappa_2) / 2 instead: the isotropic route's asperity on the
 anisotropic density, which separates the effect of the summits' shape from that of
 their statistics.
+
+``fe`` is the elliptic contact times the departure of a finite element sphere from
+Hertz's (force and area ratios, `with_departure`), read at equal Hertz peak pressure:
+the ellipse's p0 = 3 F / (2 pi a b) = (3 c_F / (2 c_A)) E* sqrt(w kappa_1) is a sphere's
+p0 = (2 / pi) E* sqrt(w kappa) at the same w for kappa = (3 pi c_F / (4 c_A))^2
+kappa_1 (`peak_pressure_curvature`; kappa_1 itself when t = 1).  First yield of a Hertz
+contact is set by p0 (p0 = 1.6 Y for nu = 0.3; Johnson 1985, 4.2 and 6.2), so equal p0
+puts the ellipse and the sphere at the same stage of yield; for a material without a
+length of its own (elastic, J2) the sphere's departure is a function of w kappa alone.
+The J2 sphere of equal p0 departs from Hertz as the 3-D J2 elliptic paraboloid of
+t = 1/4 does from its elastic twin, within 2 % (tests/fe/test_elliptic_3d.py).
 """
 
 from __future__ import annotations
@@ -39,25 +50,38 @@ import xarray as xr
 from asperity.peaks.anisotropic import AnisotropicDensity
 from asperity.units import attrs
 
-__all__ = ["LAWS", "elliptic_law", "mean_curvature_law", "anisotropic_interface"]
+__all__ = ["LAWS", "elliptic_law", "mean_curvature_law", "peak_pressure_curvature", "with_departure",
+           "anisotropic_interface"]
 
 #: the summit laws of the anisotropic route
-LAWS = ("elliptic", "hertz")
+LAWS = ("elliptic", "hertz", "fe")
 
 #: law(w, kappa_1, t) -> (force, contact_area, stiffness, contact_radius), broadcasting
 Law = Callable[[np.ndarray, np.ndarray, np.ndarray], tuple]
 
 
-def elliptic_law(contact_modulus: float) -> Law:
-    """Hertz's elliptic contact of the summit's principal curvatures (module docstring)."""
+def _unit_ellipse(t):
+    """c_F, c_A and c_r of the module docstring at the curvature ratios t (shaped as t)."""
     from asperity.references.hertz import elliptic_hertz
 
+    ratios, where = np.unique(np.asarray(t, dtype=float), return_inverse=True)
+    unit = elliptic_hertz(np.ones(ratios.shape), np.ones(ratios.shape), ratios, 1.0)
+    radius = np.sqrt(unit["semi_axis_a"] * unit["semi_axis_b"])
+    return tuple(v[where].reshape(np.shape(t)) for v in (unit["force"], unit["contact_area"], radius))
+
+
+def peak_pressure_curvature(k1, t):
+    """The curvature of the sphere whose Hertz peak pressure at every interference is the
+    elliptic contact's of curvatures kappa_1 and t kappa_1: (3 pi c_F / (4 c_A))^2 kappa_1
+    (module docstring)."""
+    c_f, c_a, _ = _unit_ellipse(t)
+    return (3.0 * math.pi * c_f / (4.0 * c_a)) ** 2 * k1
+
+
+def elliptic_law(contact_modulus: float) -> Law:
+    """Hertz's elliptic contact of the summit's principal curvatures (module docstring)."""
     def law(w, k1, t):
-        ratios, where = np.unique(np.asarray(t, dtype=float), return_inverse=True)
-        unit = elliptic_hertz(np.ones(ratios.shape), np.ones(ratios.shape), ratios, 1.0)
-        c_f = unit["force"][where].reshape(np.shape(t))
-        c_a = unit["contact_area"][where].reshape(np.shape(t))
-        c_r = np.sqrt(unit["semi_axis_a"] * unit["semi_axis_b"])[where].reshape(np.shape(t))
+        c_f, c_a, c_r = _unit_ellipse(t)
         w = np.maximum(w, 0.0)
         force = c_f * contact_modulus * w ** 1.5 / np.sqrt(k1)
         return force, c_a * w / k1, 1.5 * c_f * contact_modulus * np.sqrt(w / k1), c_r * np.sqrt(w / k1)
@@ -72,6 +96,22 @@ def mean_curvature_law(contact_modulus: float) -> Law:
         radius = 2.0 / (k1 * (1.0 + t))
         force = 4.0 / 3.0 * contact_modulus * np.sqrt(radius) * w ** 1.5
         return force, math.pi * radius * w, 2.0 * contact_modulus * np.sqrt(radius * w), np.sqrt(radius * w)
+
+    return law
+
+
+def with_departure(base: Law, departure: Callable) -> Law:
+    """`base` (``elliptic_law``) times the departure of a sphere from Hertz read at equal
+    Hertz peak pressure (module docstring): ``departure(s)`` gives the force and area
+    ratios and their slopes in s = w kappa of a sphere of curvature kappa, taken at
+    s = w `peak_pressure_curvature`; the stiffness by the product rule, the contact radius
+    with the square root of the area ratio."""
+    def law(w, k1, t):
+        w = np.maximum(w, 0.0)
+        k = peak_pressure_curvature(k1, t)
+        force, area, stiffness, radius = base(w, k1, t)
+        rf, ra, drf, _ = departure(w * k)
+        return force * rf, area * ra, stiffness * rf + force * drf * k, radius * np.sqrt(ra)
 
     return law
 

@@ -126,20 +126,15 @@ def principal_curvatures(surface_ds: xr.Dataset) -> tuple[np.ndarray, np.ndarray
     return mean + half, mean - half
 
 
-def fe_law(asperities: xr.Dataset, surface_ds: xr.Dataset, shape, tip, modulus: float):
-    """The law of each summit with the scene's finite element asperities (asperities.nc on
-    height, curvature, interference; spheres): the summit's own `shape` law, with the
-    departure of the finite element sphere of its tip curvature `tip` from Hertz's sphere
-    (force and area ratios, `asperity.homogenize.asperity_laws.departure_law`), so that
-    plasticity (or rate, or an elastic mesh's error) is the sphere's and the shape is the
-    summit's. The sphere's force and area are interpolated at the summit's height and tip
-    curvature on the table's interference grid (linear, as the homogenization does:
-    `asperity.homogenize.table`); a tip sharper or blunter than the table's spheres takes
-    the departure of its nearest sphere at equal w/R (the self-similarity of a sphere of a
-    material without a length of its own, as the population's plan uses); past the
-    interference the sphere was computed to (the table's ``extrapolated`` points), the
-    ratios keep their last computed values."""
-    from asperity.homogenize.asperity_laws import departure_law, hertz_law, tabulated_law
+def _sphere_laws(asperities: xr.Dataset, heights, tip, modulus: float):
+    """The finite element spheres of asperities.nc (on height, curvature, interference) and
+    Hertz's at the points (`heights`, `tip` curvature), as ``law(w, index)``, and how far
+    each was computed (m; the table's ``extrapolated`` points lie beyond). The force and
+    area are interpolated on the table's interference grid (linear, as the homogenization
+    does: `asperity.homogenize.table`); a tip sharper or blunter than the table's spheres
+    takes its nearest sphere at equal w/R (the self-similarity of a sphere of a material
+    without a length of its own, as the population's plan uses)."""
+    from asperity.homogenize.asperity_laws import hertz_law, tabulated_law
     from asperity.homogenize.table import interpolate_points, response_table
 
     geometry = scene_config(asperities).get("asperity", {}).get("geometry")
@@ -151,14 +146,13 @@ def fe_law(asperities: xr.Dataset, surface_ds: xr.Dataset, shape, tip, modulus: 
     grid = table.interference
     if grid[0] < 0:
         raise ValueError("route.law fe: asperities with attraction before contact (adhesion) "
-                         "are not coupled by the interacting route")
+                         "have no departure from Hertz's sphere to carry")
     tip = np.asarray(tip, dtype=float)
-    z = surface_ds["height"].values[:, None]
+    z = np.asarray(heights, dtype=float)[:, None]
     k = np.clip(tip, table.curvatures[0], table.curvatures[-1])[:, None]
-    values = interpolate_points(table, z, k, grid[None, :])  # (summits, levels, [force, area, ...])
+    values = interpolate_points(table, z, k, grid[None, :])  # (points, levels, [force, area, ...])
     computed = values[..., 2] < 0.5 if len(names) == 3 else np.ones(values.shape[:2], dtype=bool)
     reach = grid[np.where(computed.any(axis=1), grid.size - 1 - np.argmax(computed[:, ::-1], axis=1), 0)]
-    # a tip sharper or blunter than the table's spheres: the sphere's departure at equal w/R
     stretch = tip / k[:, 0]
     table_sphere, table_hertz = tabulated_law(grid, values[..., 0], values[..., 1]), hertz_law(modulus, k[:, 0])
 
@@ -168,7 +162,49 @@ def fe_law(asperities: xr.Dataset, surface_ds: xr.Dataset, shape, tip, modulus: 
             return f, a, df * stretch[index], da * stretch[index]
         return scaled
 
-    return departure_law(shape, at_equal_depth(table_sphere), at_equal_depth(table_hertz), reach / stretch)
+    return at_equal_depth(table_sphere), at_equal_depth(table_hertz), reach / stretch
+
+
+def fe_law(asperities: xr.Dataset, heights, shape, tip, modulus: float):
+    """The law of each summit (of height `heights`) with the scene's finite element
+    asperities (asperities.nc; spheres): the summit's own `shape` law, with the departure
+    of the finite element sphere of its tip curvature `tip` from Hertz's sphere (force
+    and area ratios, `asperity.homogenize.asperity_laws.departure_law`; the spheres as
+    `_sphere_laws` reads them), so that plasticity (or rate, or an elastic mesh's error)
+    is the sphere's and the shape is the summit's. Past the interference the sphere was
+    computed to, the ratios keep their last computed values."""
+    from asperity.homogenize.asperity_laws import departure_law
+
+    return departure_law(shape, *_sphere_laws(asperities, heights, tip, modulus))
+
+
+def sphere_departure(asperities: xr.Dataset, modulus: float):
+    """``departure(s)``: the force and area ratios of the scene's finite element sphere to
+    Hertz's, and their slopes, against s = w kappa (w/R), for
+    `asperity.homogenize.anisotropic.with_departure`: the table's sphere computed farthest
+    in w/R (at the table's middle height), its ratios held past that. A function of w/R
+    alone for a material without a length of its own (elastic, J2), as the population's
+    plan derives its spheres."""
+    from asperity.homogenize.asperity_laws import departure_law
+
+    curvatures = asperities["curvature"].values.astype(float)
+    middle = float(asperities["height"].values[asperities.sizes["height"] // 2])
+    model, sphere, reach = _sphere_laws(asperities, np.full(curvatures.size, middle), curvatures, modulus)
+    best = int(np.argmax(reach * curvatures))
+    k = curvatures[best]
+
+    def unit(w, index):
+        one = np.ones(np.shape(w))
+        return one, one, 0.0 * one, 0.0 * one
+
+    law = departure_law(unit, model, sphere, reach)
+
+    def departure(s):
+        s = np.asarray(s, dtype=float)
+        rf, ra, drf, dra = law(s / k, np.full(s.shape, best))
+        return rf, ra, drf / k, dra / k
+
+    return departure
 
 
 def asperity_law(kind: str, z, dx: float, dy: float, surface_ds: xr.Dataset, modulus: float,
@@ -216,17 +252,20 @@ def asperity_law(kind: str, z, dx: float, dy: float, surface_ds: xr.Dataset, mod
     radii, slopes = summit_profiles(z, dx, dy, surface_ds["row"].values, surface_ds["column"].values,
                                     tip)
     shape = profile_law(radii, slopes, modulus)
-    return shape if kind == "shape" else fe_law(asperities, surface_ds, shape, tip, modulus)
+    return shape if kind == "shape" else fe_law(asperities, surface_ds["height"].values, shape, tip,
+                                                   modulus)
 
 
 def _anisotropic(h, surface_ds: xr.Dataset, route_cfg: Config, material_cfg: Config, units_cfg: Config,
-                 validity_cfg: Config, effects) -> xr.Dataset:
+                 validity_cfg: Config, effects, asperities: xr.Dataset | None = None) -> xr.Dataset:
     """The summits of the Gaussian anisotropic surface of the map's spectral moments (its
     derivative covariances at the scene's lateral scale, surface.nc), each an elliptic
-    Hertz contact (``law: elliptic``) or the sphere of its mean curvature (``hertz``),
-    independent (report 2.4.2, 2.5.2: `asperity.homogenize.anisotropic`), with the
-    validity of independent asperities (`asperity.homogenize.validity.assess`: yield,
-    contact area, interaction, plasticity index, Gaussian heights)."""
+    Hertz contact (``law: elliptic``), the sphere of its mean curvature (``hertz``) or the
+    elliptic contact with the departure of the scene's finite element sphere from Hertz at
+    equal peak pressure (``fe``: `sphere_departure`), independent (report 2.4.2, 2.5.2:
+    `asperity.homogenize.anisotropic`), with the validity of independent asperities
+    (`asperity.homogenize.validity.assess`: yield, contact area, interaction, plasticity
+    index, Gaussian heights)."""
     from asperity.homogenize import anisotropic
     from asperity.homogenize.validity import peak_statistics, plasticity_of
     from asperity.peaks.anisotropic import AnisotropicDensity
@@ -239,7 +278,15 @@ def _anisotropic(h, surface_ds: xr.Dataset, route_cfg: Config, material_cfg: Con
     units = scene.Units.from_section(units_cfg)
     plastic = plasticity_of(scene.Material.from_scene(material_cfg, units), effects or ())
     modulus = plastic.plane_strain_modulus
-    law = anisotropic.elliptic_law(modulus) if kind == "elliptic" else anisotropic.mean_curvature_law(modulus)
+    if kind == "hertz":
+        law = anisotropic.mean_curvature_law(modulus)
+    elif kind == "fe":
+        if asperities is None:
+            raise ValueError("route.law fe needs the scene's finite element asperities "
+                             "(asperity: {model: fe, geometry: sphere} and a population)")
+        law = anisotropic.with_departure(anisotropic.elliptic_law(modulus), sphere_departure(asperities, modulus))
+    else:
+        law = anisotropic.elliptic_law(modulus)
     out = anisotropic.anisotropic_interface(density, law, h, plastic.yield_pressure)
     out.attrs.update({"law": kind, "scale": float(surface_ds.attrs.get("scale", math.nan))})
     heights = tuple(float(surface_ds[k]) for k in ("skewness", "kurtosis")) \
@@ -301,7 +348,7 @@ def route_interface(z: np.ndarray, dx: float, dy: float, surface_ds: xr.Dataset,
     elif kind == "persson":
         out = _persson(z, dx, dy, h, modulus, hardness, route_cfg)
     elif kind == "anisotropic":
-        out = _anisotropic(h, surface_ds, route_cfg, material_cfg, units_cfg, validity_cfg, effects)
+        out = _anisotropic(h, surface_ds, route_cfg, material_cfg, units_cfg, validity_cfg, effects, asperities)
     else:
         out = _interacting(z, dx, dy, h, modulus, surface_ds, route_cfg, asperities)
     for name, (units, long_name) in CONTRACT.items():
@@ -312,7 +359,7 @@ def route_interface(z: np.ndarray, dx: float, dy: float, surface_ds: xr.Dataset,
     # what the route models: elastic, or plastic (limited by the hardness, or inelastic FE
     # asperities); the reference comparison holds each against the boundary elements alike
     plastic = (route_cfg["limit"] == "hardness"
-               or (kind == "interacting" and route_cfg["law"] == "fe" and "plasticity" in set(effects)))
+               or (route_cfg["law"] == "fe" and "plasticity" in set(effects or ())))
     out.attrs.update({"route": kind, "limit": "hardness" if plastic else "elastic",
                       "contact_modulus": modulus, "separation_definition":
                       "height of the flat above the mean plane of the prepared map; periodic, "
