@@ -48,7 +48,7 @@ VERSIONS: dict[str, int] = {
     "adhesion_curves": 1,
     # the deterministic reference (workflow/rules/reference.smk)
     "reference": 2,
-    "reference_comparison": 3,
+    "reference_comparison": 4,
     # figures (workflow/rules/figures.smk and the figures of the rules above)
     "surface_figure": 1,
     "expectation_figure": 1,

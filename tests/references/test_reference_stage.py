@@ -121,7 +121,8 @@ def test_comparison_errors_and_range():
     """A route equal to the reference holds everywhere; one with the same A(p) but
     shifted in separation has a pressure error and no area error (areas are compared
     at equal pressure); twice the pressure at equal area fails both; the range where
-    a route holds is the longest run of separations."""
+    a route holds is the longest run of separations; a plastic route is held against the
+    hardness-limited solution and is not a candidate for the recommended route."""
     h = np.linspace(1e-6, 3e-6, 9)
     p = 1e8 * np.exp(-3 * h / 1e-6)
     a = 2.0 * p / 1e10
@@ -130,8 +131,15 @@ def test_comparison_errors_and_range():
     shifted = _interface(h - 0.1e-6, p, a, n)  # the same curve, 0.1 um lower
     double = _interface(h, 2 * p, a, n)
     partial = _interface(h, np.where(h < 2e-6, p, 1.5 * p), np.where(h < 2e-6, a, 1.5 * a), 2 * n)
-    out = stage.comparison_dataset(ref, {"same": _interface(h, p, a, n), "shifted": shifted,
-                                         "double": double, "partial": partial}, agreement=0.25)
+    plastic = _interface(h, 0.5 * p, a, n).assign_attrs(limit="hardness")  # the hardness-limited BEM
+    out = stage.comparison_dataset(ref, {"plastic": plastic, "same": _interface(h, p, a, n),
+                                         "shifted": shifted, "double": double, "partial": partial},
+                                   agreement=0.25)
+    assert str(out["reference_limit"].sel(route="plastic").values) == "hardness"
+    assert np.allclose(out.sel(route="plastic")["pressure_error"], 0)
+    # recommended among the routes held against the elastic boundary elements only: "same"
+    # (error 0), not "plastic" (error 0 against the other reference, first in the order)
+    assert list(out["recommended_route"].values) == ["same"] * h.size
     same = out.sel(route="same")
     assert np.allclose(same["pressure_error"], 0) and np.allclose(same["area_error"], 0)
     assert same["holds"].all() and float(same["holds_from"]) == h[0] and float(same["holds_to"]) == h[-1]
@@ -176,7 +184,8 @@ def test_no_route_holds_where_the_boundary_elements_do_not_resolve_the_contact(c
 def test_the_recommended_route_has_the_smallest_larger_error():
     """Per separation the route whose larger of |pressure error| and |area error| is least;
     none where no route has both errors, or where the reference does not resolve its
-    contacts; asperity show prints it."""
+    contacts, or where there is no route (the comparison offers only the routes held
+    against the elastic boundary elements); asperity show prints it."""
     import xarray as xr
 
     from asperity.cli import recommendations
@@ -190,6 +199,8 @@ def test_the_recommended_route_has_the_smallest_larger_error():
     assert list(best) == ["a", "b", "a", ""]
     np.testing.assert_allclose(error[:3], [0.05, 0.03, 0.1], rtol=1e-15)
     assert np.isnan(error[3])
+    none, nan = recommended([], p[:0], a[:0], resolved)  # no elastic route to recommend
+    assert list(none) == ["", "", "", ""] and np.all(np.isnan(nan))
     ds = xr.Dataset({"recommended_route": ("separation", best), "recommended_error": ("separation", error),
                      "reference_resolved": ("separation", resolved)},
                     coords={"separation": [1e-6, 2e-6, 3e-6, 4e-6]}, attrs={"sigma": 1e-6})

@@ -189,6 +189,8 @@ def recommended(names, pressure_error: np.ndarray, area_error: np.ndarray, resol
     """Per separation, the route (of `names`, rows of the errors) whose larger absolute error,
     of pressure and of area, is smallest, and that error; '' and NaN where no route has
     both errors or the reference does not resolve its contact."""
+    if len(names) == 0:
+        return np.full(np.shape(resolved), "", dtype=object), np.full(np.shape(resolved), np.nan)
     worst = np.fmax(np.abs(pressure_error), np.abs(area_error))
     worst = np.where(np.isfinite(pressure_error) & np.isfinite(area_error), worst, np.nan)
     have = np.isfinite(worst).any(axis=0) & resolved
@@ -291,11 +293,16 @@ def comparison_dataset(reference: xr.Dataset, interfaces: Mapping[str, xr.Datase
     }
     for k, v in ranges.items():
         out[k] = ("route", v, attrs(*range_meta[k]))
-    best, best_error = recommended(names, vals["pressure_error"], vals["area_error"], resolved)
+    # among the routes held against the elastic boundary elements: a plastic route's errors
+    # are against another reference
+    elastic = np.array([limit == "elastic" for limit in limits], dtype=bool)
+    best, best_error = recommended(np.asarray(names, dtype=object)[elastic], vals["pressure_error"][elastic],
+                                   vals["area_error"][elastic], resolved)
     out["recommended_route"] = ("separation", best, attrs(
-        "1", "the route closest to the elastic boundary elements at this separation (the smallest "
-             "larger of its pressure and area errors); empty where no route is defined or the "
-             "boundary elements do not resolve the contact"))
+        "1", "the elastic route closest to the elastic boundary elements at this separation (the "
+             "smallest larger of its pressure and area errors; routes held against the boundary "
+             "elements limited by the hardness are not candidates); empty where no route is "
+             "defined or the boundary elements do not resolve the contact"))
     out["recommended_error"] = ("separation", best_error, attrs(
         "1", "the larger of the recommended route's pressure and area errors (absolute)"))
     if "hardness" in reference["limit"].values:
