@@ -359,7 +359,8 @@ def route_interface(z: np.ndarray, dx: float, dy: float, surface_ds: xr.Dataset,
     # what the route models: elastic, or plastic (limited by the hardness, or inelastic FE
     # asperities); the reference comparison holds each against the boundary elements alike
     plastic = (route_cfg["limit"] == "hardness"
-               or (route_cfg["law"] == "fe" and "plasticity" in set(effects or ())))
+               or (kind in ("interacting", "anisotropic") and route_cfg["law"] == "fe"
+                   and "plasticity" in set(effects or ())))
     out.attrs.update({"route": kind, "limit": "hardness" if plastic else "elastic",
                       "contact_modulus": modulus, "separation_definition":
                       "height of the flat above the mean plane of the prepared map; periodic, "
