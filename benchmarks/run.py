@@ -186,6 +186,7 @@ STUDIES = {
     "j2-sphere": ("j2_sphere.py", [], "the J2 sphere beside Kogut and Etsion's fits and the "
                   "hardness-limited boundary elements"),
     "sliding": ("sliding_convergence.py", [], "the sliding study at draft, standard and fine"),
+    "linear": ("linear_solvers.py", [], "SuperLU against PARDISO on the 3-D asperity's tangents"),
     "remesh": ("remesh.py", ["--remesh", "on", "off"],
                "inelastic histories on meshes that follow the contact"),
     "edge-band": ("edge_band_scene.py", ["--scene", "steel_glass_bead", "--accuracy", "standard"],

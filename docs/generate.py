@@ -515,6 +515,27 @@ def _surface_speed(name: str) -> str:
             + _provenance(d, name))
 
 
+def _linear_solvers(name: str) -> str:
+    """SuperLU against PARDISO on the 3-D tangents (`make bench CASE=linear`)."""
+    d = _load(name)
+    if d is None:
+        return ""
+    rows = ["| unknowns | SuperLU: first / in the kept order | PARDISO: first / of the kept analysis "
+            "| solve: SuperLU / PARDISO |\n|---|---|---|---|\n"]
+    for r in d["sizes"]:
+        s, p = r["superlu"], r.get("pardiso")
+        pard = f"{p['first_factorization_s']:.2f} / {p['factorization_s']:.2f}" if p else "not installed"
+        solve = f"{s['solve_s']:.3f}" + (f" / {p['solve_s']:.3f}" if p else "")
+        rows.append(f"| {r['dofs']:,} | {s['first_factorization_s']:.2f} / {s['factorization_s']:.2f} "
+                    f"| {pard} | {solve} |\n")
+    return ("\n### Factorizing the 3-D tangents\n\n"
+            "The first tangent of an elastic elliptic paraboloid pressed by the 3-D driver, on "
+            "finer and finer meshes: CPU seconds of a factorization (the first one, with its "
+            "ordering or analysis, then one that reuses them) and of a solve, one thread each "
+            "(`asperity.fe.solvers.linear`; PARDISO from 10,000 unknowns).\n\n"
+            + "".join(rows) + "\n" + _provenance(d, name))
+
+
 def verification_page() -> str:
     out = [GENERATED, "# Verification and cost\n\n",
            "What the project measured, read from the benchmark outputs of `benchmarks/results/` "
@@ -547,6 +568,7 @@ def verification_page() -> str:
     out.extend(_scenes_table(n) for n in ("scenes-draft.json", "scenes-standard.json"))
     out.extend(_profile(n) for n in ("profile-draft.json", "profile-standard.json"))
     out.append(_sliding_convergence("sliding-convergence-k280.json"))
+    out.append(_linear_solvers("linear-solvers.json"))
     out.append(_surface_speed("surface-speed.json"))
     return "".join(out)
 
