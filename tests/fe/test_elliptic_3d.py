@@ -117,9 +117,9 @@ def test_elliptic_hertz_3d(ratio):
     is below 0.01 % for the circle: a run at 160 a fell within 1e-4 of the 1 / L line
     through 40 a and 80 a).
 
-    The force.  Measured after the extrapolation (CPU time of the two runs): ratio 1,
-    -0.99 and -0.86 % (14 s); ratio 1/4, -0.78 and -0.64 % (61 s); ratio 1/8, not run
-    here (230 s), -0.70 and -0.63 % (area -1.8 and -2.1 %, aspect +2.4 and +6.1 %).
+    The force.  Measured after the extrapolation: ratio 1, -0.99 and -0.86 %; ratio 1/4,
+    -0.78 and -0.64 %; ratio 1/8, not run here (four times the CPU time of 1/4), -0.70
+    and -0.63 % (area -1.8 and -2.1 %, aspect +2.4 and +6.1 %).
     The remaining error is the mesh's (+0.2 % from tip 0.25 b to 0.18 b for the
     circle) and the penalty's (+0.13 % to a penalty 10 times stiffer), both
     softening: within the 1 % aimed at, with a margin of only 0.01 % for the circle at
