@@ -9,10 +9,9 @@ The factorization: SuperLU in a fill-reducing order kept per pattern, diagonal p
 preferred (`assembly.OrderedLU`); for systems of `PARDISO_DOFS` unknowns or more, Intel
 MKL's PARDISO (`PardisoLU`; Schenk and Gärtner 2004, through pypardiso) where it is
 installed (x86-64 Linux and Windows), whose supernodal factorization in a nested
-dissection order is faster on the 3-D tangents: on one of 37,667 unknowns (an elliptic
-asperity at `standard`) 0.8-0.95 s against SuperLU's 3.4 s, one thread each. Below that
-size its analysis, repeated whenever the contact set changes the pattern, costs more
-than it saves (`make bench CASE=linear`).
+dissection order is several times faster on the large 3-D tangents. Below that size its
+analysis, repeated whenever the contact set changes the pattern, costs more than its
+factorization saves (`make bench CASE=linear` measures both).
 """
 
 from __future__ import annotations
