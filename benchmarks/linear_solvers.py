@@ -32,6 +32,7 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))  # run as a script: `benchmarks` importable
 from benchmarks.routes import _commit  # noqa: E402
+from benchmarks.run import best_of  # noqa: E402
 from benchmarks.scenes import OUT  # noqa: E402
 
 
@@ -75,15 +76,6 @@ def tangent(tip: float):
     return captured["K"]
 
 
-def _best(fn, repeats: int) -> float:
-    times = []
-    for _ in range(repeats):
-        t0 = time.process_time()
-        fn()
-        times.append(time.process_time() - t0)
-    return min(times)
-
-
 def measure(K, repeats: int) -> dict:
     from asperity.fe.discretization.assembly import OrderedLU
     from asperity.fe.solvers.linear import PardisoLU, pardiso_available
@@ -94,12 +86,12 @@ def measure(K, repeats: int) -> dict:
     if pardiso_available():
         backends["pardiso"] = PardisoLU
     for name, make in backends.items():
-        first = _best(lambda: make().factor(K), repeats)
+        first = best_of(lambda: make().factor(K), repeats, clock=time.process_time)
         solver = make()
         solver.factor(K)
-        again = _best(lambda: solver.factor(K), repeats)
+        again = best_of(lambda: solver.factor(K), repeats, clock=time.process_time)
         factors = solver.factor(K)
-        solve = _best(lambda: factors.solve(b), repeats)
+        solve = best_of(lambda: factors.solve(b), repeats, clock=time.process_time)
         x = factors.solve(b)
         out[name] = {"first_factorization_s": first, "factorization_s": again, "solve_s": solve,
                      "residual": float(np.linalg.norm(K @ x - b) / np.linalg.norm(b))}
