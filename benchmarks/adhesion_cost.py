@@ -275,8 +275,9 @@ def main(argv: list[str] | None = None) -> int:
 
         def done(rows):
             # re-read: another --only-large run (other radii or presets) may have written
-            # meanwhile; its rows are kept, this run's (radius, preset) rows replaced
-            record = json.loads(args.out.read_text())
+            # meanwhile; its rows are kept, this run's (radius, preset) rows replaced (a new
+            # --out file holds this run's rows alone)
+            record = json.loads(args.out.read_text()) if args.out.exists() else {}
             key = lambda r: (r["tip_radius_um"], r["accuracy"])  # noqa: E731
             mine = {key(r) for r in rows}
             kept = [r for r in record.get("large_radii", []) if key(r) not in mine]
@@ -285,6 +286,7 @@ def main(argv: list[str] | None = None) -> int:
             record["large_radii"] = compared(large)
             for old in ("large_radii_commit", "large_radii_uncommitted_changes", "large_radii_date"):
                 record.pop(old, None)  # per row now
+            args.out.parent.mkdir(parents=True, exist_ok=True)
             args.out.write_text(json.dumps(record, indent=1) + "\n")
 
         large_rows(radii, tuple(args.accuracies), done)

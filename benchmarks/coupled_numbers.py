@@ -20,9 +20,9 @@ prints per scene, on the loading branch:
 - the FE cost: jobs and CPU seconds (``asperities.nc``), and the interpolation error of
   the family at its left-out job (``aspect_check_*``).
 
-Writes benchmarks/results/coupled_<accuracy>.json.
+Writes benchmarks/results/coupled_<accuracy>.json (``--out``).
 
-    python benchmarks/coupled_numbers.py [results] [--inelastic]
+    python benchmarks/coupled_numbers.py [results] [--inelastic] [--out FILE]
 
 and the family against one FE job per sample: the elastic hills of asperity_shape_coupled,
 and with ``--inelastic`` the Bodner-Partom hills of rough_aluminum on a small
@@ -31,6 +31,7 @@ population (8 heights x 4 curvatures: 32 jobs, minutes).
 
 from __future__ import annotations
 
+import argparse
 import json
 import sys
 from pathlib import Path
@@ -154,8 +155,15 @@ def family_against_direct(accuracy: str = "draft", aspects: int = 6, scene_name:
 
 
 def main(argv: list[str]) -> int:
-    args = [a for a in argv if not a.startswith("--")]
-    results = Path(args[0]) if args else REPO / "results"
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("results", nargs="?", type=Path, default=REPO / "results",
+                    help="a results tree (default results/)")
+    ap.add_argument("--inelastic", action="store_true",
+                    help="also the Bodner-Partom hills of rough_aluminum (minutes)")
+    ap.add_argument("--out", type=Path,
+                    help="JSON file (default benchmarks/results/coupled_<accuracy>.json)")
+    args = ap.parse_args(argv)
+    results = args.results
     report = {"results": str(results), "scenes": {}}
     accuracy = "unknown"
     for coupled, representative in PAIRS:
@@ -206,9 +214,9 @@ def main(argv: list[str]) -> int:
                              f"measured {x['measured_mu']}")
                 print(line)
         print(f"  FE: coupled {c['fe']}; representative {r['fe'] if r else '-'}")
-    out = REPO / "benchmarks" / "results" / f"coupled_{accuracy}.json"
+    out = args.out or REPO / "benchmarks" / "results" / f"coupled_{accuracy}.json"
     checks = [family_against_direct()]
-    if "--inelastic" in argv:  # one Bodner-Partom job per sample of a small population: minutes
+    if args.inelastic:  # one Bodner-Partom job per sample of a small population: minutes
         checks.append(family_against_direct(scene_name="rough_aluminum",
                                             samples={"height": 8, "curvature": 4}))
     elif out.exists():  # keep the inelastic comparison of an earlier run
@@ -220,6 +228,7 @@ def main(argv: list[str]) -> int:
               f"{check['aspects']} aspects against one job per sample: jobs {check['jobs']}, CPU s "
               f"{check['cpu_s']}, pressure ratio {check['pressure_family_over_direct']}, area ratio "
               f"{check['area_family_over_direct']}; left-out job {check.get('left_out_job')}")
+    out.parent.mkdir(parents=True, exist_ok=True)
     out.write_text(json.dumps(report, indent=1) + "\n")
     print(f"\nwritten {out}")
     return 0

@@ -20,9 +20,9 @@ otherwise idle).  For each job and mesh it records the history and:
   (`benchmarks.remesh.compare`: at the top, the largest over the second half, from a
   tenth to a half and below a tenth of the loading).
 
-Writes benchmarks/results/edge-band-<scene>-<preset>.json and, from it,
-docs/figures/edge_band_<scene>.png (every step's kink against the interference over
-the job's largest, where a bump shows as a spike)::
+Writes benchmarks/results/edge-band-<scene>-<preset>.json (``--out``) and, from it,
+docs/figures/edge_band_<scene>.png (``--figure``: every step's kink against the
+interference over the job's largest, where a bump shows as a spike)::
 
     python benchmarks/edge_band_scene.py --scene steel_glass_bead --accuracy standard
     python benchmarks/edge_band_scene.py --scene steel_glass_bead --accuracy standard --figure-only
@@ -136,10 +136,15 @@ def main(argv=None) -> int:
     ap.add_argument("--from", dest="start", type=float, default=KINK_FROM,
                     help="compare from this fraction of each job's largest interference")
     ap.add_argument("--figure-only", action="store_true", help="redraw from the results file")
+    ap.add_argument("--out", type=Path,
+                    help="JSON file (default benchmarks/results/edge-band-<scene>-<preset>.json)")
+    ap.add_argument("--figure", type=Path,
+                    help="PNG file (default docs/figures/edge_band_<scene>.png)")
     args = ap.parse_args(argv)
     from asperity.population.kinds.inelastic import edge_band_accuracy
 
-    out = RESULTS / f"edge-band-{args.scene}-{args.accuracy}.json"
+    out = args.out or RESULTS / f"edge-band-{args.scene}-{args.accuracy}.json"
+    drawn = args.figure or FIGURES / f"edge_band_{args.scene}.png"
     if args.figure_only:
         record = json.loads(out.read_text())
     else:
@@ -154,8 +159,9 @@ def main(argv=None) -> int:
                   f"{runs['band']['cpu_seconds']:.1f} s with the band", flush=True)
     record["summary"] = summary(record["jobs"], args.start)
     record["from"] = args.start
+    out.parent.mkdir(parents=True, exist_ok=True)
     out.write_text(json.dumps(record, indent=1))
-    figure(record, FIGURES / f"edge_band_{args.scene}.png")
+    figure(record, drawn)
     print(json.dumps(record["summary"], indent=1))
     print(f"written {out}")
     return 0

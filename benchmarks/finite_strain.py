@@ -12,7 +12,7 @@ Two cases, each with ``kinematics`` small and finite, CPU time by
   pressed to its amplitude C = 5 um at 0.25 um/s, as its FE job is: the
   strains the small-strain theory reports there, and what finite strain gives.
 
-Writes benchmarks/results/finite-strain.json::
+Writes benchmarks/results/finite-strain.json (``--out``)::
 
     python benchmarks/finite_strain.py [--presets draft standard]
 """
@@ -78,6 +78,7 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--presets", nargs="+", default=["draft", "standard"])
     ap.add_argument("--cases", nargs="+", default=list(CASES), choices=list(CASES))
+    ap.add_argument("--out", type=Path, default=OUT, help="JSON file")
     args = ap.parse_args()
     rows = []
     for case in args.cases:
@@ -91,11 +92,11 @@ def main():
                       flush=True)
     commit = subprocess.run(["git", "rev-parse", "--short", "HEAD"], capture_output=True,
                             text=True, cwd=Path(__file__).parent).stdout.strip()
-    OUT.parent.mkdir(exist_ok=True)
-    OUT.write_text(json.dumps(dict(commit=commit, date=time.strftime("%Y-%m-%dT%H:%M:%S%z"),
-                                   machine=platform.processor() or platform.machine(),
-                                   rows=rows), indent=1) + "\n")
-    print(f"wrote {OUT}")
+    args.out.parent.mkdir(parents=True, exist_ok=True)
+    args.out.write_text(json.dumps(dict(commit=commit, date=time.strftime("%Y-%m-%dT%H:%M:%S%z"),
+                                        machine=platform.processor() or platform.machine(),
+                                        rows=rows), indent=1) + "\n")
+    print(f"wrote {args.out}")
 
 
 if __name__ == "__main__":

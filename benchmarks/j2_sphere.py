@@ -12,10 +12,10 @@ E = 70 GPa, nu = 0.33, Y = 280 MPa (E / Y = 250), R = 1 um:
   mesh of `asperity.population.kinds.inelastic.mesh_levels` and on the finite element
   default (from a hundredth of the range), its force over theirs at 1 to 50 w_c;
 * the same job's force and area over the boundary elements of the paraboloid of radius
-  R limited by the hardness 2.8 Y (free boundary, 256 x 256 cells over 2.4 R or 0.5 R)
-  at w / R = 0.001 to 0.25.
+  R limited by the hardness 2.8 Y (free boundary, 256 x 256 cells over 2.4 R or 0.5 R,
+  ``--cells``) at w / R = 0.001 to 0.25.
 
-Writes benchmarks/results/j2-sphere.json (read by docs/generate.py) and prints it.
+Writes benchmarks/results/j2-sphere.json (``--out``; read by docs/generate.py) and prints it.
 """
 
 from __future__ import annotations
@@ -52,13 +52,14 @@ def _at(ds, w, name):
     return np.interp(w, ds["interference"].values, ds[name].values)
 
 
-def _hardness_paraboloid(w_over_r, modulus):
-    """Force and area of the paraboloid of radius R pressed by w under the hardness 2.8 Y."""
+def _hardness_paraboloid(w_over_r, modulus, cells: int = 256):
+    """Force and area of the paraboloid of radius R pressed by w under the hardness 2.8 Y
+    (`cells` x `cells` boundary elements)."""
     from asperity.references.boundary_element import solve_map
 
     out = {}
     for half, ws in ((0.25 * R, [v for v in w_over_r if v <= 0.03]), (1.2 * R, [v for v in w_over_r if v > 0.03])):
-        x = (np.arange(256) - 127.5) * (2 * half / 256)
+        x = (np.arange(cells) - (cells - 1) / 2) * (2 * half / cells)
         xx, yy = np.meshgrid(x, x)
         z = -(xx ** 2 + yy ** 2) / (2 * R)
         w = np.asarray(ws) * R
@@ -70,7 +71,7 @@ def _hardness_paraboloid(w_over_r, modulus):
     return out
 
 
-def measure(accuracy: str) -> dict:
+def measure(accuracy: str, cells: int = 256) -> dict:
     from asperity.fe.drivers.inelastic import MESH_LEVELS, MESH_RANGE
     from asperity.population.kinds.inelastic import FIRST_STEP, mesh_levels
     from asperity.references.hertz import plane_strain_modulus
@@ -97,7 +98,7 @@ def measure(accuracy: str) -> dict:
         jobs[name] = (job, {"cpu_s": cpu, "w_over_wc": KE_POINTS[:-1],
                             "force_over_ke": (_at(job, w, "force") / ref["force"]).tolist()})
     record["job_to_quarter_radius"] = {name: value for name, (_, value) in jobs.items()}
-    bem = _hardness_paraboloid(WR_POINTS, modulus)
+    bem = _hardness_paraboloid(WR_POINTS, modulus, cells)
     job = jobs["mesh_levels"][0]
     record["against_hardness"] = {
         "w_over_r": WR_POINTS, "w_over_wc": [v * R / wc for v in WR_POINTS],
@@ -109,18 +110,21 @@ def measure(accuracy: str) -> dict:
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--accuracy", nargs="+", default=["draft", "standard"])
+    ap.add_argument("--cells", type=int, default=256,
+                    help="boundary elements per side of the paraboloid limited by the hardness")
+    ap.add_argument("--out", type=Path, default=OUT / "j2-sphere.json", help="JSON file")
     args = ap.parse_args(argv)
     result = {"date": time.strftime("%Y-%m-%dT%H:%M:%S%z"), "commit": _commit(),
               "machine": {"platform": platform.platform(), "python": platform.python_version()},
               "material": {"youngs_modulus": E, "poisson": NU, "yield_stress": Y, "radius": R},
-              "presets": {}}
+              "presets": {}, **({"cells": args.cells} if args.cells != 256 else {})}
     for preset in args.accuracy:
-        result["presets"][preset] = measure(preset)
+        result["presets"][preset] = measure(preset, args.cells)
         print(preset, json.dumps(result["presets"][preset], indent=1), flush=True)
-    OUT.mkdir(parents=True, exist_ok=True)
-    path = OUT / "j2-sphere.json"
+    path = args.out.resolve()
+    path.parent.mkdir(parents=True, exist_ok=True)
     path.write_text(json.dumps(result, indent=1) + "\n")
-    print(f"written {path.relative_to(REPO)}")
+    print(f"written {path.relative_to(REPO) if path.is_relative_to(REPO) else path}")
     return 0
 
 

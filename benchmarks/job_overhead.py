@@ -9,11 +9,11 @@ the two parts of that cost on this machine:
    with nothing to do (Snakemake's start-up and DAG building).  The
    difference over N, times the cores, is the job time Snakemake and a
    bare interpreter add per job.
-2. The imports of each script of workflow/scripts/: its top-level import
-   lines run in a fresh interpreter (median of 3), which is what every job
-   of that rule pays before its first line of work; beside them, the least
-   a job could import (numpy, xarray and netCDF4; with matplotlib for a
-   figure).
+2. The imports of each script of workflow/scripts/ (or of ``--scripts``): its
+   top-level import lines run in a fresh interpreter (median of 3, ``--repeats``),
+   which is what every job of that rule pays before its first line of work;
+   beside them, the least a job could import (numpy, xarray and netCDF4; with
+   matplotlib for a figure).
 
 Writes benchmarks/results/job-overhead.json and prints a table.  Nothing
 is asserted: speed is measured here, not in the tests.
@@ -87,15 +87,21 @@ def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--jobs", type=int, default=100, help="trivial jobs of the Snakemake part")
     ap.add_argument("--cores", type=int, default=2)
+    ap.add_argument("--repeats", type=int, default=3, help="interpreters per import time (median)")
+    ap.add_argument("--scripts", nargs="+", metavar="NAME",
+                    help="these scripts of workflow/scripts (default: every one)")
     ap.add_argument("--out", type=Path, default=RESULTS / "job-overhead.json")
     args = ap.parse_args(argv)
 
-    base = interpreter_seconds("pass")
+    n = args.repeats
+    base = interpreter_seconds("pass", n)
     # the least a job can import: what reads and writes netCDF through xarray,
     # and that with matplotlib for a figure
-    floor = interpreter_seconds("import numpy, xarray, netCDF4")
-    floor_figure = interpreter_seconds("import numpy, xarray, netCDF4, matplotlib.pyplot")
-    scripts = {p.stem: interpreter_seconds(import_lines(p)) for p in sorted(SCRIPTS.glob("*.py"))}
+    floor = interpreter_seconds("import numpy, xarray, netCDF4", n)
+    floor_figure = interpreter_seconds("import numpy, xarray, netCDF4, matplotlib.pyplot", n)
+    paths = ([SCRIPTS / f"{name}.py" for name in args.scripts] if args.scripts
+             else sorted(SCRIPTS.glob("*.py")))
+    scripts = {p.stem: interpreter_seconds(import_lines(p), n) for p in paths}
     snake = snakemake_per_job(args.jobs, args.cores)
     commit, dirty = _commit()
     record = dict(date=time.strftime("%Y-%m-%dT%H:%M:%S%z"), commit=commit, uncommitted_changes=dirty,

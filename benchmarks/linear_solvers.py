@@ -14,8 +14,8 @@ finer), as `asperity.fe.solvers.linear.ReusedLU` factorizes it in the pressing o
   (analysis and factors) and a numerical factorization of the kept analysis;
 * a solve of each, and the residual of the solution.
 
-Best CPU seconds of ``--repeats``. Writes benchmarks/results/linear-solvers.json and
-prints a table; asserts nothing.
+Best CPU seconds of ``--repeats``. Writes benchmarks/results/linear-solvers.json
+(``--out``) and prints a table; asserts nothing.
 """
 
 from __future__ import annotations
@@ -102,6 +102,7 @@ def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--tips", type=float, nargs="+", default=[0.5, 0.35, 0.25])
     ap.add_argument("--repeats", type=int, default=3)
+    ap.add_argument("--out", type=Path, default=OUT / "linear-solvers.json", help="JSON file")
     args = ap.parse_args(argv)
     result = {"date": time.strftime("%Y-%m-%dT%H:%M:%S%z"), "commit": _commit(), "clock": "CPU",
               "machine": {"platform": platform.platform(), "python": platform.python_version()},
@@ -116,10 +117,10 @@ def main(argv=None) -> int:
         solves = f"{s['solve_s']:.4f}" + (f" / {p['solve_s']:.4f}" if p else "")
         print(f"| {row['dofs']} | {s['first_factorization_s']:.3f} / {s['factorization_s']:.3f} | {pard} "
               f"| {solves} |", flush=True)
-    OUT.mkdir(parents=True, exist_ok=True)
-    path = OUT / "linear-solvers.json"
+    path, repo = args.out.resolve(), Path(__file__).resolve().parents[1]
+    path.parent.mkdir(parents=True, exist_ok=True)
     path.write_text(json.dumps(result, indent=1) + "\n")
-    print(f"written {path.relative_to(Path(__file__).resolve().parents[1])}")
+    print(f"written {path.relative_to(repo) if path.is_relative_to(repo) else path}")
     return 0
 
 

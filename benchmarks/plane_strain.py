@@ -19,7 +19,7 @@ width at the top of the loading against the twin's; the ridge's run with unloadi
 standard is drawn to docs/figures/truncated_v_plane_strain_unloading.png (the stage's
 figure). Each row also counts the elements the viscoplastic body's displacement turns
 inside out at the end.
-Writes benchmarks/results/plane-strain.json. Nothing is asserted.
+Writes benchmarks/results/plane-strain.json (``--out``). Nothing is asserted.
 
     python benchmarks/plane_strain.py --sensitivity --finite-strain --unloading   # the README's tables
     python benchmarks/plane_strain.py --presets draft standard
@@ -171,6 +171,7 @@ def main(argv=None):
                         help="also each scene at each preset with the effect finite_strain")
     parser.add_argument("--unloading", action="store_true",
                         help="also each scene at each preset with the effect unloading")
+    parser.add_argument("--out", type=Path, default=RESULTS / "plane-strain.json", help="JSON file")
     args = parser.parse_args(argv)
     rows = []
     for preset in args.presets:
@@ -191,8 +192,8 @@ def main(argv=None):
             for name in args.scenes:
                 rows.append(measure(name, preset, unloading=True))
                 print(json.dumps(rows[-1]), flush=True)
-    RESULTS.mkdir(exist_ok=True)
-    (RESULTS / "plane-strain.json").write_text(json.dumps(rows, indent=1) + "\n")
+    args.out.parent.mkdir(parents=True, exist_ok=True)
+    args.out.write_text(json.dumps(rows, indent=1) + "\n")
     print(table(rows))
     unloads = [r for r in rows if "unloading" in r]
     if unloads:

@@ -20,10 +20,14 @@ The whole-scene run's comparison.nc gives the table of each route's error agains
 elastic boundary-element solution and the range of separations where it holds.
 
 Writes benchmarks/results/reference-<preset>.json (reference-<scene>-<preset>.json for
-another scene) and prints markdown tables.
+another scene; or the file ``--out``) and prints markdown tables.  ``--parts`` runs some
+of the measurements only; a small case keeps some of the scene's routes (``--routes``) and
+fewer separations (``--separations``).
 
     python benchmarks/reference_cost.py --accuracy draft
     python benchmarks/reference_cost.py --scene afm_reference --accuracy draft
+    python benchmarks/reference_cost.py --scene afm_reference --parts scene --routes peaks \
+        --separations 4 --out /tmp/reference.json
 """
 
 from __future__ import annotations
@@ -39,10 +43,13 @@ import numpy as np
 import yaml
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))  # run as a script: `benchmarks` importable
+from benchmarks.routes import trimmed  # noqa: E402
 from benchmarks.scenes import OUT, run_snakemake  # noqa: E402
 from benchmarks.workflow_copy import REPO, copy_workflow  # noqa: E402
 
 SCENE = "deterministic_reference"
+#: what ``--parts`` picks from: the whole scene, the boundary elements alone, each route alone
+PARTS = ("scene", "reference", "routes")
 
 
 def command(scene: str, preset: str, cores: int, target: str | None) -> list[str]:
@@ -84,15 +91,27 @@ def comparison_rows(results: Path, scene: str = SCENE) -> list[dict]:
     return rows, extra
 
 
-def measure(scene: str, preset: str, cores: int, timeout: float | None) -> dict:
-    definition = yaml.safe_load((REPO / "config" / "scenes" / f"{scene}.yaml").read_text())
-    routes = list(definition["routes"])
-    targets = {"whole scene": None, "boundary elements": f"results/{scene}/reference.nc"}
-    targets |= {f"route {r}": f"results/{scene}+{r}/interface.nc" for r in routes}
+def measure(scene: str, preset: str, cores: int, timeout: float | None, parts=PARTS,
+            routes: list[str] | None = None, separations: int | None = None) -> dict:
+    """The runs of `parts` (`PARTS`), each in a fresh copy; with `routes` or `separations`,
+    the scene `trimmed` to them in each copy."""
+    path = REPO / "config" / "scenes" / f"{scene}.yaml"
+    small = routes is not None or separations is not None
+    definition = yaml.safe_load(path.read_text())
+    if small:
+        definition = trimmed(definition, routes, separations)
+    targets = {"whole scene": None} if "scene" in parts else {}
+    if "reference" in parts:
+        targets["boundary elements"] = f"results/{scene}/reference.nc"
+    if "routes" in parts:
+        targets |= {f"route {r}": f"results/{scene}+{r}/interface.nc" for r in definition["routes"]}
     runs, comparison, extra = [], None, None
     for label, target in targets.items():
         with tempfile.TemporaryDirectory(prefix="reference-") as tmp:
             workdir = copy_workflow(Path(tmp))
+            if small:
+                (workdir / "config" / "scenes" / path.name).write_text(
+                    yaml.safe_dump(definition, sort_keys=False))
             record = run_snakemake(workdir, command(scene, preset, cores, target), timeout)
             record["what"] = label
             results = workdir / "results"
@@ -108,7 +127,8 @@ def measure(scene: str, preset: str, cores: int, timeout: float | None) -> dict:
             runs.append(record)
             print(f"{label}: {record['wall_time_s']} s ({record['status']})", flush=True)
     return {"scene": scene, "accuracy": preset, "cores": cores, "machine": platform.platform(),
-            "runs": runs, "comparison": comparison, "comparison_extra": extra}
+            "runs": runs, "comparison": comparison, "comparison_extra": extra,
+            **({"trimmed": {"routes": routes, "separations": separations}} if small else {})}
 
 
 def _pct(v: float) -> str:
@@ -148,14 +168,22 @@ def main(argv=None) -> int:
     ap.add_argument("--accuracy", default="draft", choices=("draft", "standard", "fine"))
     ap.add_argument("--cores", type=int, default=2)
     ap.add_argument("--timeout", type=float, default=1800.0)
+    ap.add_argument("--parts", nargs="+", choices=PARTS, default=list(PARTS),
+                    help="the whole scene, the boundary elements alone, each route alone")
+    ap.add_argument("--routes", nargs="+", metavar="ROUTE", help="only these routes of the scene")
+    ap.add_argument("--separations", type=int, metavar="N",
+                    help="N separations of the reference instead of the scene's")
+    ap.add_argument("--out", type=Path,
+                    help="JSON file (default benchmarks/results/reference[-<scene>]-<preset>.json)")
     args = ap.parse_args(argv)
-    result = measure(args.scene, args.accuracy, args.cores, args.timeout)
-    OUT.mkdir(parents=True, exist_ok=True)
+    result = measure(args.scene, args.accuracy, args.cores, args.timeout, args.parts, args.routes,
+                     args.separations)
     stem = "reference" if args.scene == SCENE else f"reference-{args.scene}"
-    path = OUT / f"{stem}-{args.accuracy}.json"
+    path = (args.out or OUT / f"{stem}-{args.accuracy}.json").resolve()
+    path.parent.mkdir(parents=True, exist_ok=True)
     path.write_text(json.dumps(result, indent=1) + "\n")
     print(markdown(result))
-    print(f"written {path.relative_to(REPO)}")
+    print(f"written {path.relative_to(REPO) if path.is_relative_to(REPO) else path}")
     return 0 if all(r["status"] == "ok" for r in result["runs"]) else 1
 
 

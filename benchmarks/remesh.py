@@ -14,11 +14,11 @@ on or off (``--remesh on off``; off is every preset's default):
   loaded and unloaded at `standard`: CPU time and steps (target: no slower
   than the fixed mesh, 131 steps).
 
-Writes benchmarks/results/remesh.json (merged with what is already there, so
+Writes benchmarks/results/remesh.json (``--out``; merged with what is already there, so
 that the presets can be run separately: fine takes minutes) and, from what it holds,
-docs/figures/remesh_contact_area.png (``--cases`` with no case: the summary and the figure
-only).  The summary compares every recorded run (`compare`): standard with fine on the
-same kind of mesh (``against_fine``; fine's fixed mesh has the band, so it is the
+docs/figures/remesh_contact_area.png (``--figure``; ``--cases`` with no case: the summary
+and the figure only).  The summary compares every recorded run (`compare`): standard with
+fine on the same kind of mesh (``against_fine``; fine's fixed mesh has the band, so it is the
 reference of standard's fixed mesh with and without it), each kind of mesh with the
 preset's default fixed one (``against_fixed``, with the CPU ratio and steps), each run
 with fine on its default mesh (``against_fine_fixed``) and with the finest run
@@ -241,8 +241,8 @@ def figure(runs: dict, path: Path = FIGURE) -> bool:
     return True
 
 
-def _read() -> dict:
-    record = json.loads(OUT.read_text()) if OUT.exists() else {}
+def _read(path: Path = OUT) -> dict:
+    record = json.loads(path.read_text()) if path.exists() else {}
     record.update(machine=platform.platform(), python=sys.version.split()[0])
     record.setdefault("runs", {})
     return record
@@ -264,6 +264,8 @@ def main(argv=None):
                     help="the largest step as a fraction of the largest interference "
                     "(max_interference_step; default 0.025), to tell the error of the steps "
                     "from that of the mesh; runs recorded as <case>/<preset>/<mesh>-dw<FRACTION>")
+    ap.add_argument("--out", type=Path, default=OUT, help="JSON file the runs are merged into")
+    ap.add_argument("--figure", type=Path, default=FIGURE, help="PNG file of the summary's figure")
     args = ap.parse_args(argv)
     if args.edge_band and "on" in args.remesh:
         ap.error("--edge-band refines the fixed mesh: give --remesh off")
@@ -278,13 +280,14 @@ def main(argv=None):
             for remesh in [m == "on" for m in args.remesh]:
                 key = f"{case}/{preset}/{'remesh' if remesh else 'fixed'}{suffix}"
                 r = run(case, preset, remesh, args.edge_band, args.interference_step)
-                record = _read()  # other presets may run at the same time
+                record = _read(args.out)  # other presets may run at the same time
                 record["runs"][key] = r
                 print(f"{key:<36s} {r['cpu_seconds']:8.1f} s CPU  {r['steps']:4d} steps  "
                       f"{r['remeshes']:2d} remeshes  dofs {r['dofs_min']}-{r['dofs_max']}  "
                       f"F {r['force_at_top']:.6g}  A {r['contact_area_at_top']:.6g}", flush=True)
-                OUT.write_text(json.dumps(record, indent=1))
-    record = _read()
+                args.out.parent.mkdir(parents=True, exist_ok=True)
+                args.out.write_text(json.dumps(record, indent=1))
+    record = _read(args.out)
     runs = record["runs"]
     summary = dict(against_fine={}, against_fixed={}, against_fine_fixed={},
                    against_finest={})
@@ -311,11 +314,12 @@ def main(argv=None):
     summary["contact_area_scatter"] = {
         key: area_scatter(r["interference"], r["contact_area"]) for key, r in sorted(runs.items())}
     record["summary"] = summary
-    OUT.write_text(json.dumps(record, indent=1))
+    args.out.parent.mkdir(parents=True, exist_ok=True)
+    args.out.write_text(json.dumps(record, indent=1))
     print(json.dumps(summary, indent=1))
-    print(f"written {OUT}")
-    if figure(runs):
-        print(f"written {FIGURE}")
+    print(f"written {args.out}")
+    if figure(runs, args.figure):
+        print(f"written {args.figure}")
 
 
 if __name__ == "__main__":

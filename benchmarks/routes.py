@@ -12,10 +12,14 @@ separation (in sigma of the prepared map), the boundary elements' contact area r
 and whether they resolve their contact patches, each route's pressure error at equal
 separation (mean gap) and area error at equal pressure, and the recommended route.
 
-Writes benchmarks/results/<output>-<accuracy>.json (output `routes` by default; read by
-docs/generate.py for the verification page) and prints one markdown table per map.  The
-second form is the anisotropic surface of `anisotropic_reference` beside the isotropic
-synthetic map of the same rms gradient (the docs' "Anisotropic surfaces").
+Writes benchmarks/results/<output>-<accuracy>.json (output `routes` by default, or the
+file ``--out``; read by docs/generate.py for the verification page) and prints one markdown
+table per map.  The second form is the anisotropic surface of `anisotropic_reference`
+beside the isotropic synthetic map of the same rms gradient (the docs' "Anisotropic
+surfaces").  A small case keeps some of the scene's routes (``--routes``) and fewer
+separations (``--separations``)::
+
+    python benchmarks/routes.py --maps di-3 --routes peaks --separations 4 --out /tmp/routes.json
 """
 
 from __future__ import annotations
@@ -54,14 +58,33 @@ def _commit() -> str:
     return run.stdout.strip()
 
 
-def scene_for(workdir: Path, name: str) -> str:
-    """Write the scene of map `name` into the copy; its scene name."""
+def trimmed(definition: dict, routes: list[str] | None = None,
+            separations: int | None = None) -> dict:
+    """A reference scene with only `routes` of its routes and `separations` separations of
+    its reference (None: as it is), for a small case."""
+    if routes is not None:
+        unknown = set(routes) - set(definition["routes"])
+        if unknown:
+            raise SystemExit(f"no route {', '.join(sorted(unknown))} in the scene "
+                             f"(one of {', '.join(definition['routes'])})")
+        definition["routes"] = {k: v for k, v in definition["routes"].items() if k in routes}
+    if separations is not None:
+        definition["reference"]["separations"]["count"] = separations
+    return definition
+
+
+def scene_for(workdir: Path, name: str, routes: list[str] | None = None,
+              separations: int | None = None) -> str:
+    """Write the scene of map `name` into the copy (`trimmed` to `routes` and
+    `separations`); its scene name."""
     base, file = MAPS[name]
-    if file is None:
+    if file is None and routes is None and separations is None:
         return base
     definition = yaml.safe_load((workdir / "config" / "scenes" / f"{base}.yaml").read_text())
-    definition["surface"]["map"] = {"file": file}
-    definition["title"] = f"{definition['title']} ({Path(file).name})"
+    if file is not None:
+        definition["surface"]["map"] = {"file": file}
+        definition["title"] = f"{definition['title']} ({Path(file).name})"
+    trimmed(definition, routes, separations)
     scene = f"routes_{name.replace('-', '_')}"
     (workdir / "config" / "scenes" / f"{scene}.yaml").write_text(yaml.safe_dump(definition, sort_keys=False))
     return scene
@@ -97,14 +120,17 @@ def comparison(results: Path, scene: str) -> dict:
     }
 
 
-def measure(names, preset: str, cores: int, timeout: float) -> dict:
+def measure(names, preset: str, cores: int, timeout: float, routes: list[str] | None = None,
+            separations: int | None = None) -> dict:
     out = {"accuracy": preset, "cores": cores, "date": time.strftime("%Y-%m-%dT%H:%M:%S%z"),
            "commit": _commit(), "machine": {"platform": platform.platform(), "cpu_count": cores,
                                             "python": platform.python_version()}, "maps": {}}
+    if routes is not None or separations is not None:
+        out["trimmed"] = {"routes": routes, "separations": separations}
     for name in names:
         with tempfile.TemporaryDirectory(prefix=f"routes-{name}-") as tmp:
             workdir = copy_workflow(Path(tmp))
-            scene = scene_for(workdir, name)
+            scene = scene_for(workdir, name, routes, separations)
             record = run_snakemake(workdir, ["snakemake", "--cores", str(cores), "--config",
                                              f"scenes=[{scene}]", f"accuracy={preset}", "studies=False"],
                                    timeout)
@@ -149,13 +175,18 @@ def main(argv=None) -> int:
     ap.add_argument("--output", default="routes", help="the result file's name before -<accuracy>.json")
     ap.add_argument("--cores", type=int, default=2)
     ap.add_argument("--timeout", type=float, default=1800.0)
+    ap.add_argument("--routes", nargs="+", metavar="ROUTE", help="only these routes of the scene")
+    ap.add_argument("--separations", type=int, metavar="N",
+                    help="N separations of the reference instead of the scene's")
+    ap.add_argument("--out", type=Path,
+                    help="JSON file (default benchmarks/results/<output>-<accuracy>.json)")
     args = ap.parse_args(argv)
-    result = measure(args.maps, args.accuracy, args.cores, args.timeout)
-    OUT.mkdir(parents=True, exist_ok=True)
-    path = OUT / f"{args.output}-{args.accuracy}.json"
+    result = measure(args.maps, args.accuracy, args.cores, args.timeout, args.routes, args.separations)
+    path = (args.out or OUT / f"{args.output}-{args.accuracy}.json").resolve()
+    path.parent.mkdir(parents=True, exist_ok=True)
     path.write_text(json.dumps(result, indent=1) + "\n")
     print(markdown(result))
-    print(f"written {path.relative_to(REPO)}")
+    print(f"written {path.relative_to(REPO) if path.is_relative_to(REPO) else path}")
     return 0 if all(r["status"] == "ok" for r in result["maps"].values()) else 1
 
 

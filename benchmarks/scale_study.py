@@ -11,7 +11,8 @@ map, the elastic boundary elements, the interacting route with each asperity law
 Persson's theory (`asperity.stages.routes`), with each route's pressure error at equal
 separation and area error at equal pressure.  Aluminum (E = 70 GPa, nu = 0.33).
 
-Writes benchmarks/results/scale-study.json, which docs/generate.py draws and tabulates.
+Writes benchmarks/results/scale-study.json (``--out``), which docs/generate.py draws and
+tabulates.
 """
 
 from __future__ import annotations
@@ -107,6 +108,7 @@ def main(argv=None) -> int:
     ap.add_argument("--maps", nargs="+", default=list(MAPS), choices=list(MAPS))
     ap.add_argument("--scales", nargs="+", type=float, default=[0, 4, 5, 8, 12, 16],
                     help="lambda_s in grid steps (0: the pixel)")
+    ap.add_argument("--out", type=Path, default=OUT / "scale-study.json", help="JSON file")
     args = ap.parse_args(argv)
     result = {"date": time.strftime("%Y-%m-%dT%H:%M:%S%z"), "commit": _commit(),
               "machine": {"platform": platform.platform(), "python": platform.python_version()},
@@ -119,10 +121,10 @@ def main(argv=None) -> int:
             worst = (np.nanmax(np.abs(shape["pressure_error"])) if "pressure_error" in shape else np.nan)
             print(f"{name} {row['factor']:g} steps: {row['summits']} summits, largest |p error| of "
                   f"interacting_shape {100 * worst:.0f} %", flush=True)
-    OUT.mkdir(parents=True, exist_ok=True)
-    path = OUT / "scale-study.json"
+    path = args.out.resolve()
+    path.parent.mkdir(parents=True, exist_ok=True)
     path.write_text(json.dumps(result, indent=1) + "\n")
-    print(f"written {path.relative_to(REPO)}")
+    print(f"written {path.relative_to(REPO) if path.is_relative_to(REPO) else path}")
     return 0
 
 

@@ -30,8 +30,10 @@ and a following `snakemake -n` there is timed and must say "Nothing to be
 done" (the issue's "nothing changed: no job, in under 5 s").
 
 Writes benchmarks/results/scenes-<preset>.json (this invocation's
-measurements only) and prints a markdown table for the README.  Targets are
-printed, never raised: speed is measured here, not asserted in the tests.
+measurements only; ``--out``) and prints a markdown table for the README.  Targets are
+printed, never raised: speed is measured here, not asserted in the tests.  ``--keep DIR``
+copies each scene's results tree into DIR after its timing, for the scripts that read
+one (benchmarks/validity_numbers.py).
 
     python benchmarks/scenes.py --accuracy draft --scenes profile_cosine hertz
     python benchmarks/scenes.py --accuracy standard --full      # what the README quotes
@@ -47,6 +49,7 @@ import os
 import platform
 import re
 import shlex
+import shutil
 import subprocess
 import sys
 import tempfile
@@ -149,10 +152,15 @@ def run_snakemake(workdir: Path, command: list[str], timeout: float | None,
     return record
 
 
-def time_scene(name: str, preset: str, cores: int, timeout: float | None) -> dict:
+def time_scene(name: str, preset: str, cores: int, timeout: float | None,
+               keep: Path | None = None) -> dict:
+    """One scene from an empty copy; with `keep`, its results tree then copied into `keep`
+    (untimed; the trees of several scenes merge there)."""
     with tempfile.TemporaryDirectory(prefix=f"scene-{name}-") as tmp:
         workdir = copy_workflow(Path(tmp))
         record = run_snakemake(workdir, scene_command(name, preset, cores), timeout)
+        if keep is not None and (workdir / "results").is_dir():
+            shutil.copytree(workdir / "results", keep, dirs_exist_ok=True)
     return {"scene": name, **scene_info(name), **record}
 
 
@@ -247,6 +255,8 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--cores", type=int, default=2)
     parser.add_argument("--timeout", type=float, default=None, help="per snakemake run, s")
     parser.add_argument("--out", type=Path, help="JSON file (default benchmarks/results/scenes-<preset>.json)")
+    parser.add_argument("--keep", type=Path, metavar="DIR",
+                        help="copy each scene's results tree into DIR (a results folder)")
     args = parser.parse_args(argv)
 
     names = [] if args.no_scenes else (args.scenes or default_scenes())
@@ -259,7 +269,7 @@ def main(argv: list[str] | None = None) -> int:
     }
     for name in names:
         print(f"{name} ...", end=" ", flush=True)
-        record = time_scene(name, args.accuracy, args.cores, args.timeout)
+        record = time_scene(name, args.accuracy, args.cores, args.timeout, args.keep)
         result["scenes"].append(record)
         print(f"{record['status']}, {_seconds(record['wall_time_s'])}, {record['jobs']} jobs "
               f"({record['fe_jobs']} FE)", flush=True)

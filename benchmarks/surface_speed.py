@@ -20,7 +20,7 @@ averaged PSD of the map in-filled for it, the autocorrelation and the preview),
 and each of its parts.
 
 Times are the best of ``--repeats`` runs, CPU time (``time.process_time``; BLAS
-single-threaded) and wall time. Writes benchmarks/results/surface-speed.json and
+single-threaded) and wall time. Writes benchmarks/results/surface-speed.json (``--out``) and
 prints a table; nothing is asserted.
 
     python benchmarks/surface_speed.py               # 2048 x 2048, 10 % undefined
@@ -78,6 +78,7 @@ def main(argv=None) -> int:
     parser.add_argument("--points", type=int, default=2048, help="points per side (default 2048)")
     parser.add_argument("--undefined", type=float, default=0.10, help="share of undefined points (0.10)")
     parser.add_argument("--repeats", type=int, default=3)
+    parser.add_argument("--out", type=Path, default=OUT, help="JSON file")
     args = parser.parse_args(argv)
 
     from asperity import surface
@@ -147,9 +148,9 @@ def main(argv=None) -> int:
           f"{'met' if record['met_target'] else 'MISSED'}; asperity / SurfaceTopography: "
           f"{record['ratio_cpu_asperity_over_surfacetopography']:.3f} (CPU), "
           f"{record['ratio_wall_asperity_over_surfacetopography']:.3f} (wall)")
-    OUT.parent.mkdir(exist_ok=True)
-    OUT.write_text(json.dumps(record, indent=1) + "\n")
-    print(f"written {OUT}")
+    args.out.parent.mkdir(parents=True, exist_ok=True)
+    args.out.write_text(json.dumps(record, indent=1) + "\n")
+    print(f"written {args.out}")
     return 0
 
 

@@ -27,13 +27,14 @@ and, for smooth_aluminum against smooth_aluminum_elastic (report 7.3), the share
 contacting elastic asperities beyond first yield beside the elastic pressure over the J2
 pressure, per separation.
 
-Writes benchmarks/results/validity.json.
+Writes benchmarks/results/validity.json (``--out``).
 
-    python benchmarks/validity_numbers.py [results]
+    python benchmarks/validity_numbers.py [results] [--out FILE]
 """
 
 from __future__ import annotations
 
+import argparse
 import json
 import math
 import sys
@@ -183,7 +184,13 @@ def elastic_against_j2(results: Path) -> list[dict]:
 
 
 def main(argv: list[str]) -> int:
-    results = Path(argv[0]) if argv else REPO / "results"
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("results", nargs="?", type=Path, default=REPO / "results",
+                    help="a results tree (default results/)")
+    ap.add_argument("--out", type=Path, default=REPO / "benchmarks" / "results" / "validity.json",
+                    help="JSON file")
+    args = ap.parse_args(argv)
+    results = args.results
     report = {"results": str(results), "scenes": {}}
     for scene in SCENES:
         if not (results / scene / "interface.nc").exists():
@@ -216,9 +223,9 @@ def main(argv: list[str]) -> int:
         print("\nsmooth_aluminum_elastic: separation [um], share beyond first yield, p_elastic / p_J2")
         for r in rows[::3]:
             print(f"  {r['separation_um']:.4f}  {100 * r['yielded_fraction']:5.1f} %  {r['elastic_over_j2']:.3f}")
-    out = REPO / "benchmarks" / "results" / "validity.json"
-    out.write_text(json.dumps(report, indent=1) + "\n")
-    print(f"\nwritten {out}")
+    args.out.parent.mkdir(parents=True, exist_ok=True)
+    args.out.write_text(json.dumps(report, indent=1) + "\n")
+    print(f"\nwritten {args.out}")
     return 0
 
 
