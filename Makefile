@@ -51,6 +51,9 @@ docs: $(STAMP)
 # CASE=list names the others (scenes, adhesion, sliding, routes, ...), each writing its
 # JSON to benchmarks/results/. ARGS replaces a case's default arguments, e.g.
 #   make bench CASE=scenes ARGS="--accuracy draft --scenes profile_cosine hertz"
+# CASE=short (what CI runs) runs a small case of every kernel and every other case, one
+# after the other, so that each keeps working: their times go to benchmarks/out/short.json,
+# held against no target; it fails if a case fails (ARGS: only the cases named).
 CASE ?= kernels
 ARGS ?=
 export CORES
