@@ -541,7 +541,10 @@ def verification_page() -> str:
            "What the project measured, read from the benchmark outputs of `benchmarks/results/` "
            "(`make bench CASE=...` writes them). Each table names the file, "
            "machine, date and commit it comes from. The history of these numbers is in the "
-           "[changelog](../changelog.md).\n"]
+           "[changelog](../changelog.md). `make bench CASE=short`, which CI runs, runs a small "
+           "case of every benchmark so that each keeps working: it records their times in "
+           "`benchmarks/out/short.json`, holds none against a target and never writes to "
+           "`benchmarks/results/`.\n"]
     routes = [n for n in ("routes-draft.json", "routes-standard.json") if (RESULTS / n).exists()]
     if routes:
         out.append("\n## Routes against the boundary elements\n\n"
