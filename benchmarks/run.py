@@ -377,9 +377,8 @@ def short(names: list[str] | None = None) -> int:
         failed.append(case)
         print(f"{head}: FAILED (exit code {code}) after {wall:.1f} s", flush=True)
         if fn is None:
-            tail = log.read_text(errors="replace").splitlines()[-30:]
-            print("\n".join(f"    {line}" for line in tail), f"\n    (all of it: {_S}/{case}.log)",
-                  flush=True)
+            tail = log.read_text(errors="replace").splitlines()[-30:] + [f"(all of it: {_S}/{case}.log)"]
+            print("\n".join(f"    {line}" for line in tail), flush=True)
     record["wall_time_s"] = round(time.perf_counter() - t_start, 2)
     record["machine"]["load_average_after"] = round(os.getloadavg()[0], 2)
     record["failed"] = failed
