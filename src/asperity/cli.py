@@ -119,15 +119,22 @@ def describe(path: Path) -> str:
 
 def recommendations(ds: xr.Dataset) -> list[str]:
     """For a reference's comparison.nc: per separation, the route closest to the boundary
-    elements and its larger error, or why none is named."""
+    elements and its larger error, or why none is named; where even the closest is off by
+    more than the scene's `agreement`, that no route holds there and that the boundary
+    elements (a route of their own) are the interface law."""
     if "recommended_route" not in ds:
         return []
     sigma = float(ds.attrs.get("sigma", np.nan))
+    agreement = float(ds.attrs.get("agreement", np.nan))
     lines = ["recommended route (closest to the elastic boundary elements):"]
     for h, route, error, resolved in zip(ds["separation"].values, ds["recommended_route"].values,
                                          ds["recommended_error"].values, ds["reference_resolved"].values):
         where = f"separation {h:.4g} m" + (f" ({h / sigma:.3g} sigma)" if np.isfinite(sigma) else "")
-        if route:
+        if route and error > agreement:
+            lines.append(f"  {where}: {route}, off by {100 * error:.3g} %: no route holds within the "
+                         f"agreement of {100 * agreement:.3g} %; the law here is the boundary "
+                         "elements' (route: {kind: boundary_elements})")
+        elif route:
             lines.append(f"  {where}: {route}, within {100 * error:.3g} %")
         else:
             lines.append(f"  {where}: none ({'no route defined' if resolved else 'the boundary elements do not resolve the contact'})")

@@ -185,7 +185,9 @@ def test_the_recommended_route_has_the_smallest_larger_error():
     """Per separation the route whose larger of |pressure error| and |area error| is least;
     none where no route has both errors, or where the reference does not resolve its
     contacts, or where there is no route (the comparison offers only the routes held
-    against the elastic boundary elements); asperity show prints it."""
+    against the elastic boundary elements); asperity show prints it, and where even that
+    route is off by more than the scene's agreement, that no route holds and the boundary
+    elements are the law."""
     import xarray as xr
 
     from asperity.cli import recommendations
@@ -203,7 +205,11 @@ def test_the_recommended_route_has_the_smallest_larger_error():
     assert list(none) == ["", "", "", ""] and np.all(np.isnan(nan))
     ds = xr.Dataset({"recommended_route": ("separation", best), "recommended_error": ("separation", error),
                      "reference_resolved": ("separation", resolved)},
-                    coords={"separation": [1e-6, 2e-6, 3e-6, 4e-6]}, attrs={"sigma": 1e-6})
+                    coords={"separation": [1e-6, 2e-6, 3e-6, 4e-6]}, attrs={"sigma": 1e-6, "agreement": 0.08})
     lines = recommendations(ds)
     assert lines[1] == "  separation 1e-06 m (1 sigma): a, within 5 %"
+    assert lines[2] == "  separation 2e-06 m (2 sigma): b, within 3 %"
+    assert lines[3] == ("  separation 3e-06 m (3 sigma): a, off by 10 %: no route holds within the "
+                        "agreement of 8 %; the law here is the boundary elements' "
+                        "(route: {kind: boundary_elements})")
     assert lines[4].endswith("none (the boundary elements do not resolve the contact)")
