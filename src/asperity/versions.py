@@ -33,7 +33,7 @@ VERSIONS: dict[str, int] = {
     "expectation": 1,
     "unloading": 1,
     "interface": 3,
-    "route_interface": 3,
+    "route_interface": 4,
     "verification": 1,
     # friction (workflow/rules/friction.smk)
     "friction": 2,
@@ -47,7 +47,7 @@ VERSIONS: dict[str, int] = {
     "accuracy_scenes": 1,
     "adhesion_curves": 1,
     # the deterministic reference (workflow/rules/reference.smk)
-    "reference": 2,
+    "reference": 3,
     "reference_comparison": 4,
     # figures (workflow/rules/figures.smk and the figures of the rules above)
     "surface_figure": 1,

@@ -183,3 +183,46 @@ def test_bad_input_is_a_clear_error():
         bem.solve_map(np.full((4, 4), np.nan), 1e-6, 1e-6, [0.0], E_STAR)
     with pytest.raises(ValueError, match="hardness"):
         bem.solve_map(z, 1e-6, 1e-6, [0.0], E_STAR, hardness=-1.0)
+
+
+def test_the_perimeter_correction_puts_hertz_contacts_within_a_few_per_cent():
+    """The counted area of a contact is too large (the discrete pressure reaches past the
+    edge, where the exact one vanishes as a square root); less (pi - 1 + ln 2) / 24 of a
+    cell per edge between contact and no contact (Yastrebov, Anciaux and Molinari 2017),
+    Hertz's circular and elliptic contacts (curvature ratios 1, 1/4 and 1/16, the apex on
+    a cell's centre or off it) of 100 and 300 cells are within 5 % and 3 % of Hertz's
+    ellipse on average within 1 %, where the count is up to 12 % and 7 % too large."""
+    from asperity.references.hertz import elliptic_hertz
+
+    n, dx, k1 = 128, 1e-7, 1e5
+    corrected, counted = {100: [], 300: []}, {100: [], 300: []}
+    for ratio in (1.0, 0.25, 1 / 16):
+        for offset in (0.0, 0.3, 0.17):
+            y, x = (np.mgrid[0:n, 0:n] - n / 2 - offset) * dx
+            z = -(ratio * k1 * x**2 + k1 * y**2) / 2
+            for cells in (100, 300):
+                unit = elliptic_hertz(1e-9, k1, ratio * k1, E_STAR)["contact_area"]
+                w = 1e-9 * cells * dx * dx / float(unit)  # A grows in proportion to w
+                exact = float(elliptic_hertz(w, k1, ratio * k1, E_STAR)["contact_area"])
+                ds = bem.solve_map(z, dx, dx, [float(-z.mean() - w)], E_STAR, boundary="free",
+                                   tolerance=1e-9)
+                corrected[cells].append(float(ds.contact_area_ratio[0]) * z.size * dx * dx / exact)
+                counted[cells].append(float(ds.counted_area_ratio[0]) * z.size * dx * dx / exact)
+    for cells, bound in ((100, 0.05), (300, 0.03)):
+        good, raw = np.array(corrected[cells]), np.array(counted[cells])
+        assert np.all(np.abs(good - 1) < bound), (cells, good)
+        assert abs(good.mean() - 1) < 0.01, (cells, good.mean())
+        assert raw.mean() > 1.02 and np.abs(raw - 1).max() > bound, (cells, raw)
+
+
+def test_contact_edges_count_each_face_once_and_wrap_where_periodic():
+    """A 2 x 3 block of contact has 10 edges with the cells around it; on the map's edge
+    the free map counts only the faces inside it, the periodic map its wrapped ones too."""
+    inner = np.zeros((6, 7), bool)
+    inner[2:4, 2:5] = True
+    assert bem.contact_edges(inner, ~inner, periodic=False) == 10
+    assert bem.contact_edges(inner, ~inner, periodic=True) == 10
+    corner = np.zeros((6, 7), bool)
+    corner[0:2, 0:3] = True
+    assert bem.contact_edges(corner, ~corner, periodic=False) == 5
+    assert bem.contact_edges(corner, ~corner, periodic=True) == 10

@@ -22,7 +22,8 @@ problem as a rigid rough surface against an elastic flat with the contact
 (plane-strain) modulus E* = E / (1 - nu^2) (Johnson, *Contact Mechanics*,
 1985, sec. 13.1), which is what is solved.  Per separation: the nominal
 pressure p (total force over the nominal area), the real contact area ratio
-A/A0 (grid cells carrying pressure over all defined cells), the number of
+A/A0 (grid cells carrying pressure, less the perimeter correction below,
+over all defined cells), the number of
 contact patches per unit area (connected sets of contacting cells, eight
 neighbours), the mean gap and the largest pressure.
 
@@ -63,12 +64,24 @@ the force of a paraboloid is within 0.15 (dx/a)^2 of Hertz (second order in
 the grid step, as piecewise-constant pressure elements are) and the radius of
 the counted contact area within a quarter of a grid step, for contact radii
 a from 4 to 16 grid steps: about 50 cells per contact give the force to
-1 % and the radius to 6 %.  On a rough surface the smallest contacts of a
-light load have only a few cells: the counted area there is too large (each
-contact edge is resolved to a cell), which is why the area-load slope of
-rough surfaces converges slowly with the grid (Yastrebov, Anciaux and
-Molinari, Tribol. Int. 114 (2017) 161).  ``cells_per_patch`` (contacting
-cells over patches) is reported per separation so that this can be judged.
+1 % and the radius to 6 %.  Counted, the area is too large: the discrete
+pressure reaches past the edge of the contact, where the exact one vanishes
+as the square root of the distance, so that cells along the edge carry load
+outside it, and the smaller the patches the larger the share of such cells
+(which is why the area-load slope of rough surfaces converges slowly with
+the grid).  ``contact_area_ratio`` is therefore the counted area less the
+perimeter correction of Yastrebov, Anciaux and Molinari (Tribol. Int. 114
+(2017) 161): alpha = (pi - 1 + ln 2) / 24 of a cell for each cell edge
+between a cell in elastic contact and one out of contact (an edge of a cell
+at the hardness is a plastic edge, with no such bias),
+
+    A = (n_contact - alpha n_edges) dx dy;
+
+``counted_area_ratio`` keeps the count.  On Hertz's circular and elliptic
+contacts (curvature ratios 1 to 1/16) of 100 and 300 cells the corrected
+area is within 5 % and 3 %, where the count is up to 12 % and 7 % too large.
+``cells_per_patch`` (contacting cells over patches) is reported per
+separation so that the resolution can be judged.
 
 Undefined points (NaN) neither touch the flat nor count in the nominal area
 (the solver masks them); their share is recorded.
@@ -84,12 +97,16 @@ import xarray as xr
 from asperity.references.hertz import plane_strain_modulus
 from asperity.units import attrs
 
-__all__ = ["BOUNDARIES", "BoundaryElementError", "solve_map", "contact_patches", "plane_strain_modulus"]
+__all__ = ["BOUNDARIES", "BoundaryElementError", "solve_map", "contact_patches", "contact_edges",
+           "plane_strain_modulus", "EDGE_CORRECTION"]
 
 #: how the map's edges are treated (see the module docstring)
 BOUNDARIES = ("periodic", "free")
 #: how far (in standard deviations) below the lowest defined point undefined points are put
 UNDEFINED_DEPTH = 1.0e3
+#: area (in cells) a contact edge adds to the counted area (Yastrebov, Anciaux and Molinari
+#: 2017): subtracted per edge between a cell in elastic contact and one out of contact
+EDGE_CORRECTION = (np.pi - 1.0 + np.log(2.0)) / 24.0
 
 
 class BoundaryElementError(RuntimeError):
@@ -116,6 +133,23 @@ def contact_patches(mask: np.ndarray, periodic: bool) -> int:
     keep = (a > 0) & (b > 0)
     graph = coo_matrix((np.ones(keep.sum()), (a[keep] - 1, b[keep] - 1)), shape=(count, count))
     return int(connected_components(graph, directed=False)[0])
+
+
+def contact_edges(inner: np.ndarray, outside: np.ndarray, periodic: bool) -> int:
+    """Cell edges between a cell of `inner` and a cell of `outside` (boolean maps), the
+    four neighbours of each cell, across the map's edges where it is `periodic`."""
+    count = 0
+    for axis in (0, 1):
+        if periodic:
+            a, b = inner, np.roll(outside, -1, axis)
+            c, d = outside, np.roll(inner, -1, axis)
+        else:
+            cut = [slice(None), slice(None)]
+            head, tail = list(cut), list(cut)
+            head[axis], tail[axis] = slice(None, -1), slice(1, None)
+            a, b, c, d = inner[tuple(head)], outside[tuple(tail)], outside[tuple(head)], inner[tuple(tail)]
+        count += int(np.count_nonzero(a & b) + np.count_nonzero(c & d))
+    return count
 
 
 def _compliance(system, shape):
@@ -198,7 +232,9 @@ def _solve(system, offset: float, start: np.ndarray, upper: float | None, tolera
 #: the variables of `solve_map`'s dataset: units, long name
 _VARIABLES = {
     "nominal_pressure": ("Pa", "nominal pressure: total force over the nominal (defined) area"),
-    "contact_area_ratio": ("1", "real contact area ratio A/A0: contacting cells over defined cells"),
+    "contact_area_ratio": ("1", "real contact area ratio A/A0: contacting cells, less the perimeter "
+                                "correction of their elastic edges, over defined cells"),
+    "counted_area_ratio": ("1", "contacting cells over defined cells (no perimeter correction)"),
     "contact_count": ("1/m^2", "contact patches (connected contacting cells, eight neighbours) per unit area"),
     "mean_gap": ("m", "mean gap between the flat and the deformed surface over the defined cells"),
     "normal_stiffness": ("Pa/m", "normal stiffness -dp/dh: the force increment of an approach with "
@@ -275,7 +311,8 @@ def solve_map(
     -------
     xarray.Dataset
         On dim ``separation`` (as given, increasing): nominal_pressure,
-        contact_area_ratio, contact_count, mean_gap, normal_stiffness (the
+        contact_area_ratio (perimeter-corrected), counted_area_ratio,
+        contact_count, mean_gap, normal_stiffness (the
         incremental problem on the contact set: G_aa f = 1), max_pressure,
         cells_per_patch, flowing_area_ratio (hardness only), yielded_fraction
         (yield_pressure only), iterations;
@@ -307,7 +344,8 @@ def solve_map(
     upper = None if hardness is None else np.where(defined, hardness / contact_modulus * cell, 0.0)
     system = _system(zs, sizes, 1.0, boundary)
     order = np.argsort(h)[::-1]  # largest separation first: increasing load
-    names = ("nominal_pressure", "contact_area_ratio", "contact_count", "mean_gap", "normal_stiffness",
+    names = ("nominal_pressure", "contact_area_ratio", "counted_area_ratio", "contact_count", "mean_gap",
+             "normal_stiffness",
              "max_pressure", "cells_per_patch", "flowing_area_ratio", "yielded_fraction", "iterations")
     compliance = _compliance(system, z.shape)
     out = {name: np.full(h.size, np.nan) for name in names}
@@ -318,7 +356,8 @@ def solve_map(
         if float(h[k]) / sigma >= top:  # the flat touches nothing: no force, the gap is h - z
             force = np.zeros(z.shape)
             out.update({name: _set(out[name], k, value) for name, value in (
-                ("nominal_pressure", 0.0), ("contact_area_ratio", 0.0), ("contact_count", 0.0),
+                ("nominal_pressure", 0.0), ("contact_area_ratio", 0.0), ("counted_area_ratio", 0.0),
+                ("contact_count", 0.0),
                 ("mean_gap", float(np.mean(float(h[k]) - z[defined]))), ("max_pressure", 0.0),
                 ("normal_stiffness", 0.0),
                 ("flowing_area_ratio", 0.0 if upper is not None else np.nan),
@@ -336,17 +375,19 @@ def solve_map(
         touching = force > 0.0
         patches = contact_patches(touching, boundary == "periodic")
         cells = int(touching.sum())
+        flowing = np.zeros(z.shape, bool)
+        if upper is not None:
+            flowing = force >= upper * (1 - 1e-6)
+            out["flowing_area_ratio"][k] = np.count_nonzero(flowing & defined) / n_defined
+        edges = contact_edges(touching & ~flowing, ~touching, boundary == "periodic")
         out["nominal_pressure"][k] = force.sum() / area * contact_modulus
-        out["contact_area_ratio"][k] = cells / n_defined
+        out["contact_area_ratio"][k] = (cells - EDGE_CORRECTION * edges) / n_defined
+        out["counted_area_ratio"][k] = cells / n_defined
         out["contact_count"][k] = patches / (n_defined * dx * dy)
         # a flowing cell's penetration is material pushed away: its gap is zero
         out["mean_gap"][k] = float(np.mean(np.maximum(gap[defined], 0.0))) * sigma
         out["max_pressure"][k] = force.max() / cell * contact_modulus
         out["cells_per_patch"][k] = cells / patches if patches else np.nan
-        flowing = np.zeros(z.shape, bool)
-        if upper is not None:
-            flowing = force >= upper * (1 - 1e-6)
-            out["flowing_area_ratio"][k] = np.count_nonzero(flowing & defined) / n_defined
         # -dp/dh: the cells in elastic contact held, the flat approaching (flowing cells keep H)
         out["normal_stiffness"][k] = (_incremental_force(compliance, touching & ~flowing, 1e-8)
                                       / area * contact_modulus / sigma)
