@@ -94,8 +94,10 @@ def test_area_linear_in_load_at_small_area():
     Thomas, Wear 35 (1975) 87); boundary-element and GFMD studies of well-resolved surfaces
     find about 2 (Hyun et al., Phys. Rev. E 70 (2004) 026117; Prodanov, Dapp and Muser,
     Tribol. Lett. 53 (2014) 433).  Counting cells overestimates the area of contacts a few
-    cells wide, so kappa comes out above 2 at 16 cells per correlation length and falls
-    towards it as the grid is refined (README).  Asserted over A/A0 from 2 to 10 % (about
+    cells wide; less the perimeter correction kappa still comes out a little above 2 at 16
+    cells per correlation length (the correction is exact on average for patches of 100
+    cells and more, these have tens) and falls towards it as the grid is refined.
+    Asserted over A/A0 from 2 to 10 % (about
     90 contacts and more on this 32 x 32 correlation-length map): the literature bracket,
     and linearity, kappa within 15 % over the range."""
     gen = {"points": 512, "spacing": 1.0, "sigma": 1.0, "correlation_length": 16.0, "seed": 2,
