@@ -83,9 +83,10 @@ def test_area_load_slope_and_hardness(run):
     """Elastic, A/A0 from 1 to 10 %: the linear regime A/A0 = kappa p / (E* h'_rms), i.e. a
     log-log slope of area against pressure between 0.85 and 1 (the boundary-element area
     grows slightly slower than the load as contacts merge), and kappa above Persson's
-    sqrt(8/pi) and below 3: at the scene's 16 points per correlation length counting cells
-    overestimates the small contacts (up to 2.7 on this map; the literature's bracket is
-    asserted on a finer-sampled window in tests/references); hardness: no pressure above
+    sqrt(8/pi) and below 3: at the scene's 16 points per correlation length the small
+    contacts have tens of cells, where even the perimeter-corrected area is a little too
+    large (the literature's bracket is asserted on a finer-sampled window in
+    tests/references); hardness: no pressure above
     H, and at equal pressure the plastic area is larger than the elastic one."""
     ref = result(run, SCENE, "reference.nc")
     el = ref.sel(limit="elastic")
