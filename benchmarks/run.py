@@ -28,6 +28,8 @@ import numpy as np
 
 from asperity import homogenize, peaks, surface
 
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))  # run as a script: `benchmarks` importable
+
 OUT = Path(__file__).with_name("out")
 
 
@@ -274,19 +276,6 @@ SHORT_SKIPPED = {
 SHORT_TIMEOUT = 600.0
 
 
-def _commit() -> tuple[str, bool]:
-    """HEAD and whether tracked files differ from it."""
-    root = Path(__file__).resolve().parents[1]
-    try:
-        head = subprocess.run(["git", "rev-parse", "HEAD"], cwd=root, capture_output=True,
-                              text=True, check=True).stdout.strip()
-        dirty = subprocess.run(["git", "status", "--porcelain", "--untracked-files=no"], cwd=root,
-                               capture_output=True, text=True).stdout.strip()
-        return head, bool(dirty)
-    except (OSError, subprocess.CalledProcessError):
-        return "unknown", True
-
-
 def _children_cpu() -> float:
     """CPU seconds of the waited-for child processes (and theirs) so far."""
     usage = resource.getrusage(resource.RUSAGE_CHILDREN)
@@ -334,6 +323,8 @@ def short(names: list[str] | None = None) -> int:
     if names:
         todo = [(case, fn) for case, fn in todo
                 if case in names or (fn is not None and "kernels" in names)]
+    from benchmarks.scenes import _commit
+
     commit, dirty = _commit()
     record = {"date": time.strftime("%Y-%m-%dT%H:%M:%S%z"), "commit": commit,
               "uncommitted_changes": dirty, "cores": int(_CORES),
