@@ -140,15 +140,12 @@ def contact_edges(inner: np.ndarray, outside: np.ndarray, periodic: bool) -> int
     four neighbours of each cell, across the map's edges where it is `periodic`."""
     count = 0
     for axis in (0, 1):
-        if periodic:
-            a, b = inner, np.roll(outside, -1, axis)
-            c, d = outside, np.roll(inner, -1, axis)
+        a, b = np.moveaxis(inner, axis, 0), np.moveaxis(outside, axis, 0)
+        if periodic:  # each cell and the next, the last and the first
+            a_next, b_next = np.roll(a, -1, 0), np.roll(b, -1, 0)
         else:
-            cut = [slice(None), slice(None)]
-            head, tail = list(cut), list(cut)
-            head[axis], tail[axis] = slice(None, -1), slice(1, None)
-            a, b, c, d = inner[tuple(head)], outside[tuple(tail)], outside[tuple(head)], inner[tuple(tail)]
-        count += int(np.count_nonzero(a & b) + np.count_nonzero(c & d))
+            a, b, a_next, b_next = a[:-1], b[:-1], a[1:], b[1:]
+        count += int(np.count_nonzero(a & b_next) + np.count_nonzero(b & a_next))
     return count
 
 
