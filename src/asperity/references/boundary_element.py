@@ -79,7 +79,7 @@ at the hardness is a plastic edge, with no such bias),
 
 ``counted_area_ratio`` keeps the count.  On Hertz's circular and elliptic
 contacts (curvature ratios 1 to 1/16) of 100 and 300 cells the corrected
-area is within 5 % and 3 %, where the count is up to 12 % and 7 % too large.
+area is within 5 % and 3 %, where the count alone is not (tests/references).
 ``cells_per_patch`` (contacting cells over patches) is reported per
 separation so that the resolution can be judged.
 
