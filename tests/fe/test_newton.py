@@ -30,7 +30,8 @@ def test_step_cutting_recovers_and_is_recorded():
 
 def test_converged_residual_is_small():
     from asperity.fe.contact.penalty import C1Penalty
-    from asperity.fe.solvers.newton import ContactNewton, continuation
+    from asperity.fe.drivers.elastic import continuation
+    from asperity.fe.solvers.newton import ContactNewton
     from asperity.fe.presets import resolve
     from asperity.fe.drivers.elastic import adapted_model
 

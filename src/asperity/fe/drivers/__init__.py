@@ -4,4 +4,5 @@ inelastic history (`inelastic`: the step's equilibrium `inelastic_model`, its st
 (`adhesive`: the model `adhesive_model`, the path `adhesive_trace`), and the
 three-dimensional asperity pressed and slid (`solid3d`: `flat_motion`,
 `sliding_model`, its steps `sliding_march`).  The drivers that march in time run one
-loop, `march`."""
+loop, `march`; the elastic and adhesive paths under a prescribed flat position are
+followed by one driver, `path`."""

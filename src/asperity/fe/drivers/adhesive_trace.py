@@ -84,8 +84,8 @@ import numpy as np
 
 from asperity.fe.contact.adhesion import LennardJones
 from asperity.fe.drivers.adhesive_model import AdhesiveModel
+from asperity.fe.drivers.path import Steps, follow
 from asperity.fe.errors import ConvergenceError, StepFailed
-from asperity.fe.solvers import nonlinear
 from asperity.fe.solvers.adhesive import (JUMP_ITERATION_FACTOR, AdhesiveState, on_nodes,
                                           predictor)
 from asperity.fe.solvers.arclength import Landing, through_fold
@@ -195,116 +195,60 @@ def _follow(state: AdhesiveState, step: int = 0) -> tuple[AdhesiveState, int]:
                            f"the fine band does not settle on the contact (at w = {state.w:.6g} m)")
 
 
-def _advance(state: AdhesiveState, target: float, pre: dict, step: int = 0,
-             landing: Landing | None = None):
-    """From a converged state to the flat position `target`, with step control.
+class _Steps(Steps):
+    """The adhesive path for `follow` (`asperity.fe.drivers.path`): Newton from the
+    capped tangent predictor (`predictor`), the continuity test of the model
+    (`AdhesiveModel.continuity`), jumps at ``min_step * d``, a steep or failed
+    position retried once, the fold followed by arc length (`through_fold`,
+    with `landing` for the jump from it), each state moved onto a mesh that
+    follows its contact edge (`_follow`), `Overflow` where the ring reaches
+    the end of the refined band."""
 
-    A step that fails to converge, or is discontinuous
-    (`AdhesiveModel.continuity`), marks its end as bad; the bracket from
-    the state to the nearest bad position is then bisected (a good
-    midpoint advances the state, a bad one shrinks the bracket) until it is
-    min_step * d long, where a discontinuous step is a jump.  A position
-    where Newton failed, or bad only by the predictor and secant tests
-    ("steep"), is retried once, from the first midpoint reached, before
-    the bisection goes on (such a stretch then costs two half steps
-    instead of a bisection down to min_step).  A bad
-    position reached continuously after all (a steep stretch) is dropped
-    and the bracket reopens to the next one, never to the target.  Each
-    state reached (after a jump too) is moved onto a mesh that follows its
-    contact edge (`_follow`) before the next step.  Where the bisection
-    stalls (more than MAX_HALVINGS halvings since the start or the last
-    fold, or a failed solve at the smallest step) the branch is followed
-    through its fold instead (`through_fold`, with `landing` for the jump
-    from the fold).  Returns (final state,
-    [(state before, state after) of each jump], iterations, halvings);
-    raises `ConvergenceError` (naming `step` and the last position reached)
-    when that fails too.
-    """
-    d = state.model.adhesion.d
-    smallest = pre["min_step"] * d
-    target = float(target)
-    goals = [target]
-    iterations = 0
-    cuts = nonlinear.StepCuts(step, MAX_HALVINGS)  # halvings; restarted after a fold
-    jumps = []
-    bads = []  # positions known to fail or to be discontinuous, nearest last
-    steep = None  # a bad position to retry once after the next advance
-    retry = False  # the last attempt advanced the state
-    while goals:
-        goal = goals[-1]
-        while bads and (bads[-1] - state.w) * (target - state.w) <= 0:  # reached after all
-            bads.pop()
-        if bads and (goal - bads[-1]) * (target - state.w) >= 0:  # the goal is at or beyond it
-            bad = bads[-1]
-            if (retry and bad == steep) or abs(bad - state.w) <= smallest:
-                nxt = bad
-            else:
-                nxt = 0.5 * (state.w + bad)
-            if nxt != goal:
-                goals.append(nxt)
-                continue
+    retry_once = True
+
+    def __init__(self, d: float, pre: dict, landing: Landing | None):
+        self.limit, self.smallest = MAX_HALVINGS, pre["min_step"] * d
+        self.pre, self.landing = pre, landing
+
+    def solve(self, state: AdhesiveState, goal: float, small: bool):
         model = state.model
         newton = model.newton
-        small = abs(goal - state.w) <= smallest
         pred = predictor(state, goal)
-        failure = None
-        try:
-            u, parts, T, its = newton.solve(
-                goal, pred, JUMP_ITERATION_FACTOR * newton.max_iterations if small else None)
-            iterations += its
-        except StepFailed as exc:
-            iterations += exc.iterations
-            retried = retry and goal == steep
-            if not retried:  # a failed retry halves nothing
-                cuts.cut()
-            if small or cuts.exhausted:
-                failure = f"{exc} (at w = {goal:.6g} m)"
-            else:
-                bads.append(goal)
-                goals = [target]
-                steep = None if retried else goal  # retried once, as a steep position
-                retry = False
-                continue
-        if failure is None:
-            new = newton.state(goal, u, parts, T)
-            new.model = model
-            verdict, its = model.continuity(state, new, pred, pre)
-            iterations += its
-            jumped = verdict != "continuous"
-            if jumped and not small:
-                retried = retry and goal == steep
-                if not retried:  # a failed retry halves nothing
-                    cuts.cut()
-                if cuts.exhausted:
-                    failure = "the path stays discontinuous"
-                else:
-                    # a steep position is retried once: not when this was its retry
-                    steep = goal if verdict == "steep" and not retried else None
-                    bads.append(goal)
-                    goals = [target]
-                    retry = False
-                    continue
-        if failure is not None:  # the bisection stalled: follow the branch through its fold
-            try:
-                state, new, jumped, its = through_fold(state, target, pre, landing)
-            except StepFailed as exc:
-                raise cuts.error(target, state.w, f"{failure}; then {exc}") from None
-            iterations += its
-            cuts.restart()
-        new, its = _follow(new, step)
-        iterations += its
-        if jumped:
-            jumps.append((state, new))
-            bads = []
+        u, parts, T, its = newton.solve(
+            goal, pred, JUMP_ITERATION_FACTOR * newton.max_iterations if small else None)
+        new = newton.state(goal, u, parts, T)
+        new.model = model
+        return new, its, pred
+
+    def continuity(self, state, new, predictor):
+        return state.model.continuity(state, new, predictor, self.pre)
+
+    def fold(self, state, target):
+        return through_fold(state, target, self.pre, self.landing)
+
+    def settle(self, new, step):
+        return _follow(new, step)
+
+    def check(self, new):
         if new.model.overflow(new):
             raise Overflow()
-        state = new
-        retry = True
-        if failure is None:
-            goals.pop()
-        else:  # the pass landed at a position of its own
-            goals = [target]
-    return state, jumps, iterations, cuts.count
+
+
+def _advance(state: AdhesiveState, target: float, pre: dict, step: int = 0,
+             landing: Landing | None = None):
+    """From a converged state to the flat position `target`, by the
+    path-following driver (`follow`) with the adhesive path's steps
+    (`_Steps`): a discontinuous step is bisected down to ``min_step * d``,
+    where it is a jump; a position where Newton failed, or bad only by the
+    predictor and secant tests ("steep"), is retried once, from the first
+    midpoint reached, before the bisection goes on; where the bisection
+    stalls (MAX_HALVINGS halvings since the start or the last fold, or a
+    failed solve at the smallest step) the branch is followed through its
+    fold.  Returns (final state, [(state before, state after) of each jump],
+    iterations, halvings); raises `ConvergenceError` (naming `step` and the
+    last position reached) when that fails too.
+    """
+    return follow(_Steps(state.model.adhesion.d, pre, landing), state, target, step)
 
 
 def trace(model: AdhesiveModel, path, pre: dict, label: str = "",

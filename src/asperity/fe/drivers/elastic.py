@@ -29,18 +29,22 @@ from __future__ import annotations
 
 import math
 import time
+
 import numpy as np
 import xarray as xr
 
 from asperity.fe.discretization.adapt import StressRecovery, mark, relative_indicator
 from asperity.fe import analytic
 from asperity.fe.discretization.assembly import CondensedStiffness, Discretization
-from asperity.fe.contact.penalty import EDGE_FROM_GAPS, PENALTY_FACTOR, C1Penalty, ContactZone, contact_edge
+from asperity.fe.contact.penalty import (EDGE_FROM_GAPS, PENALTY_FACTOR, C1Penalty, ContactZone,
+                                        contact_edge)
 from asperity.fe.errors import ContactZoneError
 from asperity.fe.discretization.geometry import Profile
 from asperity.fe.materials.elastic import equivalent_strain, von_mises
 from asperity.fe.discretization.mesh import AsperityMesh, MeshSpec
-from asperity.fe.solvers.newton import ContactNewton, continuation
+from asperity.fe.drivers.path import Steps, follow
+from asperity.fe.solvers.newton import (EXACT_TANGENT_SCALE, ContactNewton, LevelState,
+                                        solve_uzawa, untouched)
 from asperity.fe.outputs import dataset, describe
 from asperity.fe.presets import PLANE_STRAIN_DOMAIN, resolve
 
@@ -55,6 +59,67 @@ CONTACT_METHODS = ("penalty", "exact")
 #: levels whose fields are recovered at once (bounds the memory of strains
 #: and stresses at the quadrature points)
 EVALUATION_CHUNK = 8
+
+
+class _Levels(Steps):
+    """The elastic loading path for `follow`: Newton from the tangent predictor
+    u + dw du/dw, on the penalty law or, with `exact_tolerance`, by Uzawa
+    updates of the multipliers the state carries (`solve_uzawa`); no folds."""
+
+    def __init__(self, newton: ContactNewton, law: C1Penalty, max_cuts: int,
+                 exact_tolerance: float | None):
+        self.newton, self.law = newton, law
+        self.limit, self.exact = max_cuts, exact_tolerance
+
+    def solve(self, state: LevelState, goal: float, small: bool):
+        newton = self.newton
+        u0 = state.u + (goal - state.w) * state.dudw
+        lam = None
+        if self.exact is None:
+            u, t, dt, its = newton.solve(self.law, goal, u0)
+        else:
+            start = (np.zeros(newton.zone.weights.shape) if state.multipliers is None
+                     else state.multipliers)
+            u, t, dt, its, lam = solve_uzawa(newton, self.law.kappa, goal, u0, start,
+                                             self.exact)
+            # tangent of the exact condition: the active points held (their
+            # spring stiffened by EXACT_TANGENT_SCALE)
+            dt = dt * EXACT_TANGENT_SCALE
+        new = newton.state(goal, u, t, dt)
+        new.multipliers = lam
+        return new, its, u0
+
+
+def continuation(newton: ContactNewton, law: C1Penalty, levels, max_cuts: int = 8,
+                 exact_tolerance: float | None = None, steps=None) -> list[LevelState]:
+    """The interference levels solved in order by the path-following driver
+    (`asperity.fe.drivers.path.follow`), each from the last converged state.
+
+    `law` is the penalty law; with `exact_tolerance` set, each level is
+    solved exactly by Uzawa updates (augmented Lagrangian with the same
+    stiffness).  Levels <= 0 (flat not touching) give the untouched state;
+    the path always starts from first touch (w = 0, u = 0), so no step
+    skips first contact.  A step whose Newton fails is cut in half, up to
+    `max_cuts` times per level.  `steps` are the caller's indices of the
+    levels (named by `ConvergenceError`; default 0, 1, ...).
+    """
+    steps = range(len(levels)) if steps is None else list(steps)
+    zone = newton.zone
+    path = _Levels(newton, law, max_cuts, exact_tolerance)
+    state = untouched(zone)
+    out = []
+    for n, target in enumerate(levels):
+        target = float(target)
+        if target <= 0:
+            out.append(untouched(zone, target))
+            state = untouched(zone)
+            continue
+        start = time.perf_counter()
+        state, _, iterations, cuts = follow(path, state, target, int(steps[n]))
+        state.iterations, state.cuts = iterations, cuts
+        state.wall_time = time.perf_counter() - start
+        out.append(state)
+    return out
 
 
 class Model:

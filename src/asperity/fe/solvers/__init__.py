@@ -1,5 +1,5 @@
 """Nonlinear solution: the one Newton iteration with its line searches and step
-control (`nonlinear`), Newton on the condensed contact problem with continuation
+control (`nonlinear`), Newton on the condensed contact problem of an elastic body
 (`newton`; report 3.5), the adhesive problem's Newton and its tangent (`adhesive`),
 arc-length continuation through folds (`arclength`), a material point under mixed
 control (`mixed`), the time integration of an inelastic material and its error

@@ -1,4 +1,4 @@
-"""Newton-Raphson on the condensed contact problem, with automatic step control.
+"""Newton-Raphson on the condensed contact problem of an elastic body.
 
 For an elastic body the only nonlinearity is the contact traction on the
 top surface, so the equations (report 3.28) are solved for the surface
@@ -14,24 +14,21 @@ Newton step is safeguarded by a backtracking line search on that energy
 Converged when ||R|| <= tolerance * ||f_contact|| or, for very stiff
 penalties, when ||R|| reaches its round-off level (`ContactNewton.floor`).
 
-Step control in the spirit of report 3.5 (`nonlinear.StepCuts`): each
-requested interference is reached from the last converged state with the
-tangent predictor u + dw du/dw; a step that does not converge within
-`max_iterations` (or diverges, or gives non-finite values) is cut in half
-and retried, up to `max_cuts` times per requested step; then
-`ConvergenceError` names the step.
+The levels of a loading curve are reached one after another, with step
+control, by the path-following driver (`asperity.fe.drivers.path`,
+`asperity.fe.drivers.elastic.continuation`), each from the last converged
+state with the tangent predictor u + dw du/dw (`LevelState.dudw`).
 """
 
 from __future__ import annotations
 
-import time
 from dataclasses import dataclass
 
 import numpy as np
 import scipy.linalg as sla
 
 from asperity.fe.solvers import nonlinear
-from asperity.fe.contact.penalty import AugmentedPenalty, C1Penalty, ContactZone
+from asperity.fe.contact.penalty import AugmentedPenalty, ContactZone
 from asperity.fe.errors import StepFailed
 from asperity.fe.solvers.nonlinear import EnergySearch, Problem
 
@@ -63,6 +60,7 @@ class LevelState:
     iterations: int = 0
     cuts: int = 0
     wall_time: float = 0.0
+    multipliers: np.ndarray | None = None  # the exact contact's, at the quadrature points
 
 
 class ContactNewton:
@@ -186,63 +184,3 @@ def solve_uzawa(newton: ContactNewton, kappa: np.ndarray, w: float, u0: np.ndarr
             return u, t, dt, total, lam
         force_old = force
     raise StepFailed(f"Uzawa updates did not reach the tolerance in {max_updates}", total)
-
-
-def continuation(newton: ContactNewton, law: C1Penalty, levels, max_cuts: int = 8,
-                 exact_tolerance: float | None = None, steps=None):
-    """Solve the interference levels in order, with step cutting.
-
-    `law` is the penalty law; with `exact_tolerance` set, each level is
-    solved exactly by Uzawa updates (augmented Lagrangian with the same
-    stiffness).  Levels <= 0 (flat not touching) give the untouched state;
-    the path always starts from first touch (w = 0, u = 0), so no step
-    skips first contact.  `steps` are the caller's indices of the levels
-    (named by `ConvergenceError`; default 0, 1, ...).  Returns a list of
-    `LevelState`.
-    """
-    steps = range(len(levels)) if steps is None else list(steps)
-    zone = newton.zone
-    state = untouched(zone)
-    lam = np.zeros(zone.weights.shape)
-    out = []
-    for n, target in enumerate(levels):
-        target = float(target)
-        if target <= 0:
-            out.append(untouched(zone, target))
-            state = untouched(zone)
-            lam = np.zeros(zone.weights.shape)
-            continue
-        cuts = nonlinear.StepCuts(int(steps[n]), max_cuts)
-        iterations = 0
-        start = time.perf_counter()
-        goals = [target]
-        while goals:
-            goal = goals[-1]
-            u0 = state.u + (goal - state.w) * state.dudw
-            try:
-                if exact_tolerance is None:
-                    u, t, dt, its = newton.solve(law, goal, u0)
-                    iterations += its
-                else:
-                    u, t, dt, its, lam_new = solve_uzawa(
-                        newton, law.kappa, goal, u0, lam, exact_tolerance)
-                    iterations += its
-                    lam = lam_new
-            except StepFailed as exc:
-                iterations += exc.iterations
-                cuts.cut()
-                if cuts.exhausted:
-                    raise cuts.error(target, state.w, str(exc)) from None
-                goals.append(0.5 * (state.w + goal))
-                continue
-            if exact_tolerance is not None:
-                # tangent of the exact condition: the active points held
-                # (their spring stiffened by EXACT_TANGENT_SCALE)
-                dt = dt * EXACT_TANGENT_SCALE
-            state = newton.state(goal, u, t, dt, 0, 0)
-            goals.pop()
-        state.iterations = iterations
-        state.cuts = cuts.count
-        state.wall_time = time.perf_counter() - start
-        out.append(state)
-    return out
