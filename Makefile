@@ -39,7 +39,8 @@ test-fast: $(STAMP)
 	$(PYTEST) -m "not slow"
 
 # The documentation site in site/: the reference and verification pages generated from
-# config/schema.yaml, the command line and benchmarks/results/ (docs/generate.py), then
+# config/schema.yaml, the command line and the benchmark outputs in benchmarks/results/
+# (docs/generate.py; a section whose output is not there is kept as last written), then
 # built with warnings as errors.
 docs: export NO_MKDOCS_2_WARNING = 1
 docs: $(STAMP)
@@ -49,7 +50,8 @@ docs: $(STAMP)
 # Speed and cost measurements, one entry point (benchmarks/run.py): CASE=kernels (the
 # default) times the kernels against the issues' targets (benchmarks/out/results.json);
 # CASE=list names the others (scenes, adhesion, sliding, routes, ...), each writing its
-# JSON to benchmarks/results/. ARGS replaces a case's default arguments, e.g.
+# JSON to benchmarks/results/ (not tracked: `make docs` writes the docs' tables from it,
+# and those are). ARGS replaces a case's default arguments, e.g.
 #   make bench CASE=scenes ARGS="--accuracy draft --scenes profile_cosine hertz"
 # CASE=short (what CI runs) runs a small case of every kernel and every other case, one
 # after the other, so that each keeps working: their times go to benchmarks/out/short.json,

@@ -152,3 +152,34 @@ def test_every_module_says_what_it_holds():
     assert not missing, f"modules without a docstring: {missing}"
     page = generate.modules_page()
     assert all(f"| `{name}` |" in page for name in summaries)
+
+
+def test_the_verification_page_keeps_a_section_until_its_benchmark_writes_it_again(
+        tmp_path, monkeypatch):
+    """docs/generate.py: the benchmark outputs are not tracked, the sections they wrote
+    are (docs/verification/sections/). Without its output a section is kept as it was;
+    with it, renewed from it; never measured, it says so."""
+    import importlib.util
+    import json
+
+    spec = importlib.util.spec_from_file_location("docs_generate", REPO / "docs" / "generate.py")
+    generate = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(generate)
+    results, sections = tmp_path / "results", tmp_path / "sections"
+    results.mkdir()
+    monkeypatch.setattr(generate, "RESULTS", results)
+    monkeypatch.setattr(generate, "SECTIONS", sections)
+    page = generate.verification_page()  # nothing measured
+    assert "surface-speed.md: not measured yet" in page
+    speed = {"map": {"points": [4, 5], "undefined_share": 0.25},
+             "times": {"form removal": {"cpu_s": 1.5, "wall_s": 1.75}},
+             "date": "2026-12-07", "commit": "abcdef0123"}
+    (results / "surface-speed.json").write_text(json.dumps(speed))
+    page = generate.verification_page()
+    assert "| form removal | 1.5 | 1.75 |" in page and "commit abcdef0" in page
+    (results / "surface-speed.json").unlink()  # a clean clone: the section written is kept
+    assert generate.verification_page() == page
+    assert "| form removal | 1.5 | 1.75 |" in (sections / "surface-speed.md").read_text()
+    # every tracked section of the repository is one the page is assembled from
+    tracked = {p.name for p in (REPO / "docs" / "verification" / "sections").glob("*.md")}
+    assert tracked == {e[0] for e in generate.VERIFICATION_SECTIONS if not isinstance(e, str)}
