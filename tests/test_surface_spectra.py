@@ -245,3 +245,18 @@ def test_a_maps_surface_nc_holds_its_radial_psd_and_autocorrelation():
     i = int(np.argmax(R <= 0.2))
     expected = r[i - 1] + (R[i - 1] - 0.2) * (r[i] - r[i - 1]) / (R[i - 1] - R[i])
     assert ds.attrs["correlation_length"] == pytest.approx(expected, rel=1e-12)
+
+
+def test_correlation_length_where_the_autocorrelation_falls_to_its_threshold():
+    """R = exp(-r / l) falls to 0.2 at r = l ln 5; linear interpolation on a grid of l / 100
+    is within (dr)^2 / 8 |R''| / |R'| = 2e-5 l of it. NaN where R never falls that far,
+    the first lag where it already has."""
+    from asperity.surface import CORRELATION_THRESHOLD, correlation_length
+
+    ell = 3e-6
+    r = np.arange(1, 400) * ell / 100
+    assert CORRELATION_THRESHOLD == 0.2
+    assert correlation_length(r, np.exp(-r / ell)) == pytest.approx(ell * np.log(5), rel=2e-5)
+    assert correlation_length(r, np.exp(-r / ell), 0.5) == pytest.approx(ell * np.log(2), rel=2e-5)
+    assert np.isnan(correlation_length(r, np.full(r.size, 0.9)))
+    assert correlation_length(r, np.full(r.size, 0.1)) == r[0]

@@ -37,8 +37,6 @@ Config = Mapping[str, Any]
 #: the most points per axis kept in surface.nc's preview of the heights (for the figure)
 PREVIEW_PROFILE = 20000
 PREVIEW_MAP = 512
-#: the autocorrelation's decay that defines the correlation length (ISO 25178's Sal uses 0.2)
-CORRELATION_THRESHOLD = 0.2
 
 
 # --------------------------------------------------------------------------
@@ -249,17 +247,6 @@ def _distribution(rough: np.ndarray, defined: np.ndarray, kind: str) -> tuple[di
     return data, coords, out
 
 
-def _correlation_length(r: np.ndarray, R: np.ndarray) -> float:
-    below = np.flatnonzero(R <= CORRELATION_THRESHOLD)
-    if below.size == 0:
-        return math.nan
-    i = int(below[0])
-    if i == 0:
-        return float(r[0])
-    r0, r1, R0, R1 = r[i - 1], r[i], R[i - 1], R[i]
-    return float(r0 + (R0 - CORRELATION_THRESHOLD) * (r1 - r0) / (R0 - R1))
-
-
 def _spectra(rough: np.ndarray, defined: np.ndarray, spacing, scene: SurfaceScene) -> tuple[dict, dict, dict]:
     """Power spectrum (profile: windowed periodogram; map: radially averaged) and the autocorrelation."""
     extra = {}
@@ -289,8 +276,9 @@ def _spectra(rough: np.ndarray, defined: np.ndarray, spacing, scene: SurfaceScen
     }
     coords = {"wavenumber": ("wavenumber", k, attrs("rad/m", "angular wavenumber (2 pi / wavelength)")),
               "lag": ("lag", r, attrs("m", "distance between the two points of a pair"))}
-    extra["correlation_length"] = _correlation_length(r, R)
-    extra["correlation_length_note"] = f"first lag where the autocorrelation falls to {CORRELATION_THRESHOLD:g}"
+    extra["correlation_length"] = surface.correlation_length(r, R)
+    extra["correlation_length_note"] = ("first lag where the autocorrelation falls to "
+                                        f"{surface.CORRELATION_THRESHOLD:g}")
     return data, coords, extra
 
 

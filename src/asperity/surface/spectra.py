@@ -35,6 +35,8 @@ __all__ = [
     "spectral_moments",
     "radial_power_spectrum",
     "autocorrelation",
+    "CORRELATION_THRESHOLD",
+    "correlation_length",
 ]
 
 WINDOWS = ("hann", "blackman", "none")
@@ -231,3 +233,22 @@ def autocorrelation(z, spacing, defined=None) -> tuple[np.ndarray, np.ndarray, n
         R = np.where(count > 0, prod / count, np.nan) / variance
         A = np.where(count > 0, (sq - prod) / count, np.nan)
     return r, R, A
+
+
+#: the autocorrelation's decay that defines the correlation length (ISO 25178's Sal uses 0.2)
+CORRELATION_THRESHOLD = 0.2
+
+
+def correlation_length(r: np.ndarray, R: np.ndarray, threshold: float = CORRELATION_THRESHOLD) -> float:
+    """The first lag at which the normalized autocorrelation `R(r)` (`autocorrelation`)
+    falls to `threshold`, interpolated linearly between the lags around it (ISO 25178's
+    autocorrelation length Sal at 0.2); NaN where it never does, ``r[0]`` where it does at
+    once."""
+    below = np.flatnonzero(R <= threshold)
+    if below.size == 0:
+        return math.nan
+    i = int(below[0])
+    if i == 0:
+        return float(r[0])
+    r0, r1, R0, R1 = r[i - 1], r[i], R[i - 1], R[i]
+    return float(r0 + (R0 - threshold) * (r1 - r0) / (R0 - R1))
