@@ -48,7 +48,7 @@ docs: $(STAMP)
 	$(BIN)/mkdocs build --strict --quiet
 
 # Speed and cost measurements, one entry point (benchmarks/run.py): CASE=kernels (the
-# default) times the kernels against the issues' targets (benchmarks/out/results.json);
+# default) times the kernels against the issues' targets (benchmarks/results/kernels.json);
 # CASE=list names the others (scenes, adhesion, sliding, routes, ...), each writing its
 # JSON to benchmarks/results/ (not tracked: `make docs` writes the docs' tables from it,
 # and those are). ARGS replaces a case's default arguments, e.g.

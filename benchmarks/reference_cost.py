@@ -34,7 +34,6 @@ from __future__ import annotations
 
 import argparse
 import json
-import platform
 import sys
 import tempfile
 from pathlib import Path
@@ -44,7 +43,7 @@ import yaml
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))  # run as a script: `benchmarks` importable
 from benchmarks.routes import trimmed  # noqa: E402
-from benchmarks.scenes import OUT, run_snakemake  # noqa: E402
+from benchmarks.scenes import OUT, provenance, run_snakemake  # noqa: E402
 from benchmarks.workflow_copy import REPO, copy_workflow  # noqa: E402
 
 SCENE = "deterministic_reference"
@@ -126,8 +125,8 @@ def measure(scene: str, preset: str, cores: int, timeout: float | None, parts=PA
                     record["fe_cpu_time_s"] = float(interface.attrs.get("fe_cpu_time", 0.0))
             runs.append(record)
             print(f"{label}: {record['wall_time_s']} s ({record['status']})", flush=True)
-    return {"scene": scene, "accuracy": preset, "cores": cores, "machine": platform.platform(),
-            "runs": runs, "comparison": comparison, "comparison_extra": extra,
+    return {"scene": scene, **provenance(preset, cores), "runs": runs, "comparison": comparison,
+            "comparison_extra": extra,
             **({"trimmed": {"routes": routes, "separations": separations}} if small else {})}
 
 

@@ -2,7 +2,8 @@
 
 ``kernels`` (the default) times the kernels the issues set targets for, each as the
 best of several repeats (wall clock, this machine), printed as a table and written to
-benchmarks/out/results.json; ARGS picks kernels by part of their name.  Targets are
+benchmarks/results/kernels.json (read by docs/generate.py, with the machine, date and
+commit); ARGS picks kernels by part of their name.  Targets are
 stated beside each case; a miss is printed, not raised: speed is measured here, never
 asserted in the unit tests.  Every other case runs its script in benchmarks/ with
 ARGS, or with the arguments of `STUDIES` when ARGS is empty; ``make bench CASE=list``
@@ -407,7 +408,9 @@ def run_case(case: str, args: list[str]) -> int:
 
 
 def main(names=None):
-    OUT.mkdir(exist_ok=True)
+    from benchmarks.scenes import OUT as RESULTS, _commit
+
+    RESULTS.mkdir(parents=True, exist_ok=True)
     rows = []
     for name, fn, target in CASES:
         if names and not any(n in name for n in names):
@@ -419,10 +422,13 @@ def main(names=None):
                      "met": value < target, **extra})
         print(f"{name:<60s} {value:9.4f} {unit}   target < {target:g} {unit}   "
               f"{'met' if value < target else 'MISSED'}", flush=True)
-    record = {"machine": platform.platform(), "python": sys.version.split()[0],
+    commit, dirty = _commit()
+    record = {"date": time.strftime("%Y-%m-%dT%H:%M:%S%z"), "commit": commit,
+              "uncommitted_changes": dirty, "machine": platform.platform(),
+              "python": sys.version.split()[0],
               "processor": platform.processor() or platform.machine(), "cases": rows}
-    (OUT / "results.json").write_text(json.dumps(record, indent=2))
-    print(f"written {OUT / 'results.json'}")
+    (RESULTS / "kernels.json").write_text(json.dumps(record, indent=2))
+    print(f"written {RESULTS / 'kernels.json'}")
 
 
 if __name__ == "__main__":

@@ -540,6 +540,45 @@ def _linear_solvers(name: str) -> str:
             + "".join(rows) + "\n" + _provenance(d, name))
 
 
+def _kernels(name: str) -> str:
+    """The kernels the issues set targets for (`make bench`, benchmarks/run.py)."""
+    d = _load(name)
+    if d is None:
+        return ""
+    rows = ["| kernel | measured | target |\n|---|---|---|\n"]
+    for c in d["cases"]:
+        unit = c.get("unit", "s")
+        rows.append(f"| {c['case']} | {c['value']:.3g} {unit} | < {c['target']:g} {unit} "
+                    f"({'met' if c['met'] else 'missed'}) |\n")
+    return ("\n### The kernels the issues set targets for\n\n"
+            "Each the best of several repeats on this machine (`make bench`; wall seconds unless "
+            "the row says otherwise).\n\n" + "".join(rows) + "\n" + _provenance(d, name))
+
+
+def _reference_cost(name: str) -> str:
+    """A reference scene's wall time, whole and by part (`make bench CASE=reference`)."""
+    d = _load(name)
+    if d is None:
+        return ""
+    rows = ["| run | jobs (FE jobs) | wall time (s) | CPU of the boundary elements / FE jobs (s) |\n"
+            "|---|---|---|---|\n"]
+    for r in d["runs"]:
+        cpu = r.get("bem_cpu_time_s", r.get("fe_cpu_time_s"))
+        rows.append(f"| {r['what']} | {r['jobs']} ({r['fe_jobs']}) | {r['wall_time_s']:.0f} | "
+                    f"{'-' if cpu is None else f'{cpu:.0f}'} |\n")
+    whole = next((r for r in d["runs"] if r["what"] == "whole scene"), None)
+    by_rule = ""
+    if whole and whole.get("job_seconds_by_rule"):
+        by_rule = ("\nThe whole scene's job seconds by rule: " + ", ".join(
+            f"{k} {v:.0f}" for k, v in sorted(whole["job_seconds_by_rule"].items(),
+                                              key=lambda kv: -kv[1])) + ".\n")
+    return (f"\n### The reference scene `{d['scene']}` at `{d['accuracy']}`, {d['cores']} cores\n\n"
+            "From empty, in a fresh copy of the workflow, Snakemake's start-up included: the "
+            "whole scene (its map, the boundary elements elastic and limited by the hardness, "
+            "every route and the comparison) and, where measured, its parts alone.\n\n"
+            + "".join(rows) + by_rule + "\n" + _provenance(d, name))
+
+
 def _routes_section() -> str:
     routes = [n for n in ("routes-draft.json", "routes-standard.json") if (RESULTS / n).exists()]
     if not routes:
@@ -581,6 +620,8 @@ VERIFICATION_SECTIONS = (
     ("j2-sphere.md", lambda: _j2_sphere("j2-sphere.json")),
     ("scale-study.md", lambda: _scale_study("scale-study.json")),
     "\n## What a run costs\n",
+    ("kernels.md", lambda: _kernels("kernels.json")),
+    ("reference-cost.md", lambda: _reference_cost("reference-draft.json")),
     ("costs.md", _costs_section),
     ("sliding.md", lambda: _sliding_convergence("sliding-convergence-k280.json")),
     ("linear-solvers.md", lambda: _linear_solvers("linear-solvers.json")),
