@@ -195,17 +195,11 @@ def check_scene_file(path: Path) -> str:
     workflow folder (config/schema.yaml) and `asperity.scene.check_scene`; returns what was
     checked, raises a one-line error naming the file and the key."""
     from asperity.scene.checks import check_scene
+    from asperity.scene.files import read_scene
 
     if not path.is_file():
         raise UserError(f"{path}: no such scene file")
-    try:
-        scene = yaml.safe_load(path.read_text()) or {}
-    except yaml.YAMLError as err:
-        mark = getattr(err, "problem_mark", None)
-        where = f"{path}:{mark.line + 1}" if mark is not None else str(path)
-        raise UserError(f"{where}: not valid YAML ({getattr(err, 'problem', None) or err})") from None
-    if not isinstance(scene, dict):
-        raise UserError(f"{path}: (top level): a scene is a mapping of sections, not {type(scene).__name__}")
+    scene = read_scene(path)
     root = workflow_root(path.parent)
     schema = None if root is None else root / "config" / "schema.yaml"
     checked = "YAML, scene checks"

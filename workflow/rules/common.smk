@@ -10,12 +10,12 @@ import time
 from pathlib import Path
 
 import jsonschema
-import yaml
 from snakemake.exceptions import WorkflowError
 from snakemake.utils import validate
 
 from asperity.io.run_report import failure_lines, logs_since, warning_summary
 from asperity.scene.checks import SceneError, check_scene, text_number_hint
+from asperity.scene.files import read_scene
 from asperity.stages.reference import ROUTE_SEPARATOR, route_scene
 from asperity.versions import code_version, sample_version
 
@@ -78,21 +78,16 @@ def _canonical(obj):
 #: target asks for one, after parsing, when the include directory is no longer known)
 SCHEMA = str(Path(workflow.basedir) / "config" / "schema.yaml")
 
-#: every scene file is read at parse time: libyaml's parser where PyYAML has it (the same
-#: documents, read about seven times faster), the pure-Python one otherwise
-YAML_LOADER = getattr(yaml, "CSafeLoader", yaml.SafeLoader)
-
-
 def _read_scene(name, missing):
-    """The YAML of scene `name`; `missing(file)`: the message if it has no file."""
+    """The scene `name` (asperity.scene.files.read_scene: YAML, and the scene it is `like`);
+    `missing(file)`: the message if it has no file."""
     scene_file = SCENE_DIR / f"{name}.yaml"
     if not scene_file.exists():
         raise WorkflowError(missing(scene_file))
-    with open(scene_file) as fh:
-        try:
-            return yaml.load(fh, Loader=YAML_LOADER) or {}
-        except yaml.YAMLError as err:
-            raise WorkflowError(f"{scene_file}: not valid YAML: {err}")
+    try:
+        return read_scene(scene_file)
+    except SceneError as err:
+        raise WorkflowError(str(err)) from None
 
 
 def _load_scenes(names, loaded=None):
@@ -580,9 +575,9 @@ def _route_scenes():
     names = []
     for path in sorted(SCENE_DIR.glob("*.yaml")):
         try:
-            definition = yaml.load(path.read_text(), Loader=YAML_LOADER) or {}
-        except yaml.YAMLError:
-            continue  # reported with its file and line where the scene is loaded
+            definition = read_scene(path)
+        except SceneError:
+            continue  # reported with its file and key where the scene is loaded
         if "route" in definition:
             names.append(path.stem)
         for name, part in (definition.get("routes") or {}).items():
