@@ -125,7 +125,9 @@ def test_an_fe_asperity_without_geometry_names_the_file_and_key(tmp_path, capsys
     ("{youngs_modulus: 210000.0, poisson: 0.3, yield_stress: 350.0, hardness: 200.0}", "material.hardness",
      "hardness 200 MPa is below yield_stress 350 MPa (a hardness is about 2.8 yield stresses"),
     ("{youngs_modulus: 210e9, poisson: 0.3}", "material.youngs_modulus",
-     "'210e9' is not of type 'number' (YAML reads 210e9 as text: write 210.0e9)"),
+     "'210e9' is not of type 'number' (YAML reads 210e9 as text: write 210.0e+9)"),
+    ("{youngs_modulus: 210.0e9, poisson: 0.3}", "material.youngs_modulus",
+     "'210.0e9' is not of type 'number' (YAML reads 210.0e9 as text: write 210.0e+9)"),
 ])
 def test_sizes_that_say_the_unit_is_wrong_are_refused(tmp_path, capsys, material, key, words):
     path = tmp_path / "units.yaml"

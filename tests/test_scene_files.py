@@ -69,3 +69,14 @@ def test_the_measured_map_scenes_are_afm_reference_with_their_map():
         assert rest == {k: v for k, v in base.items() if k not in ("title", "surface")}
         assert {k: v for k, v in scene["surface"].items() if k != "map"} == \
             {k: v for k, v in base["surface"].items() if k != "map"}
+
+
+@pytest.mark.parametrize("text", ["210e9", "210.0e9", "2.e9", "-3e6"])
+def test_the_hint_for_a_number_read_as_text_is_read_as_a_number(text):
+    """The advice of `text_number_hint` is itself a number to YAML 1.1 (PyYAML), and the
+    same number."""
+    from asperity.scene.checks import text_number_hint
+
+    assert isinstance(yaml.safe_load(f"a: {text}")["a"], str)
+    advice = text_number_hint(text).split("write ")[1].rstrip(")")
+    assert yaml.safe_load(f"a: {advice}")["a"] == float(text)

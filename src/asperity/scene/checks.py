@@ -145,14 +145,19 @@ def check_scene(scene: Mapping[str, Any], file=None) -> None:
         raise err.in_file(file) if file is not None else err from None
 
 
-#: a number PyYAML (YAML 1.1) reads as text: an exponent without a decimal point ("210e9")
-_TEXT_NUMBER = re.compile(r"^[+-]?\d+[eE][+-]?\d+$")
+#: a number PyYAML (YAML 1.1) reads as text: an exponent without its sign ("210e9", "70.0e9";
+#: YAML 1.1 wants a decimal point and a signed exponent, "210.0e+9")
+_TEXT_NUMBER = re.compile(r"^[+-]?\d+(\.\d*)?[eE]\d+$")
 
 
 def text_number_hint(value) -> str:
-    """For a schema error on `value`: " (YAML reads 210e9 as text: write 210.0e9)" where
+    """For a schema error on `value`: " (YAML reads 210e9 as text: write 210.0e+9)" where
     `value` is such a number read as text, else ""."""
     if not isinstance(value, str) or not _TEXT_NUMBER.match(value.strip()):
         return ""
     mantissa, exponent = re.split("[eE]", value.strip())
-    return f" (YAML reads {value} as text: write {mantissa}.0e{exponent})"
+    if "." not in mantissa:
+        mantissa += ".0"
+    elif mantissa.endswith("."):
+        mantissa += "0"
+    return f" (YAML reads {value} as text: write {mantissa}e+{exponent})"
