@@ -31,7 +31,7 @@ from pathlib import Path
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))  # run as a script: `benchmarks` importable
-from benchmarks.routes import _commit  # noqa: E402
+from benchmarks.scenes import _commit  # noqa: E402
 from benchmarks.run import best_of  # noqa: E402
 from benchmarks.scenes import OUT  # noqa: E402
 
@@ -104,7 +104,7 @@ def main(argv=None) -> int:
     ap.add_argument("--repeats", type=int, default=3)
     ap.add_argument("--out", type=Path, default=OUT / "linear-solvers.json", help="JSON file")
     args = ap.parse_args(argv)
-    result = {"date": time.strftime("%Y-%m-%dT%H:%M:%S%z"), "commit": _commit(), "clock": "CPU",
+    result = {"date": time.strftime("%Y-%m-%dT%H:%M:%S%z"), "commit": _commit()[0], "clock": "CPU",
               "machine": {"platform": platform.platform(), "python": platform.python_version()},
               "sizes": []}
     print("| dofs | SuperLU first / kept order | PARDISO first / kept analysis | solves |")

@@ -42,13 +42,28 @@ import numpy as np
 import yaml
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))  # run as a script: `benchmarks` importable
-from benchmarks.routes import trimmed  # noqa: E402
+from asperity.scene.files import read_scene  # noqa: E402
 from benchmarks.scenes import OUT, provenance, run_snakemake  # noqa: E402
 from benchmarks.workflow_copy import REPO, copy_workflow  # noqa: E402
 
 SCENE = "deterministic_reference"
 #: what ``--parts`` picks from: the whole scene, the boundary elements alone, each route alone
 PARTS = ("scene", "reference", "routes")
+
+
+def trimmed(definition: dict, routes: list[str] | None = None,
+            separations: int | None = None) -> dict:
+    """A reference scene with only `routes` of its routes and `separations` separations of
+    its reference (None: as it is), for a small case."""
+    if routes is not None:
+        unknown = set(routes) - set(definition["routes"])
+        if unknown:
+            raise SystemExit(f"no route {', '.join(sorted(unknown))} in the scene "
+                             f"(one of {', '.join(definition['routes'])})")
+        definition["routes"] = {k: v for k, v in definition["routes"].items() if k in routes}
+    if separations is not None:
+        definition["reference"]["separations"]["count"] = separations
+    return definition
 
 
 def command(scene: str, preset: str, cores: int, target: str | None) -> list[str]:
@@ -96,7 +111,8 @@ def measure(scene: str, preset: str, cores: int, timeout: float | None, parts=PA
     the scene `trimmed` to them in each copy."""
     path = REPO / "config" / "scenes" / f"{scene}.yaml"
     small = routes is not None or separations is not None
-    definition = yaml.safe_load(path.read_text())
+    definition = read_scene(path)  # whole: a trimmed copy must not start from another scene
+    definition.pop("like", None)
     if small:
         definition = trimmed(definition, routes, separations)
     targets = {"whole scene": None} if "scene" in parts else {}

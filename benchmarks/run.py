@@ -230,20 +230,12 @@ STUDIES = {
                           "numbers and CPU time of the plane-strain scenes at every preset",
                           ["--presets", "draft", "--scenes", "truncated_v", "--unloading",
                            "--out", f"{_S}/plane-strain.json"]),
-    # a route alone: the whole reference scene, boundary elements and comparison, is the
-    # short `routes` case's
+    # a route alone: the whole reference scene, boundary elements and comparison, is what
+    # the workflow's test of deterministic_reference runs
     "reference": Study("reference_cost.py", ["--accuracy", "draft", "--cores", _CORES],
                        "the deterministic_reference scene: wall time, the routes' errors",
                        ["--scene", "afm_reference", "--accuracy", "draft", "--cores", _CORES,
                         "--parts", "routes", "--routes", "peaks", "--out", f"{_S}/reference.json"]),
-    "routes": Study("routes.py", [], "every route's error on every map against the boundary elements",
-                    ["--maps", "di-3", "--routes", "peaks", "--separations", "4", "--cores", _CORES,
-                     "--out", f"{_S}/routes.json"]),
-    "scale": Study("scale_study.py", [], "summits and the routes' error against the lateral scale",
-                   ["--maps", "di-3", "--scales", "8", "--out", f"{_S}/scale-study.json"]),
-    "j2-sphere": Study("j2_sphere.py", [], "the J2 sphere beside Kogut and Etsion's fits and the "
-                       "hardness-limited boundary elements",
-                       ["--accuracy", "draft", "--cells", "64", "--out", f"{_S}/j2-sphere.json"]),
     "sliding": Study("sliding_convergence.py", [], "the sliding study at draft, standard and fine",
                      ["--presets", "draft", "--until", "0.01", "--timeout", "300",
                       "--out", f"{_S}/sliding", "--results", f"{_S}/sliding-convergence.json"]),

@@ -46,6 +46,9 @@ VERSIONS: dict[str, int] = {
     "accuracy_hertz": 1,
     "accuracy_scenes": 1,
     "adhesion_curves": 1,
+    "route_errors": 1,
+    "scale_study": 1,
+    "j2_sphere": 1,
     # the deterministic reference (workflow/rules/reference.smk)
     "reference": 3,
     "reference_comparison": 4,

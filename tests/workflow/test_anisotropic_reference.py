@@ -76,7 +76,7 @@ def test_the_anisotropic_route_is_closer_than_the_isotropic_one(run):
     separations where both are defined (at the lightest load, A/A0 = 0.13 %, the two
     pressure errors are of equal size and opposite sign, +45 and -43 %), and within the
     envelope measured at draft, 50 % in pressure and 40 % in area (45 % and 31 % measured
-    against the perimeter-corrected area; the table of the docs, benchmarks/routes.py,
+    against the perimeter-corrected area; the table of the docs, rule route_errors,
     holds the numbers)."""
     cmp_ = result(run, SCENE, "comparison.nc")
     a = cmp_["reference_area_ratio"].values

@@ -6,7 +6,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from asperity.io.netcdf import missing_attributes
+from asperity.io.netcdf import missing_attributes, read_dataset
 
 from .conftest import planned_jobs, result, run_scenes, snakemake
 
@@ -104,6 +104,34 @@ def test_area_load_slope_and_hardness(run):
     a_plastic = np.interp(np.log(p[window.values]), np.log(pl["nominal_pressure"].values[::-1]),
                           pl["contact_area_ratio"].values[::-1])
     assert np.all(a_plastic > el["contact_area_ratio"].values[window.values])
+
+
+def test_the_route_errors_study_tabulates_the_comparison(run):
+    """Rule route_errors on a table of this scene: the comparison's own errors per route and
+    separation (nothing computed again), the band's ranges over the separations whose
+    boundary-element area lies in 0.1-10 % and are resolved, the goal by the route's
+    reference, and a figure."""
+    from asperity.studies.route_errors import GOALS
+
+    study = "route_errors={'accuracy': 'draft', 'tables': {'one': ['%s']}}" % SCENE
+    snakemake(run, "results/studies/route_errors_one.nc", "--config", "accuracy=draft", study)
+    ds = read_dataset(run / "results" / "studies" / "route_errors_one.nc").sel(scene=SCENE)
+    assert missing_attributes(ds) == []
+    cmp_ = result(run, SCENE, "comparison.nc")
+    for route in cmp_["route"].values:
+        for name in ("pressure_error", "area_error"):
+            np.testing.assert_array_equal(ds[name].sel(route=route).values, cmp_[name].sel(route=route).values)
+        band = ((cmp_["reference_area_ratio"] >= 1e-3) & (cmp_["reference_area_ratio"] <= 0.1)
+                & cmp_["reference_resolved"]).values
+        worst = np.nanmax(np.abs(np.r_[cmp_["pressure_error"].sel(route=route).values[band],
+                                        cmp_["area_error"].sel(route=route).values[band]]))
+        assert float(ds["largest_error"].sel(route=route)) == worst
+        assert int(ds["band_steps"]) == band.sum() >= 3
+        limit = str(cmp_["reference_limit"].sel(route=route).values)
+        assert float(ds["goal"].sel(route=route)) == GOALS[limit]
+    np.testing.assert_allclose(ds["separation_over_sigma"].values,
+                               cmp_["separation"].values / result(run, SCENE, "reference.nc").attrs["sigma"])
+    assert (run / "results" / "studies" / "route_errors_one.png").read_bytes()[:4] == b"\x89PNG"
 
 
 def test_reference_is_cached_apart_from_the_routes(run):

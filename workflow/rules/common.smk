@@ -8,6 +8,7 @@ import re
 import sys
 import time
 from pathlib import Path
+from types import SimpleNamespace
 
 import jsonschema
 from snakemake.exceptions import WorkflowError
@@ -77,6 +78,7 @@ def _canonical(obj):
 #: the schema of config and scenes, by absolute path (scenes are also validated when a
 #: target asks for one, after parsing, when the include directory is no longer known)
 SCHEMA = str(Path(workflow.basedir) / "config" / "schema.yaml")
+
 
 def _read_scene(name, missing):
     """The scene `name` (asperity.scene.files.read_scene: YAML, and the scene it is `like`);
@@ -597,3 +599,41 @@ def route_inputs(wildcards):
     if SCENES[wildcards.scene]["route"].get("law") == "fe":
         inputs["asperities"] = f"{out}/asperities.nc"
     return inputs
+
+
+# --- studies (studies.smk) -------------------------------------------------------------
+
+
+def route_error_files(wildcards):
+    """The comparison, reference and surface files of each scene of table `table` of config
+    `route_errors`, at its preset: the scene's own folder at the run's `accuracy`, else
+    ``<scene>@<preset>``."""
+    table = config["route_errors"]["tables"].get(wildcards.table)
+    if table is None:
+        raise WorkflowError(
+            f"config/config.yaml: key route_errors.tables: no table {wildcards.table!r} "
+            f"(one of {', '.join(config['route_errors']['tables'])})"
+        )
+    preset = config["route_errors"]["accuracy"]
+    at = "" if preset == config["accuracy"] else f"@{preset}"
+    return {
+        f"{scene}__{kind}": f"{RESULTS}/{scene}{at}/{kind}.nc"
+        for scene in table
+        for kind in ("comparison", "reference", "surface")
+    }
+
+
+def scale_study_files(wildcards):
+    """The map file of each scene of config `scale_study` (or its generated map)."""
+    return {
+        scene: surface_inputs(SimpleNamespace(scene=scene))["data"]
+        for scene in config["scale_study"]["scenes"]
+    }
+
+
+def scale_study_scenes(wildcards):
+    """The sections of each scene of config `scale_study` the study reads."""
+    return {
+        scene: {part: SCENES[scene].get(part) for part in ("surface", "units", "material")}
+        for scene in config["scale_study"]["scenes"]
+    }

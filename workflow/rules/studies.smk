@@ -1,5 +1,6 @@
-# The report's single-asperity studies that are no scene (asperity.stages.studies): each a
-# target of its own, not in `rule all`.
+# The studies that are no scene (asperity.stages.studies): the report's single-asperity
+# studies, and tables gathered over several scenes; each a target of its own, not in
+# `rule all`.
 
 
 rule adhesion_curves:
@@ -24,3 +25,81 @@ rule adhesion_curves:
         study=config["adhesion_curves"],
     script:
         "../scripts/adhesion_curves.py"
+
+
+rule route_errors:
+    """Every route's error against the boundary elements on each map of table `table` of
+    config `route_errors` (issue #48), from the reference scenes' comparisons.  Not in `rule
+    all` (minutes at draft): snakemake --cores 2 results/studies/route_errors_maps.nc
+    """
+    input:
+        unpack(route_error_files),
+    output:
+        data=f"{RESULTS}/studies/route_errors_{{table}}.nc",
+        figure=report(
+            f"{RESULTS}/studies/route_errors_{{table}}.png",
+            category="studies",
+            caption="../report/route_errors.rst",
+            labels={"study": "routes against the boundary elements", "figure": "{table}"},
+        ),
+    log:
+        f"{RESULTS}/studies/logs/route_errors_{{table}}.log",
+    conda:
+        ENV
+    params:
+        version=code_version("route_errors"),
+        study=config["route_errors"],
+    script:
+        "../scripts/route_errors.py"
+
+
+rule scale_study:
+    """The lateral scale of the asperities against what it changes (issue #48, item 1):
+    summits, the boundary elements' resolution and the routes' errors at each scale of
+    config `scale_study`, on each of its scenes' maps.  Not in `rule all` (minutes):
+    snakemake --cores 2 results/studies/scale_study.nc
+    """
+    input:
+        unpack(scale_study_files),
+    output:
+        data=f"{RESULTS}/studies/scale_study.nc",
+        figure=report(
+            f"{RESULTS}/studies/scale_study.png",
+            category="studies",
+            caption="../report/scale_study.rst",
+            labels={"study": "lateral scale of the asperities", "figure": "scale study"},
+        ),
+    log:
+        f"{RESULTS}/studies/logs/scale_study.log",
+    conda:
+        ENV
+    params:
+        version=code_version("scale_study"),
+        study=config["scale_study"],
+        scenes=scale_study_scenes,
+    script:
+        "../scripts/scale_study.py"
+
+
+rule j2_sphere:
+    """The J2 sphere of the reference scenes' aluminum beside Kogut and Etsion's fits and
+    the boundary elements limited by the hardness, at each preset of config `j2_sphere`.
+    Not in `rule all` (minutes): snakemake --cores 2 results/studies/j2_sphere.nc
+    """
+    output:
+        data=f"{RESULTS}/studies/j2_sphere.nc",
+        figure=report(
+            f"{RESULTS}/studies/j2_sphere.png",
+            category="studies",
+            caption="../report/j2_sphere.rst",
+            labels={"study": "J2 sphere", "figure": "against its models"},
+        ),
+    log:
+        f"{RESULTS}/studies/logs/j2_sphere.log",
+    conda:
+        ENV
+    params:
+        version=code_version("j2_sphere"),
+        study=config["j2_sphere"],
+    script:
+        "../scripts/j2_sphere.py"

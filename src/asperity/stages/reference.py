@@ -161,6 +161,18 @@ def _interp_log(x_new: np.ndarray, x: np.ndarray, y: np.ndarray) -> np.ndarray:
     return np.where(np.asarray(x_new) > 0, out, np.nan)
 
 
+def errors_against(p, route_p, route_a, p_ref, a_ref) -> tuple[np.ndarray, np.ndarray]:
+    """A route's pressure error at equal separation, p / p_ref - 1 (`p` the route's pressure at
+    the reference's separations), and its area error at equal pressure, A(p_ref) / a_ref - 1
+    (the route's curve `route_p`, `route_a` interpolated in log-log); NaN where the
+    reference has no pressure or area."""
+    with np.errstate(divide="ignore", invalid="ignore"):
+        pressure = np.where(p_ref > 0, np.asarray(p) / p_ref - 1, np.nan)
+        area = np.where(a_ref > 0, _interp_log(p_ref, np.asarray(route_p), np.asarray(route_a)) / a_ref - 1,
+                        np.nan)
+    return pressure, area
+
+
 def _interp_semilog(x_new: np.ndarray, x: np.ndarray, y: np.ndarray) -> np.ndarray:
     """y(x_new) linear in log y (exact for the exponential tails of p(h)), NaN outside x;
     zeros stay (near) zero."""
@@ -238,12 +250,11 @@ def comparison_dataset(reference: xr.Dataset, interfaces: Mapping[str, xr.Datase
         hs = ds["separation"].values
         p, a, n = (_interp_semilog(h, hs, ds[k].values)
                    for k in ("nominal_pressure", "contact_area_ratio", "contact_count"))
+        vals["nominal_pressure"][i] = p
+        vals["contact_area_ratio"][i] = a
+        vals["pressure_error"][i], vals["area_error"][i] = errors_against(
+            p, ds["nominal_pressure"].values, ds["contact_area_ratio"].values, p_ref, a_ref)
         with np.errstate(divide="ignore", invalid="ignore"):
-            vals["nominal_pressure"][i] = p
-            vals["contact_area_ratio"][i] = a
-            vals["pressure_error"][i] = np.where(p_ref > 0, p / p_ref - 1, np.nan)
-            a_at_p = _interp_log(p_ref, ds["nominal_pressure"].values, ds["contact_area_ratio"].values)
-            vals["area_error"][i] = np.where(a_ref > 0, a_at_p / a_ref - 1, np.nan)
             vals["contact_count_ratio"][i] = np.where(el["contact_count"].values > 0,
                                                       n / el["contact_count"].values, np.nan)
     p_ref = el["nominal_pressure"].values

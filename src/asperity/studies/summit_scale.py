@@ -34,7 +34,7 @@ from asperity.surface.missing import defined_heights, harmonic_fill
 from asperity.surface.summits import map_summits
 from asperity.units import attrs
 
-__all__ = ["lowpassed_moments", "nayak_summits", "summit_scale_study", "summit_scale_figure"]
+__all__ = ["lowpassed_moments", "nayak_summits", "scale_study_figure", "summit_scale_study", "summit_scale_figure"]
 
 
 def lowpassed_moments(z, dx: float, dy: float, scale: float, *, defined=None) -> dict[str, float]:
@@ -132,5 +132,29 @@ def summit_scale_figure(ds: xr.Dataset):
         ax.set_xlabel(r"lateral scale $\lambda_s$ (m)")
         ax.set_ylabel(label)
         ax.grid(True, which="both", lw=0.3)
+    axes[0].legend(fontsize=8)
+    return fig
+
+
+def scale_study_figure(ds: xr.Dataset):
+    """The scale study of `asperity.stages.studies.scale_study_dataset`: summit density, mean
+    summit curvature and the interacting route's (``shape`` law) largest |pressure error|
+    where the boundary elements resolve their patches (10 cells), against the scale in grid
+    steps (the pixel's peaks drawn at 1), one line per map."""
+    import asperity.plots  # noqa: F401  (the package's non-interactive backend)
+    import matplotlib.pyplot as plt
+
+    fig, axes = plt.subplots(1, 3, figsize=(13, 3.8), layout="constrained")
+    steps = np.maximum(ds["factor"].values, 1.0)
+    for scene in ds["scene"].values:
+        d = ds.sel(scene=scene)
+        axes[0].loglog(steps, d["summit_density"].values * 1e-12, "o-", label=str(scene))
+        axes[1].loglog(steps, d["mean_curvature"].values * 1e-6, "o-", label=str(scene))
+        error = abs(d["pressure_error"].sel(route="interacting_shape")).where(d["cells_per_patch"] >= 10)
+        axes[2].semilogx(steps, 100 * error.max("separation").values, "o-", label=str(scene))
+    xlabel = "lambda_s / grid step (the pixel at 1)"
+    axes[0].set(xlabel=xlabel, ylabel="summits per um$^2$")
+    axes[1].set(xlabel=xlabel, ylabel="mean summit curvature (1/um)")
+    axes[2].set(xlabel=xlabel, ylabel="interacting (shape): largest |p error| (%)")
     axes[0].legend(fontsize=8)
     return fig

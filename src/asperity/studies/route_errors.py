@@ -1,0 +1,146 @@
+"""Every route's error against the boundary elements, map by map: the table of issue #48.
+
+:func:`route_errors` gathers the comparisons of several reference scenes (each a map:
+`deterministic_reference`'s synthetic Gaussian map, `afm_reference` and its copies on
+the measured maps, `anisotropic_reference`; their `comparison.nc`, `reference.nc` and
+`surface.nc`) into one dataset over (scene, route, step):
+
+* per separation (step): h / sigma of the prepared map, the elastic boundary elements'
+  contact area ratio, their cells per contact patch and whether they resolve their
+  patches (at least `asperity.stages.reference` 's 10 cells), each route's pressure
+  error at equal separation (the mean gap) and area error at equal pressure, and the
+  route closest to the boundary elements;
+* per scene and route, over the band where the boundary elements' area ratio lies in
+  [0.1 %, 10 %] and they resolve their patches: the ranges of both errors, the largest
+  |error|, where it is, and the goal: an elastic route within 10 % of the elastic
+  boundary elements, a route of J2 asperities within 20 % of those limited by the
+  hardness (`GOALS`, by the comparison's ``reference_limit``).
+
+The errors are the comparison's own (`asperity.stages.reference.comparison_dataset`):
+nothing is computed again, so the table says what the scenes say.
+:func:`route_errors_figure` draws both errors against the boundary elements' area ratio,
+one panel per map, with the band and the goal.
+"""
+
+from __future__ import annotations
+
+from typing import Mapping
+
+import numpy as np
+import xarray as xr
+
+from asperity.units import attrs
+
+__all__ = ["BAND", "GOALS", "route_errors", "route_errors_figure"]
+
+#: the contact area ratios over which the goals hold (issue #48)
+BAND = (1e-3, 0.1)
+#: the goal of a route by the boundary elements it is held against: elastic, or limited by
+#: the hardness (a route of J2 asperities)
+GOALS = {"elastic": 0.10, "hardness": 0.20}
+
+
+def _step_frame(comparison: xr.Dataset, reference: xr.Dataset, surface: xr.Dataset,
+                routes: list[str]) -> xr.Dataset:
+    """One scene's comparison on the common route axis `routes` (NaN where the scene lacks
+    a route)."""
+    sigma = float(reference.attrs["sigma"])
+    cmp_ = comparison.reindex(route=routes)
+    limit = cmp_["reference_limit"].astype(object).where(cmp_["reference_limit"].notnull(), "")
+    return xr.Dataset({
+        "separation_over_sigma": ("step", comparison["separation"].values / sigma),
+        "reference_area_ratio": ("step", comparison["reference_area_ratio"].values),
+        "reference_pressure": ("step", comparison["reference_pressure"].values),
+        "cells_per_patch": ("step", reference["cells_per_patch"].sel(limit="elastic").values),
+        "reference_resolved": ("step", comparison["reference_resolved"].values.astype(bool)),
+        "pressure_error": (("route", "step"), cmp_["pressure_error"].values),
+        "area_error": (("route", "step"), cmp_["area_error"].values),
+        "recommended_route": ("step", comparison["recommended_route"].values.astype(str)),
+        "reference_limit": ("route", np.asarray(limit.values, dtype=str)),
+        "sigma": sigma,
+        "scale": float(surface.attrs.get("scale") or 0.0),
+        "scale_rule": str(surface.attrs.get("scale_rule", "")),
+    }, coords={"route": routes, "step": np.arange(comparison.sizes["separation"])})
+
+
+def _band(ds: xr.Dataset) -> xr.Dataset:
+    """Per scene and route, the errors over the band (module text)."""
+    a = ds["reference_area_ratio"]
+    inside = (a >= BAND[0]) & (a <= BAND[1]) & ds["reference_resolved"]
+    out = {"band_steps": inside.sum("step")}
+    worst = None
+    for name in ("pressure_error", "area_error"):
+        e = ds[name].where(inside)
+        out[f"{name}_low"], out[f"{name}_high"] = e.min("step"), e.max("step")
+        worst = abs(e) if worst is None else np.fmax(worst, abs(e))
+    largest = worst.max("step")
+    at = worst.fillna(-1.0).argmax("step")
+    where = ds["reference_area_ratio"].isel(step=at).where(largest.notnull())
+    goal = xr.apply_ufunc(np.vectorize(lambda k: GOALS.get(k, np.nan), otypes=[float]),
+                          ds["reference_limit"])
+    return xr.Dataset({**out, "largest_error": largest, "largest_error_area_ratio": where,
+                       "goal": goal.where(ds["reference_limit"] != "")})
+
+
+def route_errors(comparisons: Mapping[str, tuple[xr.Dataset, xr.Dataset, xr.Dataset]]) -> xr.Dataset:
+    """The table of every route on every map (module text): `comparisons` maps a scene name
+    to its (comparison.nc, reference.nc, surface.nc)."""
+    routes = list(dict.fromkeys(r for c, _, _ in comparisons.values() for r in c["route"].values.astype(str)))
+    steps = max(c.sizes["separation"] for c, _, _ in comparisons.values())
+    frames = [_step_frame(*parts, routes).reindex(step=np.arange(steps)) for parts in comparisons.values()]
+    ds = xr.concat(frames, dim=xr.DataArray(list(comparisons), dims="scene", name="scene"))
+    ds["reference_resolved"] = ds["reference_resolved"].fillna(False).astype(bool)
+    ds = ds.merge(_band(ds))
+    pct, one = "1", "1"
+    ds["separation_over_sigma"].attrs = attrs(one, "separation of the flat over the rms height of the prepared map")
+    ds["reference_area_ratio"].attrs = attrs(one, "real contact area ratio of the elastic boundary elements")
+    ds["reference_pressure"].attrs = attrs("Pa", "nominal pressure of the elastic boundary elements")
+    ds["cells_per_patch"].attrs = attrs(one, "mean grid cells per contact patch of the elastic boundary elements")
+    ds["reference_resolved"].attrs = attrs(one, "the boundary elements resolve their contact patches (at least 10 cells)")
+    ds["pressure_error"].attrs = attrs(pct, "route's nominal pressure at equal separation over the boundary elements', less 1")
+    ds["area_error"].attrs = attrs(pct, "route's contact area ratio at equal pressure over the boundary elements', less 1")
+    ds["recommended_route"].attrs = attrs("", "route closest to the boundary elements")
+    ds["reference_limit"].attrs = attrs("", "boundary elements the route is held against: elastic, or limited by the hardness")
+    ds["sigma"].attrs = attrs("m", "rms height of the prepared map")
+    ds["scale"].attrs = attrs("m", "lateral scale of the asperities (0: the pixel)")
+    ds["scale_rule"].attrs = attrs("", "how the lateral scale was chosen")
+    ds["band_steps"].attrs = attrs(one, f"separations in the band (area ratio {BAND[0]:g}-{BAND[1]:g}, resolved)")
+    for name in ("pressure_error", "area_error"):
+        ds[f"{name}_low"].attrs = attrs(pct, f"least {name.replace('_', ' ')} in the band")
+        ds[f"{name}_high"].attrs = attrs(pct, f"largest {name.replace('_', ' ')} in the band")
+    ds["largest_error"].attrs = attrs(pct, "largest |pressure or area error| in the band")
+    ds["largest_error_area_ratio"].attrs = attrs(one, "boundary elements' area ratio where the largest error is")
+    ds["goal"].attrs = attrs(pct, "issue #48's goal: largest |error| in the band at most this")
+    ds["scene"].attrs = attrs("", "reference scene (its map)")
+    ds["route"].attrs = attrs("", "statistical route of the scene")
+    ds["step"].attrs = attrs("", "separation of the scene, from the lightest load")
+    ds.attrs.update(band_low=BAND[0], band_high=BAND[1])
+    return ds
+
+
+def route_errors_figure(ds: xr.Dataset):
+    """Pressure (solid) and area (dashed) error of every route against the boundary
+    elements' contact area ratio, one panel per scene, the band shaded and the goals dotted."""
+    import matplotlib.pyplot as plt
+
+    n = ds.sizes["scene"]
+    fig, axes = plt.subplots(1, n, figsize=(4.2 * n, 3.8), sharey=True, squeeze=False,
+                             layout="constrained")
+    colors = {r: f"C{i}" for i, r in enumerate(ds["route"].values)}
+    for ax, scene in zip(axes[0], ds["scene"].values):
+        d = ds.sel(scene=scene)
+        a = d["reference_area_ratio"].values
+        for route in d["route"].values:
+            for name, style in (("pressure_error", "-"), ("area_error", "--")):
+                e = d[name].sel(route=route).values
+                if np.isfinite(e).any():
+                    ax.semilogx(a, 100 * e, style, color=colors[route],
+                                label=route if name == "pressure_error" else None)
+        ax.axvspan(*BAND, color="0.92", zorder=0)
+        for goal in set(GOALS.values()):
+            ax.axhline(100 * goal, color="0.5", ls=":", lw=0.8)
+            ax.axhline(-100 * goal, color="0.5", ls=":", lw=0.8)
+        ax.set(title=str(scene), xlabel="boundary elements' contact area ratio", ylim=(-100, 150))
+    axes[0][0].set_ylabel("error (%): pressure solid, area dashed")
+    axes[0][-1].legend(fontsize=7, loc="upper right")
+    return fig
