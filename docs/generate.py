@@ -343,8 +343,9 @@ def _band_summary(ds) -> str:
     """Per map and route: the range of the pressure and area errors over the band of the
     study (`asperity.studies.route_errors.BAND`, where the boundary elements resolve their
     patches), and the goal: met, or by how many points and where the largest error misses it."""
-    text = ["\n| map | route | separations in the band | pressure error (%) | area error (%) | goal |\n"
-            "|---|---|---|---|---|---|\n"]
+    text = ["\n| map | route | separations in the band | pressure error (%) | area error (%) | goal "
+            "| where largest: contacts / BEM patches | where largest: load through merged spots |\n"
+            "|---|---|---|---|---|---|---|---|\n"]
     for scene in ds["scene"].values:
         for route in ds["route"].values:
             c = ds.sel(scene=scene, route=route)
@@ -354,8 +355,28 @@ def _band_summary(ds) -> str:
             for key in ("pressure_error", "area_error"):
                 lo, hi = float(c[f"{key}_low"]), float(c[f"{key}_high"])
                 cells.append(f"{_pct(lo)} to {_pct(hi)}" if np.isfinite(lo) else "-")
+            count = float(c["contact_count_ratio_at_largest_error"])
+            merged = float(c["merged_load_fraction_at_largest_error"])
             text.append(f"| `{scene}` | {route} | {int(c['band_steps'])} | {cells[0]} | {cells[1]} | "
-                        f"{_goal(c)} |\n")
+                        f"{_goal(c)} | {'-' if not np.isfinite(count) else f'{count:.2g}'} | "
+                        f"{'-' if not np.isfinite(merged) else f'{100 * merged:.0f} %'} |\n")
+    return "".join(text)
+
+
+def _why_table(ds) -> str:
+    """Per map, the numbers that explain the routes' misses (`asperity.studies.route_errors`)."""
+    text = ["\nWhat explains the misses, per map: the Nayak routes assume Gaussian heights "
+            "(skewness 0, kurtosis 3); an axisymmetric asperity is too soft and too wide for an "
+            "elongated summit (principal curvatures in a ratio below 1/4, ridges included); a band "
+            "spanning a fraction of a sigma is a plateau's edge, not summits; and the boundary "
+            "elements are a reference to within their resolution (cells per patch).\n\n"
+            "| map | skewness | kurtosis | elongated summits | band width (sigma) | fewest cells / patch in the band |\n"
+            "|---|---|---|---|---|---|\n"]
+    for scene in ds["scene"].values:
+        c = ds.sel(scene=scene)
+        text.append(f"| `{scene}` | {float(c['skewness']):+.2f} | {float(c['kurtosis']):.2f} | "
+                    f"{100 * float(c['elongated_share']):.0f} % | {float(c['band_width']):.2f} | "
+                    f"{float(c['least_cells_in_band']):.3g} |\n")
     return "".join(text)
 
 
@@ -376,7 +397,7 @@ def _route_errors(name: str) -> str:
     ds = _study(name)
     if ds is None:
         return ""
-    return _band_summary(ds) + _routes_table(ds) + "\n" + _study_provenance(ds, name)
+    return _band_summary(ds) + _why_table(ds) + _routes_table(ds) + "\n" + _study_provenance(ds, name)
 
 
 def _pct(value, signed: bool = True) -> str:

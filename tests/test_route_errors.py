@@ -19,12 +19,20 @@ def _scene(routes, limits, area, pressure_error, area_error, resolved, sigma=2.0
         "reference_pressure": ("separation", 1e6 * np.asarray(area, float)),
         "reference_resolved": ("separation", np.asarray(resolved, bool)),
         "recommended_route": ("separation", np.array([routes[0]] * len(area), dtype=object)),
+        "contact_count_ratio": (("route", "separation"), np.arange(len(routes) * len(area), dtype=float)
+                                .reshape(len(routes), len(area))),
     }, coords={"route": routes, "separation": h})
     reference = xr.Dataset({"cells_per_patch": (("limit", "separation"), np.full((2, len(area)), 20.0))},
                            coords={"limit": ["elastic", "hardness"], "separation": h},
                            attrs={"sigma": sigma})
-    surface = xr.Dataset(attrs={"scale": 8e-6})
-    return comparison, reference, surface
+    # four peaks: curvature ratios 1, 1/2, 1/5 (elongated) and a ridge (kappa_2 < 0: elongated)
+    zxx, zyy, zxy = np.array([-2.0, -2.0, -5.0, -1.0]), np.array([-2.0, -1.0, -1.0, 1.0]), np.zeros(4)
+    surface = xr.Dataset({"skewness": 0.5, "kurtosis": 4.0, "z_xx": ("peak", zxx), "z_yy": ("peak", zyy),
+                          "z_xy": ("peak", zxy)}, attrs={"scale": 8e-6})
+    # the first route merges spots: a tenth of its load per step of the comparison
+    interface = xr.Dataset({"merged_load_fraction": ("separation", 0.1 * np.arange(len(area))[::-1])},
+                           coords={"separation": np.sort(h)})
+    return comparison, reference, surface, {routes[0]: interface}
 
 
 def test_band_ranges_largest_error_and_goal():
@@ -57,5 +65,13 @@ def test_band_ranges_largest_error_and_goal():
     assert np.isnan(ds.sel(scene="b")["separation_over_sigma"][4])
     assert ds.attrs["band_low"] == BAND[0] and ds.attrs["band_high"] == BAND[1]
     np.testing.assert_allclose(ds.sel(scene="a")["separation_over_sigma"], [4, 3, 2, 1, 0])
+    # what explains the misses
+    assert float(ds.sel(scene="a")["elongated_share"]) == pytest.approx(0.5)  # two of four
+    assert float(ds.sel(scene="a")["skewness"]) == 0.5 and float(ds.sel(scene="a")["kurtosis"]) == 4.0
+    assert float(ds.sel(scene="a")["band_width"]) == pytest.approx(1.0)          # h/sigma 3 and 2
+    assert float(ds.sel(scene="a")["least_cells_in_band"]) == 20.0
+    assert float(peaks["contact_count_ratio_at_largest_error"]) == 2.0           # row 0, step 2
+    assert float(peaks["merged_load_fraction_at_largest_error"]) == pytest.approx(0.2)
+    assert np.isnan(ds.sel(scene="a", route="j2")["merged_load_fraction_at_largest_error"])
     for name in ds.variables:
         assert "units" in ds[name].attrs and "long_name" in ds[name].attrs, name

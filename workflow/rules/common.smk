@@ -606,8 +606,8 @@ def route_inputs(wildcards):
 
 def route_error_files(wildcards):
     """The comparison, reference and surface files of each scene of table `table` of config
-    `route_errors`, at its preset: the scene's own folder at the run's `accuracy`, else
-    ``<scene>@<preset>``."""
+    `route_errors`, and the interface of each of its routes, at the table's preset: the
+    scene's own folder at the run's `accuracy`, else ``<scene>@<preset>``."""
     table = config["route_errors"]["tables"].get(wildcards.table)
     if table is None:
         raise WorkflowError(
@@ -616,11 +616,17 @@ def route_error_files(wildcards):
         )
     preset = config["route_errors"]["accuracy"]
     at = "" if preset == config["accuracy"] else f"@{preset}"
-    return {
+    files = {
         f"{scene}__{kind}": f"{RESULTS}/{scene}{at}/{kind}.nc"
         for scene in table
         for kind in ("comparison", "reference", "surface")
     }
+    files |= {
+        f"{scene}__route__{route}": f"{RESULTS}/{scene}{ROUTE_SEPARATOR}{route}{at}/interface.nc"
+        for scene in table
+        for route in SCENES[scene]["routes"]
+    }
+    return files
 
 
 def scale_study_files(wildcards):

@@ -30,12 +30,13 @@ def adhesion_curves_figure(ds: xr.Dataset):
     return adhesion_plots.curves_figure(ds)
 
 
-def route_errors_dataset(files: Mapping[str, Mapping[str, str]]) -> xr.Dataset:
+def route_errors_dataset(files: Mapping[str, Mapping[str, Any]]) -> xr.Dataset:
     """Every route's error against the boundary elements, per reference scene
     (`asperity.studies.route_errors`); `files`: scene -> its ``comparison``, ``reference``
-    and ``surface`` files."""
+    and ``surface`` files, and ``routes``: route -> its interface file."""
     return route_errors.route_errors({
-        scene: tuple(read_dataset(paths[k]) for k in ("comparison", "reference", "surface"))
+        scene: (*(read_dataset(paths[k]) for k in ("comparison", "reference", "surface")),
+                {route: read_dataset(path) for route, path in paths.get("routes", {}).items()})
         for scene, paths in files.items()})
 
 

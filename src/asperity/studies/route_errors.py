@@ -16,6 +16,15 @@ the measured maps, `anisotropic_reference`; their `comparison.nc`, `reference.nc
   boundary elements, a route of J2 asperities within 20 % of those limited by the
   hardness (`GOALS`, by the comparison's ``reference_limit``).
 
+Beside them, what explains a miss, by numbers: per map, the skewness and kurtosis of the
+prepared heights (the Nayak routes assume 0 and 3), the share of its summits elongated
+beyond `ELONGATED` (an axisymmetric asperity is too soft and too wide for them), the span
+of the band in sigma (a plateau puts all of it within a fraction of a sigma) and the
+fewest boundary-element cells per patch in it (the reference's own resolution); per
+route, where its error is largest, its contacts over the boundary elements' patches and
+the share of its load carried through merged spots (where the interacting route
+approximates the contact of several summits as theirs).
+
 The errors are the comparison's own (`asperity.stages.reference.comparison_dataset`):
 nothing is computed again, so the table says what the scenes say.
 :func:`route_errors_figure` draws both errors against the boundary elements' area ratio,
@@ -29,9 +38,10 @@ from typing import Mapping
 import numpy as np
 import xarray as xr
 
+from asperity.peaks.anisotropic import principal_curvatures
 from asperity.units import attrs
 
-__all__ = ["BAND", "GOALS", "route_errors", "route_errors_figure"]
+__all__ = ["BAND", "ELONGATED", "GOALS", "route_errors", "route_errors_figure"]
 
 #: the contact area ratios over which the goals hold (issue #48)
 BAND = (1e-3, 0.1)
@@ -40,14 +50,51 @@ BAND = (1e-3, 0.1)
 GOALS = {"elastic": 0.10, "hardness": 0.20}
 
 
+#: a summit whose principal curvatures are in a ratio below this is elongated: its Hertz
+#: contact (Johnson, Contact Mechanics 4.2) carries 4 % more force on 2.4 % less area than
+#: the sphere of its Gaussian curvature at the same interference at 1/4, 16 % and 8 % at 1/16
+#: (`asperity.references.hertz.elliptic_hertz`)
+ELONGATED = 0.25
+
+
+def _elongated_share(surface: xr.Dataset) -> float:
+    """The share of the map's peaks with kappa_2 / kappa_1 < `ELONGATED` (from their second
+    derivatives; of the peaks with kappa_1 > 0, a ridge's kappa_2 <= 0 counting as elongated)."""
+    if "z_xx" not in surface:
+        return float("nan")
+    k1, k2, _ = principal_curvatures(-surface["z_xx"].values, -surface["z_xy"].values, -surface["z_yy"].values)
+    summit = k1 > 0
+    return float(np.mean(k2[summit] / k1[summit] < ELONGATED)) if summit.any() else float("nan")
+
+
+def _merged_load(routes: Mapping[str, xr.Dataset], names: list[str], h: np.ndarray) -> np.ndarray:
+    """(route, step): the share of a route's load carried through merged spots, at the
+    comparison's separations `h` (NaN for a route that does not merge spots)."""
+    out = np.full((len(names), h.size), np.nan)
+    for i, name in enumerate(names):
+        ds = routes.get(name)
+        if ds is not None and "merged_load_fraction" in ds:
+            if "branch" in ds.dims:
+                ds = ds.isel(branch=0)
+            out[i] = np.interp(h, ds["separation"].values, ds["merged_load_fraction"].values,
+                               left=np.nan, right=np.nan)
+    return out
+
+
 def _step_frame(comparison: xr.Dataset, reference: xr.Dataset, surface: xr.Dataset,
-                routes: list[str]) -> xr.Dataset:
+                interfaces: Mapping[str, xr.Dataset], routes: list[str]) -> xr.Dataset:
     """One scene's comparison on the common route axis `routes` (NaN where the scene lacks
-    a route)."""
+    a route), with what explains its misses."""
     sigma = float(reference.attrs["sigma"])
     cmp_ = comparison.reindex(route=routes)
     limit = cmp_["reference_limit"].astype(object).where(cmp_["reference_limit"].notnull(), "")
+    h = comparison["separation"].values
     return xr.Dataset({
+        "contact_count_ratio": (("route", "step"), cmp_["contact_count_ratio"].values),
+        "merged_load_fraction": (("route", "step"), _merged_load(interfaces, routes, h)),
+        "skewness": float(surface["skewness"]),
+        "kurtosis": float(surface["kurtosis"]),
+        "elongated_share": _elongated_share(surface),
         "separation_over_sigma": ("step", comparison["separation"].values / sigma),
         "reference_area_ratio": ("step", comparison["reference_area_ratio"].values),
         "reference_pressure": ("step", comparison["reference_pressure"].values),
@@ -76,18 +123,24 @@ def _band(ds: xr.Dataset) -> xr.Dataset:
     largest = worst.max("step")
     at = worst.fillna(-1.0).argmax("step")
     where = ds["reference_area_ratio"].isel(step=at).where(largest.notnull())
+    h = ds["separation_over_sigma"].where(inside)
+    out["band_width"] = h.max("step") - h.min("step")
+    out["least_cells_in_band"] = ds["cells_per_patch"].where(inside).min("step")
+    for name in ("contact_count_ratio", "merged_load_fraction"):
+        out[f"{name}_at_largest_error"] = ds[name].isel(step=at).where(largest.notnull())
     goal = xr.apply_ufunc(np.vectorize(lambda k: GOALS.get(k, np.nan), otypes=[float]),
                           ds["reference_limit"])
     return xr.Dataset({**out, "largest_error": largest, "largest_error_area_ratio": where,
                        "goal": goal.where(ds["reference_limit"] != "")})
 
 
-def route_errors(comparisons: Mapping[str, tuple[xr.Dataset, xr.Dataset, xr.Dataset]]) -> xr.Dataset:
+def route_errors(comparisons: Mapping[str, tuple]) -> xr.Dataset:
     """The table of every route on every map (module text): `comparisons` maps a scene name
-    to its (comparison.nc, reference.nc, surface.nc)."""
-    routes = list(dict.fromkeys(r for c, _, _ in comparisons.values() for r in c["route"].values.astype(str)))
-    steps = max(c.sizes["separation"] for c, _, _ in comparisons.values())
-    frames = [_step_frame(*parts, routes).reindex(step=np.arange(steps)) for parts in comparisons.values()]
+    to its (comparison.nc, reference.nc, surface.nc, {route: its interface.nc})."""
+    routes = list(dict.fromkeys(r for c, *_ in comparisons.values() for r in c["route"].values.astype(str)))
+    steps = max(c.sizes["separation"] for c, *_ in comparisons.values())
+    frames = [_step_frame(c, r, s, (rest[0] if rest else {}), routes).reindex(step=np.arange(steps))
+              for c, r, s, *rest in comparisons.values()]
     ds = xr.concat(frames, dim=xr.DataArray(list(comparisons), dims="scene", name="scene"))
     ds["reference_resolved"] = ds["reference_resolved"].fillna(False).astype(bool)
     ds = ds.merge(_band(ds))
@@ -105,6 +158,17 @@ def route_errors(comparisons: Mapping[str, tuple[xr.Dataset, xr.Dataset, xr.Data
     ds["scale"].attrs = attrs("m", "lateral scale of the asperities (0: the pixel)")
     ds["scale_rule"].attrs = attrs("", "how the lateral scale was chosen")
     ds["band_steps"].attrs = attrs(one, f"separations in the band (area ratio {BAND[0]:g}-{BAND[1]:g}, resolved)")
+    ds["contact_count_ratio"].attrs = attrs(one, "route's contacts over the boundary elements' contact patches")
+    ds["merged_load_fraction"].attrs = attrs(one, "share of the route's load carried by merged spots")
+    ds["skewness"].attrs = attrs(one, "skewness of the prepared heights (0: Gaussian)")
+    ds["kurtosis"].attrs = attrs(one, "kurtosis of the prepared heights (3: Gaussian)")
+    ds["elongated_share"].attrs = attrs(one, f"share of the summits with kappa_2/kappa_1 < {ELONGATED:g}")
+    ds["band_width"].attrs = attrs(one, "span of the band's separations over sigma")
+    ds["least_cells_in_band"].attrs = attrs(one, "fewest boundary-element cells per contact patch in the band")
+    ds["contact_count_ratio_at_largest_error"].attrs = attrs(
+        one, "route's contacts over the boundary elements' patches where its error is largest")
+    ds["merged_load_fraction_at_largest_error"].attrs = attrs(
+        one, "share of the route's load through merged spots where its error is largest")
     for name in ("pressure_error", "area_error"):
         ds[f"{name}_low"].attrs = attrs(pct, f"least {name.replace('_', ' ')} in the band")
         ds[f"{name}_high"].attrs = attrs(pct, f"largest {name.replace('_', ' ')} in the band")
