@@ -589,6 +589,42 @@ def _reference_cost(name: str) -> str:
             + "".join(rows) + by_rule + "\n" + _provenance(d, name))
 
 
+def _validity_summary(name: str) -> str:
+    """Where each scene holds (the study validity_summary); the guide's Validity page
+    includes this section too."""
+    ds = _study(name)
+    if ds is None:
+        return ""
+    rows = ["| scene | valid separations | valid range (sigma) | limit that fails first, at | its indicator there "
+            "| H (MPa) | psi | load beyond the FE range |\n|---|---|---|---|---|---|---|---|\n"]
+
+    def span(lo, hi, fmt, scale=1.0):
+        if not np.isfinite(lo):
+            return "-"
+        a, b = f"{lo * scale:{fmt}}", f"{hi * scale:{fmt}}"
+        return a if a == b else f"{a}-{b}"
+
+    for scene in ds["scene"].values:
+        r = ds.sel(scene=scene)
+        limit = str(r["failing_limit"].values)
+        fails = f"`{limit}`, {int(r['failing_separations'])}" if limit else "none"
+        rows.append(
+            f"| `{scene}` | {int(r['valid_separations'])} of {int(r['separations'])} | "
+            f"{span(float(r['valid_from']), float(r['valid_to']), '.2f')} | {fails} | "
+            f"{span(float(r['failing_low']), float(r['failing_high']), '.3g')} | "
+            f"{span(float(r['hardness']), float(r['hardness']), '.0f', 1e-6)} | "
+            f"{span(float(r['plasticity_index']), float(r['plasticity_index']), '.3g')} | "
+            f"{span(float(r['extrapolated_load_low']), float(r['extrapolated_load_high']), '.0%')} |\n")
+    return ("\n## Where each scene holds\n\n"
+            "The default scenes' interfaces, on their loading branch (approach with adhesion): "
+            "the separations where every limit of the scene's `validity` holds, the limit that "
+            "fails first at most of the others and its indicator there, the hardness and "
+            "plasticity index the limits used, and the share of the load carried beyond the "
+            "finite element jobs' range (`snakemake --cores 2 results/studies/validity_summary.nc` "
+            "after a default run; `asperity show results/<scene>` for one scene).\n\n"
+            + "".join(rows) + "\n" + _study_provenance(ds, name))
+
+
 def _routes_section() -> str:
     text = _route_errors("route_errors_maps.nc")
     if not text:
@@ -629,6 +665,7 @@ def _costs_section() -> str:
 VERIFICATION_SECTIONS = (
     ("routes.md", _routes_section),
     ("anisotropic.md", _anisotropic_section),
+    ("validity.md", lambda: _validity_summary("validity_summary.nc")),
     ("j2-sphere.md", lambda: _j2_sphere("j2_sphere.nc")),
     ("scale-study.md", lambda: _scale_study("scale_study.nc")),
     "\n## What a run costs\n",

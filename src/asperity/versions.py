@@ -49,6 +49,7 @@ VERSIONS: dict[str, int] = {
     "route_errors": 1,
     "scale_study": 1,
     "j2_sphere": 1,
+    "validity_summary": 1,
     # the deterministic reference (workflow/rules/reference.smk)
     "reference": 3,
     "reference_comparison": 4,

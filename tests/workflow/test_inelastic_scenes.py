@@ -10,7 +10,7 @@ import pytest
 
 from asperity.io.netcdf import missing_attributes
 
-from .conftest import result, run_scenes
+from .conftest import result, run_scenes, snakemake
 
 pytestmark = [pytest.mark.workflow, pytest.mark.slow]
 
@@ -91,3 +91,30 @@ def test_rough_aluminum_valid_without_extrapolated_load(run):
     assert not representative["valid"].values.any()
     reasons = representative["validity"].values
     assert all(str(r).startswith("extrapolated_load_fraction") for r in reasons)
+
+
+def test_the_validity_summary_reads_each_scene_as_its_file_says(run):
+    """Rule validity_summary on this run's scenes: valid separations, the limit that fails
+    first at most of the others and its indicator there, hardness and the load beyond the
+    FE range, each as the scene's interface.nc says."""
+    from asperity.io.netcdf import read_dataset
+    from asperity.population.density import height_scale
+
+    study = "validity_summary={'scenes': [%s]}" % ", ".join(f"'{s}'" for s in SCENES)
+    snakemake(run, "results/studies/validity_summary.nc", "--config", "accuracy=draft", study)
+    ds = read_dataset(run / "results" / "studies" / "validity_summary.nc")
+    assert missing_attributes(ds) == [] and list(ds["scene"].values) == SCENES
+    for scene in SCENES:
+        interface = result(run, scene, "interface.nc")
+        first = interface.isel(branch=0) if "branch" in interface.dims else interface
+        r = ds.sel(scene=scene)
+        valid = first["valid"].values.astype(bool)
+        assert int(r["valid_separations"]) == valid.sum()
+        sigma = height_scale(result(run, scene, "surface.nc"))
+        if valid.any():
+            assert float(r["valid_to"]) == pytest.approx(first["separation"].values[valid].max() / sigma, rel=1e-12)
+        assert float(r["hardness"]) == float(interface["hardness"])
+    r = ds.sel(scene="smooth_aluminum_elastic")  # elastic spheres past first yield
+    assert str(r["failing_limit"].values) == "yielded_fraction"
+    y = result(run, "smooth_aluminum_elastic", "interface.nc")["yielded_fraction"].values
+    assert float(r["failing_high"]) == pytest.approx(y.max(), rel=1e-12) and float(r["failing_low"]) > 0.5

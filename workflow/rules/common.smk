@@ -643,3 +643,13 @@ def scale_study_scenes(wildcards):
         scene: {part: SCENES[scene].get(part) for part in ("surface", "units", "material")}
         for scene in config["scale_study"]["scenes"]
     }
+
+
+def validity_summary_files(wildcards):
+    """The interface and surface files of each scene of config `validity_summary`, at the
+    run's preset."""
+    return {
+        f"{scene}__{kind}": f"{RESULTS}/{scene}/{kind}.nc"
+        for scene in config["validity_summary"]["scenes"]
+        for kind in ("interface", "surface")
+    }

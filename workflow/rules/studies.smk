@@ -103,3 +103,24 @@ rule j2_sphere:
         study=config["j2_sphere"],
     script:
         "../scripts/j2_sphere.py"
+
+
+rule validity_summary:
+    """Where each scene of config `validity_summary` holds, from its interface.nc: valid
+    separations, the limit that fails, hardness and plasticity index, the load beyond the
+    FE jobs' range.  Not in `rule all`; after a default run it only reads:
+    snakemake --cores 2 results/studies/validity_summary.nc
+    """
+    input:
+        unpack(validity_summary_files),
+    output:
+        data=f"{RESULTS}/studies/validity_summary.nc",
+    log:
+        f"{RESULTS}/studies/logs/validity_summary.log",
+    conda:
+        ENV
+    params:
+        version=code_version("validity_summary"),
+        study=config["validity_summary"],
+    script:
+        "../scripts/validity_summary.py"

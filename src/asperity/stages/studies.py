@@ -12,7 +12,7 @@ import xarray as xr
 
 from asperity.io.netcdf import read_dataset
 from asperity.plots import adhesion as adhesion_plots
-from asperity.studies import adhesion, j2_sphere, route_errors, summit_scale
+from asperity.studies import adhesion, j2_sphere, route_errors, summit_scale, validity_summary
 
 Config = Mapping[str, Any]
 log = logging.getLogger(__name__)
@@ -173,3 +173,10 @@ def j2_sphere_dataset(study: Config) -> xr.Dataset:
 
 def j2_sphere_figure(ds: xr.Dataset):
     return j2_sphere.j2_sphere_figure(ds)
+
+
+def validity_summary_dataset(files: Mapping[str, Mapping[str, str]]) -> xr.Dataset:
+    """Where each scene holds (`asperity.studies.validity_summary`); `files`: scene -> its
+    ``interface`` and ``surface`` files."""
+    return validity_summary.validity_summary({
+        scene: (read_dataset(paths["interface"]), read_dataset(paths["surface"])) for scene, paths in files.items()})
