@@ -595,8 +595,8 @@ def _validity_summary(name: str) -> str:
     ds = _study(name)
     if ds is None:
         return ""
-    rows = ["| scene | valid separations | valid range (sigma) | limit that fails first, at | its indicator there "
-            "| H (MPa) | psi | load beyond the FE range |\n|---|---|---|---|---|---|---|---|\n"]
+    rows = ["| scene | preset | valid separations | valid range (sigma) | limit that fails first, at "
+            "| its indicator there | H (MPa) | psi | load beyond the FE range |\n|---|---|---|---|---|---|---|---|---|\n"]
 
     def span(lo, hi, fmt, scale=1.0):
         if not np.isfinite(lo):
@@ -609,7 +609,7 @@ def _validity_summary(name: str) -> str:
         limit = str(r["failing_limit"].values)
         fails = f"`{limit}`, {int(r['failing_separations'])}" if limit else "none"
         rows.append(
-            f"| `{scene}` | {int(r['valid_separations'])} of {int(r['separations'])} | "
+            f"| `{scene}` | {str(r['accuracy'].values) or '-'} | {int(r['valid_separations'])} of {int(r['separations'])} | "
             f"{span(float(r['valid_from']), float(r['valid_to']), '.2f')} | {fails} | "
             f"{span(float(r['failing_low']), float(r['failing_high']), '.3g')} | "
             f"{span(float(r['hardness']), float(r['hardness']), '.0f', 1e-6)} | "

@@ -53,6 +53,7 @@ def _one(interface: xr.Dataset, surface: xr.Dataset) -> dict:
     share = (ds["extrapolated_load_fraction"].values[loaded] if "extrapolated_load_fraction" in ds
              else np.array([]))
     return {
+        "accuracy": str(interface.attrs.get("accuracy", "")),
         "separations": h.size, "valid_separations": int(valid.sum()),
         "valid_from": float(h[valid].min()) if valid.any() else np.nan,
         "valid_to": float(h[valid].max()) if valid.any() else np.nan,
@@ -69,6 +70,7 @@ def validity_summary(scenes: Mapping[str, tuple[xr.Dataset, xr.Dataset]]) -> xr.
     """Where each scene holds (module text); `scenes`: name -> (interface.nc, surface.nc)."""
     rows = {name: _one(*parts) for name, parts in scenes.items()}
     meta = {
+        "accuracy": ("", "accuracy preset of the scene's finite element jobs (none: no FE job)"),
         "separations": ("1", "separations of the loading branch"),
         "valid_separations": ("1", "separations where the interface is valid"),
         "valid_from": ("1", "smallest valid separation over sigma"),
