@@ -39,9 +39,9 @@ test-fast: $(STAMP)
 	$(PYTEST) -m "not slow"
 
 # The documentation site in site/: the reference and verification pages generated from
-# config/schema.yaml, the command line and the benchmark outputs in benchmarks/results/
-# (docs/generate.py; a section whose output is not there is kept as last written), then
-# built with warnings as errors.
+# config/schema.yaml, the command line, the workflow's studies in results/studies/ and the
+# benchmark outputs in benchmarks/results/ (docs/generate.py; a section whose source is
+# not there is kept as last written), then built with warnings as errors.
 docs: export NO_MKDOCS_2_WARNING = 1
 docs: $(STAMP)
 	$(BIN)/python docs/generate.py
@@ -49,7 +49,7 @@ docs: $(STAMP)
 
 # Speed and cost measurements, one entry point (benchmarks/run.py): CASE=kernels (the
 # default) times the kernels against the issues' targets (benchmarks/results/kernels.json);
-# CASE=list names the others (scenes, adhesion, sliding, routes, ...), each writing its
+# CASE=list names the others (scenes, reference, adhesion, sliding, ...), each writing its
 # JSON to benchmarks/results/ (not tracked: `make docs` writes the docs' tables from it,
 # and those are). ARGS replaces a case's default arguments, e.g.
 #   make bench CASE=scenes ARGS="--accuracy draft --scenes profile_cosine hertz"
