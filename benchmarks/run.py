@@ -254,10 +254,8 @@ STUDIES = {
                             "--out", f"{_S}/finite-strain.json"]),
     "surface": Study("surface_speed.py", [], "a 2048^2 map's statistics beside SurfaceTopography's",
                      ["--points", "256", "--repeats", "1", "--out", f"{_S}/surface-speed.json"]),
-    # the results tree of the short `scenes` case (asperity_shape), which runs before
-    "validity": Study("validity_numbers.py", [], "how much of the FE scenes rests on extrapolation",
-                      [f"{_S}/results", "--out", f"{_S}/validity.json"]),
-    # the same tree, without the coupled scenes: the family against one job per sample only
+    # the results tree of the short `scenes` case (asperity_shape), which runs before,
+    # without the coupled scenes: the family against one job per sample only
     "coupled": Study("coupled_numbers.py", [], "the coupled hill family beside the representative hill",
                      [f"{_S}/results", "--out", f"{_S}/coupled.json"]),
     "adhesion-scene": Study("adhesion_numbers.py", [], "the adhesive scene beside its elastic twin",
@@ -305,7 +303,7 @@ def short(names: list[str] | None = None) -> int:
     name (``kernels``: every kernel).  Times are recorded, never held against a target:
     benchmarks/out/short.json gets each case's command, exit code, wall and CPU seconds
     beside the machine and commit; the scripts write under benchmarks/out/short/ (emptied
-    first when every case runs: `validity` and `coupled` read the results tree the `scenes`
+    first when every case runs: `coupled` reads the results tree the `scenes`
     case leaves there), each script's output to <case>.log there.  Exit code 1 if a case
     failed."""
     import shutil

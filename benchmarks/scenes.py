@@ -33,7 +33,7 @@ Writes benchmarks/results/scenes-<preset>.json (this invocation's
 measurements only; ``--out``) and prints a markdown table for the README.  Targets are
 printed, never raised: speed is measured here, not asserted in the tests.  ``--keep DIR``
 copies each scene's results tree into DIR after its timing, for the scripts that read
-one (benchmarks/validity_numbers.py).
+one (benchmarks/coupled_numbers.py).
 
     python benchmarks/scenes.py --accuracy draft --scenes profile_cosine hertz
     python benchmarks/scenes.py --accuracy standard --full      # what the README quotes

@@ -589,6 +589,14 @@ def _reference_cost(name: str) -> str:
             + "".join(rows) + by_rule + "\n" + _provenance(d, name))
 
 
+def _span(lo: float, hi: float, fmt: str, scale: float = 1.0) -> str:
+    """A range lo-hi in `fmt` (one value where both print alike; "-" where undefined)."""
+    if not np.isfinite(lo):
+        return "-"
+    a, b = f"{lo * scale:{fmt}}", f"{hi * scale:{fmt}}"
+    return a if a == b else f"{a}-{b}"
+
+
 def _validity_summary(name: str) -> str:
     """Where each scene holds (the study validity_summary); the guide's Validity page
     includes this section too."""
@@ -598,23 +606,17 @@ def _validity_summary(name: str) -> str:
     rows = ["| scene | preset | valid separations | valid range (sigma) | limit that fails first, at "
             "| its indicator there | H (MPa) | psi | load beyond the FE range |\n|---|---|---|---|---|---|---|---|---|\n"]
 
-    def span(lo, hi, fmt, scale=1.0):
-        if not np.isfinite(lo):
-            return "-"
-        a, b = f"{lo * scale:{fmt}}", f"{hi * scale:{fmt}}"
-        return a if a == b else f"{a}-{b}"
-
     for scene in ds["scene"].values:
         r = ds.sel(scene=scene)
         limit = str(r["failing_limit"].values)
         fails = f"`{limit}`, {int(r['failing_separations'])}" if limit else "none"
         rows.append(
             f"| `{scene}` | {str(r['accuracy'].values) or '-'} | {int(r['valid_separations'])} of {int(r['separations'])} | "
-            f"{span(float(r['valid_from']), float(r['valid_to']), '.2f')} | {fails} | "
-            f"{span(float(r['failing_low']), float(r['failing_high']), '.3g')} | "
-            f"{span(float(r['hardness']), float(r['hardness']), '.0f', 1e-6)} | "
-            f"{span(float(r['plasticity_index']), float(r['plasticity_index']), '.3g')} | "
-            f"{span(float(r['extrapolated_load_low']), float(r['extrapolated_load_high']), '.0%')} |\n")
+            f"{_span(float(r['valid_from']), float(r['valid_to']), '.2f')} | {fails} | "
+            f"{_span(float(r['failing_low']), float(r['failing_high']), '.3g')} | "
+            f"{_span(float(r['hardness']), float(r['hardness']), '.0f', 1e-6)} | "
+            f"{_span(float(r['plasticity_index']), float(r['plasticity_index']), '.3g')} | "
+            f"{_span(float(r['extrapolated_load_low']), float(r['extrapolated_load_high']), '.0%')} |\n")
     return ("\n## Where each scene holds\n\n"
             "The default scenes' interfaces, on their loading branch (approach with adhesion): "
             "the separations where every limit of the scene's `validity` holds, the limit that "
@@ -622,6 +624,35 @@ def _validity_summary(name: str) -> str:
             "plasticity index the limits used, and the share of the load carried beyond the "
             "finite element jobs' range (`snakemake --cores 2 results/studies/validity_summary.nc` "
             "after a default run; `asperity show results/<scene>` for one scene).\n\n"
+            + "".join(rows) + "\n" + _study_provenance(ds, name))
+
+
+def _friction_report(name: str) -> str:
+    """mu_shear against the report's (the study friction_report); the guide's Validity page
+    includes this section too."""
+    ds = _study(name)
+    if ds is None:
+        return ""
+    rows = ["| scene | tau_s (MPa) | valid separations | mu_shear | p_r = p / A_c (MPa) | the report's mu "
+            "| p_r it needs (MPa) | mu at Y0 / sqrt 3 | mu at Ys / sqrt 3 |\n|---|---|---|---|---|---|---|---|---|\n"]
+
+    for scene in ds["scene"].values:
+        r = {k: float(v) for k, v in ds.sel(scene=scene).data_vars.items()}
+        rows.append(
+            f"| `{scene}` | {r['shear_strength'] / 1e6:.0f} | {int(r['valid_separations'])} | "
+            f"{_span(r['mu_shear_low'], r['mu_shear_high'], '.3f')} | "
+            f"{_span(r['real_pressure_low'], r['real_pressure_high'], '.0f', 1e-6)} | "
+            f"{_span(r['report_mu_shear'], r['report_mu_shear'], '.2g')} | "
+            f"{_span(r['report_real_pressure'], r['report_real_pressure'], '.0f', 1e-6)} | "
+            f"{_span(r['mu_at_initial_flow_low'], r['mu_at_initial_flow_high'], '.3f')} | "
+            f"{_span(r['mu_at_saturated_flow_low'], r['mu_at_saturated_flow_high'], '.3f')} |\n")
+    return ("\n## Friction against the report\n\n"
+            "The shear part of the friction coefficient, mu_shear = tau_s / p_r (report 9.41), "
+            "over the separations where the scene's friction is valid, beside the report's and the "
+            "mean real contact pressure p_r the report's would need at the scene's tau_s; and "
+            "mu_shear with the body's own shear flow stress Y / sqrt 3 (Y its initial and its "
+            "saturated uniaxial flow stress) instead of the handbook tau_s "
+            "(`snakemake --cores 2 results/studies/friction_report.nc` after a default run).\n\n"
             + "".join(rows) + "\n" + _study_provenance(ds, name))
 
 
@@ -666,6 +697,7 @@ VERIFICATION_SECTIONS = (
     ("routes.md", _routes_section),
     ("anisotropic.md", _anisotropic_section),
     ("validity.md", lambda: _validity_summary("validity_summary.nc")),
+    ("friction-report.md", lambda: _friction_report("friction_report.nc")),
     ("j2-sphere.md", lambda: _j2_sphere("j2_sphere.nc")),
     ("scale-study.md", lambda: _scale_study("scale_study.nc")),
     "\n## What a run costs\n",

@@ -50,6 +50,7 @@ VERSIONS: dict[str, int] = {
     "scale_study": 1,
     "j2_sphere": 1,
     "validity_summary": 1,
+    "friction_report": 1,
     # the deterministic reference (workflow/rules/reference.smk)
     "reference": 3,
     "reference_comparison": 4,

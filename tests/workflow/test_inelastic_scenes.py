@@ -118,3 +118,23 @@ def test_the_validity_summary_reads_each_scene_as_its_file_says(run):
     assert str(r["failing_limit"].values) == "yielded_fraction"
     y = result(run, "smooth_aluminum_elastic", "interface.nc")["yielded_fraction"].values
     assert float(r["failing_high"]) == pytest.approx(y.max(), rel=1e-12) and float(r["failing_low"]) > 0.5
+
+
+def test_the_friction_report_reads_the_scene_friction(run):
+    """Rule friction_report on rough_aluminum: mu_shear's range over the valid separations
+    is friction.nc's, p_r = p / A_c the interface's, and the report's 0.3 needs tau_s / 0.3."""
+    from asperity.io.netcdf import read_dataset
+
+    snakemake(run, "results/studies/friction_report.nc", "--config", "accuracy=draft",
+              "friction_report={'scenes': ['rough_aluminum']}")
+    ds = read_dataset(run / "results" / "studies" / "friction_report.nc").sel(scene="rough_aluminum")
+    friction = result(run, "rough_aluminum", "friction.nc")
+    interface = result(run, "rough_aluminum", "interface.nc")
+    valid = friction["valid"].values.astype(bool)
+    mu = friction["mu_shear"].values[valid]
+    assert int(ds["valid_separations"]) == valid.sum() > 0
+    assert float(ds["mu_shear_low"]) == mu.min() and float(ds["mu_shear_high"]) == mu.max()
+    pr = (interface["nominal_pressure"] / interface["contact_area_ratio"]).sel(
+        separation=friction["separation"]).values[valid]
+    assert float(ds["real_pressure_high"]) == pytest.approx(pr.max(), rel=1e-12)
+    assert float(ds["report_real_pressure"]) == pytest.approx(float(friction["junction_shear_strength"]) / 0.3)

@@ -653,3 +653,20 @@ def validity_summary_files(wildcards):
         for scene in config["validity_summary"]["scenes"]
         for kind in ("interface", "surface")
     }
+
+
+def friction_report_files(wildcards):
+    """The friction and interface files of each scene of config `friction_report`."""
+    return {
+        f"{scene}__{kind}": f"{RESULTS}/{scene}/{kind}.nc"
+        for scene in config["friction_report"]["scenes"]
+        for kind in ("friction", "interface")
+    }
+
+
+def friction_report_scenes(wildcards):
+    """The material and units of each scene of config `friction_report`."""
+    return {
+        scene: {part: SCENES[scene][part] for part in ("material", "units")}
+        for scene in config["friction_report"]["scenes"]
+    }

@@ -124,3 +124,24 @@ rule validity_summary:
         study=config["validity_summary"],
     script:
         "../scripts/validity_summary.py"
+
+
+rule friction_report:
+    """The shear part of the friction coefficient of each scene of config `friction_report`
+    against the report's (9.1, Fig. 9.2).  Not in `rule all`; after a default run it only
+    reads: snakemake --cores 2 results/studies/friction_report.nc
+    """
+    input:
+        unpack(friction_report_files),
+    output:
+        data=f"{RESULTS}/studies/friction_report.nc",
+    log:
+        f"{RESULTS}/studies/logs/friction_report.log",
+    conda:
+        ENV
+    params:
+        version=code_version("friction_report"),
+        study=config["friction_report"],
+        scenes=friction_report_scenes,
+    script:
+        "../scripts/friction_report.py"

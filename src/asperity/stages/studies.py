@@ -12,7 +12,7 @@ import xarray as xr
 
 from asperity.io.netcdf import read_dataset
 from asperity.plots import adhesion as adhesion_plots
-from asperity.studies import adhesion, j2_sphere, route_errors, summit_scale, validity_summary
+from asperity.studies import adhesion, friction_report, j2_sphere, route_errors, summit_scale, validity_summary
 
 Config = Mapping[str, Any]
 log = logging.getLogger(__name__)
@@ -180,3 +180,31 @@ def validity_summary_dataset(files: Mapping[str, Mapping[str, str]]) -> xr.Datas
     ``interface`` and ``surface`` files."""
     return validity_summary.validity_summary({
         scene: (read_dataset(paths["interface"]), read_dataset(paths["surface"])) for scene, paths in files.items()})
+
+
+def flow_stresses(material_cfg: Config, units_cfg: Config) -> tuple[float, float]:
+    """The body's initial and saturated uniaxial flow stress (Pa): Bodner-Partom's steady
+    flow at 1e-3 1/s with the initial and the saturated hardness Z0, Z1 (8.2.1); J2's yield
+    stress twice; NaN for an elastic body."""
+    from asperity import scene
+    from asperity.fe.materials.bodner_partom import BodnerPartom
+    from asperity.uniaxial.point import uniaxial_flow_stress
+
+    material = scene.Material.from_scene(material_cfg, scene.Units.from_section(units_cfg))
+    if material.model not in ("j2", "bodner_partom"):
+        return np.nan, np.nan
+    body = scene.build(material, ["plasticity"])
+    if isinstance(body, BodnerPartom):
+        return float(uniaxial_flow_stress(body, 1e-3)), float(uniaxial_flow_stress(body, 1e-3, body.Z1))
+    y = float(getattr(body, "yield_stress", np.nan))
+    return y, y
+
+
+def friction_report_dataset(files: Mapping[str, Mapping[str, str]], scenes: Mapping[str, Config]) -> xr.Dataset:
+    """mu_shear against the report's (`asperity.studies.friction_report`); `files`: scene ->
+    its ``friction`` and ``interface`` files; `scenes`: scene -> its ``material`` and
+    ``units`` sections."""
+    return friction_report.friction_against_report({
+        scene: (read_dataset(paths["friction"]), read_dataset(paths["interface"]),
+                flow_stresses(scenes[scene]["material"], scenes[scene]["units"]))
+        for scene, paths in files.items()})

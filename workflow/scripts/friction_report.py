@@ -1,0 +1,16 @@
+"""results/studies/friction_report.nc: mu_shear against the report's."""
+
+from asperity.io.joblog import job_log
+from asperity.io.netcdf import write_dataset
+from asperity.stages import studies
+
+with job_log(snakemake.log[0], "study friction against the report"):
+    p = snakemake.params
+    files = {}
+    for key, path in snakemake.input.items():  # <scene>__<file>
+        scene, kind = key.split("__")
+        files.setdefault(scene, {})[kind] = path
+    ds = studies.friction_report_dataset(files, p.scenes)
+    write_dataset(ds, snakemake.output.data, scene="studies",
+                  title="the shear part of the friction coefficient against the report's",
+                  config={"friction_report": p.study, "scenes": p.scenes}, version=p.version)
