@@ -14,7 +14,6 @@ from __future__ import annotations
 import math
 from typing import Mapping
 
-import numpy as np
 import xarray as xr
 
 from asperity.units import attrs
