@@ -4,7 +4,6 @@ and the tables gathered over several scenes' results."""
 
 from __future__ import annotations
 
-import logging
 from typing import Any, Mapping
 
 import numpy as np
@@ -15,7 +14,6 @@ from asperity.plots import adhesion as adhesion_plots
 from asperity.studies import adhesion, friction_report, j2_sphere, route_errors, summit_scale, validity_summary
 
 Config = Mapping[str, Any]
-log = logging.getLogger(__name__)
 
 
 def adhesion_curves_dataset(study: Config) -> xr.Dataset:
@@ -49,67 +47,41 @@ def route_errors_figure(ds: xr.Dataset):
 SCALE_LAWS = ("shape", "elliptic", "hertz")
 
 
-def _routes_at_scale(z0, dx: float, dy: float, factor: float, h_sigma, modulus: float) -> dict:
-    """One map at one lateral scale lambda_s = factor max(dx, dy) (0: the pixel's peaks,
-    unfiltered), prepared as the surface stage prepares it: its summits, the elastic boundary
-    elements, the interacting route with each of `SCALE_LAWS` and Persson's theory, and each
-    route's errors against the boundary elements (`reference.errors_against`)."""
+def _scale_routes(modulus: float) -> dict:
+    """The routes of the scale study, each ``route(z, dx, dy, peaks, h) -> interface``: the
+    interacting route with each of `SCALE_LAWS` (its tolerances and laws as the route
+    stage's) and Persson's theory."""
     from asperity.homogenize.interacting import interacting_interface
     from asperity.references import persson
-    from asperity.references.boundary_element import solve_map
-    from asperity.stages.reference import errors_against
     from asperity.stages.routes import INTERACTING_ACCEPT, INTERACTING_TOLERANCE, asperity_law
-    from asperity.surface.maps import map_peaks
-    from asperity.surface.summits import lowpass_map, map_summits
 
-    scale = factor * max(dx, dy)
-    if factor > 0:
-        z = lowpass_map(z0, dx, dy, scale)
-        peaks = map_summits(z0, dx, dy, scale).rename(summit="peak")
-    else:
-        z = np.array(z0, dtype=float)
-        peaks = map_peaks(z, dx, dy)
-    peaks = peaks.isel(peak=np.flatnonzero(peaks["curvature"].values > 0))  # as the route does
-    z = z - np.nanmean(z)
-    sigma = float(np.nanstd(z))
-    h = np.asarray(h_sigma) * sigma
-    ny, nx = z.shape
-    bem = solve_map(z, dx, dy, h, modulus)
-    p_ref, a_ref = bem["nominal_pressure"].values, bem["contact_area_ratio"].values
-    out = {"scale": scale, "sigma": sigma, "summits": peaks.sizes["peak"],
-           "summit_density": peaks.sizes["peak"] / (nx * dx * ny * dy),
-           "mean_curvature": float(peaks["curvature"].mean()),
-           "bem_area_ratio": a_ref, "cells_per_patch": bem["cells_per_patch"].values, "routes": {}}
-    curves = {}
-    for law in SCALE_LAWS:
-        try:
-            ds = interacting_interface(peaks["x"].values, peaks["y"].values, peaks["height"].values,
-                                       peaks["curvature"].values, h, modulus, (nx * dx, ny * dy),
-                                       law=asperity_law(law, z, dx, dy, peaks, modulus),
-                                       tolerance=INTERACTING_TOLERANCE, accept=INTERACTING_ACCEPT)
-        except (RuntimeError, ValueError) as err:  # a failed route is a row of NaN, said in the log
-            log.warning("scale study: interacting_%s at %g grid steps failed: %s", law, factor, err)
-            continue
-        curves[f"interacting_{law}"] = ds
-    q, C = persson.isotropic_spectrum(z, dx, dy)
-    curves["persson"] = persson.persson_interface(q, C, modulus, h)
-    for name, ds in curves.items():
-        p, a = ds["nominal_pressure"].values, ds["contact_area_ratio"].values
-        out["routes"][name] = errors_against(p, p, a, p_ref, a_ref)
-    return out
+    def interacting(law):
+        def route(z, dx, dy, peaks, h):
+            ny, nx = z.shape
+            return interacting_interface(peaks["x"].values, peaks["y"].values, peaks["height"].values,
+                                         peaks["curvature"].values, h, modulus, (nx * dx, ny * dy),
+                                         law=asperity_law(law, z, dx, dy, peaks, modulus),
+                                         tolerance=INTERACTING_TOLERANCE, accept=INTERACTING_ACCEPT)
+        return route
+
+    def persson_route(z, dx, dy, peaks, h):
+        return persson.persson_interface(*persson.isotropic_spectrum(z, dx, dy), modulus, h)
+
+    return {**{f"interacting_{law}": interacting(law) for law in SCALE_LAWS}, "persson": persson_route}
 
 
 def scale_study_dataset(files: Mapping[str, str], scenes: Mapping[str, Config], study: Config) -> xr.Dataset:
-    """The lateral scale of the asperities against what it changes (issue #48, item 1): for
-    the map of each scene (scene -> its map file, and its ``surface``, ``units`` and
-    ``material`` sections), with the scene's form removed and no low-pass, and each scale of
-    ``study["scales"]`` (in grid steps), the summits, the elastic boundary elements'
-    resolution and every route's errors against them at the separations
-    ``study["separations"]`` (start, stop, count in sigma of the prepared map)."""
+    """The lateral scale of the asperities against what it changes (issue #48, item 1;
+    `asperity.studies.summit_scale.scale_study`): the map of each scene (scene -> its map
+    file, and its ``surface``, ``units`` and ``material`` sections) read and prepared as the
+    surface stage does, without its low-pass (the study applies each scale of
+    ``study["scales"]``), at the separations ``study["separations"]`` (start, stop, count
+    in sigma of the prepared map)."""
     from asperity.io.topography import read_measurement
+    from asperity.references.boundary_element import solve_map
+    from asperity.stages.reference import errors_against
     from asperity.stages.routes import contact_modulus_and_hardness
     from asperity.stages.surface import prepared_roughness, reading
-    from asperity.units import attrs
 
     maps = {}
     for scene, path in files.items():
@@ -117,47 +89,10 @@ def scale_study_dataset(files: Mapping[str, str], scenes: Mapping[str, Config], 
         surface = {k: v for k, v in cfg["surface"].items() if k != "scale"}  # every scale here
         data = read_measurement(path, **reading(surface, cfg["units"]))
         z = prepared_roughness(data.heights, data.spacing, surface, cfg["units"], defined=data.defined)
-        maps[scene] = (z, *data.spacing, contact_modulus_and_hardness(cfg["material"], cfg["units"])[0])
-
-    factors = np.asarray(study["scales"], dtype=float)
-    h_sigma = np.linspace(*study["separations"])
-    routes = [f"interacting_{law}" for law in SCALE_LAWS] + ["persson"]
-    n_s, n_f, n_h, n_r = len(maps), factors.size, h_sigma.size, len(routes)
-    per_scale = {k: np.full((n_s, n_f), np.nan) for k in ("scale", "sigma", "summits", "summit_density",
-                                                          "mean_curvature")}
-    per_h = {k: np.full((n_s, n_f, n_h), np.nan) for k in ("bem_area_ratio", "cells_per_patch")}
-    errors = {k: np.full((n_s, n_f, n_r, n_h), np.nan) for k in ("pressure_error", "area_error")}
-    for i, (scene, (z, dx, dy, modulus)) in enumerate(maps.items()):  # a few maps and scales, each vectorized
-        for j, factor in enumerate(factors):
-            log.info("scale study: %s at %g grid steps", scene, factor)
-            row = _routes_at_scale(z, dx, dy, factor, h_sigma, modulus)
-            for k in per_scale:
-                per_scale[k][i, j] = row[k]
-            for k in per_h:
-                per_h[k][i, j] = row[k]
-            for r, name in enumerate(routes):
-                if name in row["routes"]:
-                    errors["pressure_error"][i, j, r], errors["area_error"][i, j, r] = row["routes"][name]
-    meta = {
-        "scale": ("m", "lateral scale lambda_s of the asperities (0: the pixel's peaks, unfiltered)"),
-        "sigma": ("m", "rms height of the prepared map"),
-        "summits": ("1", "summits with a positive mean curvature"),
-        "summit_density": ("1/m^2", "summits per unit area"),
-        "mean_curvature": ("1/m", "mean of the summits' mean curvature"),
-        "bem_area_ratio": ("1", "real contact area ratio of the elastic boundary elements"),
-        "cells_per_patch": ("1", "mean grid cells per contact patch of the elastic boundary elements"),
-        "pressure_error": ("1", "route's nominal pressure at equal separation over the boundary elements', less 1"),
-        "area_error": ("1", "route's contact area ratio at equal pressure over the boundary elements', less 1"),
-    }
-    data = {k: (("scene", "factor"), v, attrs(*meta[k])) for k, v in per_scale.items()}
-    data |= {k: (("scene", "factor", "separation"), v, attrs(*meta[k])) for k, v in per_h.items()}
-    data |= {k: (("scene", "factor", "route", "separation"), v, attrs(*meta[k])) for k, v in errors.items()}
-    return xr.Dataset(data, coords={
-        "scene": ("scene", list(maps), attrs("", "scene whose map is studied")),
-        "factor": ("factor", factors, attrs("1", "lateral scale in grid steps, lambda_s / max(dx, dy)")),
-        "route": ("route", routes, attrs("", "route against the boundary elements")),
-        "separation": ("separation", h_sigma, attrs("1", "separation of the flat over sigma of the prepared map")),
-    })
+        modulus = contact_modulus_and_hardness(cfg["material"], cfg["units"])[0]
+        maps[scene] = (z, *data.spacing, lambda z, dx, dy, h, m=modulus: solve_map(z, dx, dy, h, m),
+                       _scale_routes(modulus))
+    return summit_scale.scale_study(maps, study["scales"], np.linspace(*study["separations"]), errors_against)
 
 
 def scale_study_figure(ds: xr.Dataset):

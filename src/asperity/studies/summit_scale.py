@@ -1,4 +1,5 @@
-"""Summits of a map against the lateral scale (report 2.4.3 at a stated scale).
+"""Summits of a map, and the routes on it, against the lateral scale (report 2.4.3 at a
+stated scale; issue #48, item 1).
 
 :func:`summit_scale_study` finds the summits of one map at each of several
 short-wavelength cut-offs lambda_s (:func:`asperity.surface.summits.map_summits`)
@@ -20,10 +21,16 @@ in-fill, :func:`asperity.surface.missing.harmonic_fill`).  The summits follow
 the closed forms only where the low-passed heights are Gaussian; the pixel
 scale (Greenwood and Wu, Wear 249 (2001) 766) shows up as the small-lambda_s
 end where density and curvature stop depending on lambda_s.
+
+:func:`scale_study` goes on to contact: on each map at each scale, the elastic boundary
+elements and every route of the caller (the interacting route with each asperity law,
+Persson's theory), each route's errors against the boundary elements, and the reference's
+own resolution (cells per contact patch); :func:`scale_study_figure` draws it.
 """
 
 from __future__ import annotations
 
+import logging
 import math
 
 import numpy as np
@@ -31,10 +38,13 @@ import xarray as xr
 
 from asperity.surface.filters import ALPHA
 from asperity.surface.missing import defined_heights, harmonic_fill
-from asperity.surface.summits import map_summits
+from asperity.surface.summits import lowpass_map, map_summits
 from asperity.units import attrs
 
-__all__ = ["lowpassed_moments", "nayak_summits", "scale_study_figure", "summit_scale_study", "summit_scale_figure"]
+__all__ = ["lowpassed_moments", "nayak_summits", "scale_study", "scale_study_figure", "summit_scale_study",
+           "summit_scale_figure"]
+
+log = logging.getLogger(__name__)
 
 
 def lowpassed_moments(z, dx: float, dy: float, scale: float, *, defined=None) -> dict[str, float]:
@@ -134,6 +144,91 @@ def summit_scale_figure(ds: xr.Dataset):
         ax.grid(True, which="both", lw=0.3)
     axes[0].legend(fontsize=8)
     return fig
+
+
+def _at_scale(z0, dx: float, dy: float, factor: float, h_sigma, bem, routes, errors) -> dict:
+    """One map at lambda_s = factor max(dx, dy) (0: the pixel's eight-neighbour peaks of the
+    unfiltered map): low-passed and its summits found there as the surface stage does, the
+    boundary elements `bem` and each of `routes` at h_sigma sigma of the prepared map, and
+    each route's `errors` against them."""
+    from asperity.surface.maps import map_peaks
+
+    scale = factor * max(dx, dy)
+    if factor > 0:
+        z = lowpass_map(z0, dx, dy, scale)
+        peaks = map_summits(z0, dx, dy, scale).rename(summit="peak")
+    else:
+        z = np.array(z0, dtype=float)
+        peaks = map_peaks(z, dx, dy)
+    peaks = peaks.isel(peak=np.flatnonzero(peaks["curvature"].values > 0))  # as the route does
+    z = z - np.nanmean(z)
+    sigma = float(np.nanstd(z))
+    h = np.asarray(h_sigma) * sigma
+    ny, nx = z.shape
+    ref = bem(z, dx, dy, h)
+    p_ref, a_ref = ref["nominal_pressure"].values, ref["contact_area_ratio"].values
+    out = {"scale": scale, "sigma": sigma, "summits": peaks.sizes["peak"],
+           "summit_density": peaks.sizes["peak"] / (nx * dx * ny * dy),
+           "mean_curvature": float(peaks["curvature"].mean()),
+           "bem_area_ratio": a_ref, "cells_per_patch": ref["cells_per_patch"].values, "routes": {}}
+    for name, route in routes.items():
+        try:
+            ds = route(z, dx, dy, peaks, h)
+        except (RuntimeError, ValueError) as err:  # a failed route is a row of NaN, said in the log
+            log.warning("scale study: %s at %g grid steps failed: %s", name, factor, err)
+            continue
+        p, a = ds["nominal_pressure"].values, ds["contact_area_ratio"].values
+        out["routes"][name] = errors(p, p, a, p_ref, a_ref)
+    return out
+
+
+def scale_study(maps, scales, h_sigma, errors) -> xr.Dataset:
+    """Summits, the boundary elements' resolution and every route's errors against them, for
+    each map and each lateral scale (in grid steps; 0 the pixel): `maps` is name -> (z, dx,
+    dy, bem, routes), z the heights with the form removed and not low-passed, ``bem(z, dx,
+    dy, h)`` the reference and ``routes`` name -> ``route(z, dx, dy, peaks, h)``, each an
+    interface (nominal_pressure, contact_area_ratio at the separations h); `errors(p, p_curve,
+    a_curve, p_ref, a_ref)` the pressure error at equal separation and area error at equal
+    pressure (`asperity.stages.reference.errors_against`)."""
+    factors = np.asarray(scales, dtype=float)
+    h_sigma = np.asarray(h_sigma, dtype=float)
+    routes = list(dict.fromkeys(name for *_, r in maps.values() for name in r))
+    n_s, n_f, n_h, n_r = len(maps), factors.size, h_sigma.size, len(routes)
+    per_scale = {k: np.full((n_s, n_f), np.nan) for k in ("scale", "sigma", "summits", "summit_density",
+                                                          "mean_curvature")}
+    per_h = {k: np.full((n_s, n_f, n_h), np.nan) for k in ("bem_area_ratio", "cells_per_patch")}
+    err = {k: np.full((n_s, n_f, n_r, n_h), np.nan) for k in ("pressure_error", "area_error")}
+    for i, (name, (z, dx, dy, bem, map_routes)) in enumerate(maps.items()):  # a few maps and scales
+        for j, factor in enumerate(factors):
+            log.info("scale study: %s at %g grid steps", name, factor)
+            row = _at_scale(z, dx, dy, factor, h_sigma, bem, map_routes, errors)
+            for k in per_scale:
+                per_scale[k][i, j] = row[k]
+            for k in per_h:
+                per_h[k][i, j] = row[k]
+            for r, route in enumerate(routes):
+                if route in row["routes"]:
+                    err["pressure_error"][i, j, r], err["area_error"][i, j, r] = row["routes"][route]
+    meta = {
+        "scale": ("m", "lateral scale lambda_s of the asperities (0: the pixel's peaks, unfiltered)"),
+        "sigma": ("m", "rms height of the prepared map"),
+        "summits": ("1", "summits with a positive mean curvature"),
+        "summit_density": ("1/m^2", "summits per unit area"),
+        "mean_curvature": ("1/m", "mean of the summits' mean curvature"),
+        "bem_area_ratio": ("1", "real contact area ratio of the elastic boundary elements"),
+        "cells_per_patch": ("1", "mean grid cells per contact patch of the elastic boundary elements"),
+        "pressure_error": ("1", "route's nominal pressure at equal separation over the boundary elements', less 1"),
+        "area_error": ("1", "route's contact area ratio at equal pressure over the boundary elements', less 1"),
+    }
+    data = {k: (("scene", "factor"), v, attrs(*meta[k])) for k, v in per_scale.items()}
+    data |= {k: (("scene", "factor", "separation"), v, attrs(*meta[k])) for k, v in per_h.items()}
+    data |= {k: (("scene", "factor", "route", "separation"), v, attrs(*meta[k])) for k, v in err.items()}
+    return xr.Dataset(data, coords={
+        "scene": ("scene", list(maps), attrs("", "scene whose map is studied")),
+        "factor": ("factor", factors, attrs("1", "lateral scale in grid steps, lambda_s / max(dx, dy)")),
+        "route": ("route", routes, attrs("", "route against the boundary elements")),
+        "separation": ("separation", h_sigma, attrs("1", "separation of the flat over sigma of the prepared map")),
+    })
 
 
 def scale_study_figure(ds: xr.Dataset):
