@@ -605,7 +605,6 @@ def _validity_summary(name: str) -> str:
         return ""
     rows = ["| scene | preset | valid separations | valid range (sigma) | limit that fails first, at "
             "| its indicator there | H (MPa) | psi | load beyond the FE range |\n|---|---|---|---|---|---|---|---|---|\n"]
-
     for scene in ds["scene"].values:
         r = ds.sel(scene=scene)
         limit = str(r["failing_limit"].values)
@@ -635,7 +634,6 @@ def _friction_report(name: str) -> str:
         return ""
     rows = ["| scene | tau_s (MPa) | valid separations | mu_shear | p_r = p / A_c (MPa) | the report's mu "
             "| p_r it needs (MPa) | mu at Y0 / sqrt 3 | mu at Ys / sqrt 3 |\n|---|---|---|---|---|---|---|---|---|\n"]
-
     for scene in ds["scene"].values:
         r = {k: float(v) for k, v in ds.sel(scene=scene).data_vars.items()}
         rows.append(

@@ -645,22 +645,14 @@ def scale_study_scenes(wildcards):
     }
 
 
-def validity_summary_files(wildcards):
-    """The interface and surface files of each scene of config `validity_summary`, at the
-    run's preset."""
-    return {
+def scene_files(study, kinds):
+    """An input function: the files `kinds` (e.g. interface, surface) of each scene of config
+    `study`'s `scenes`, at the run's preset, keyed ``<scene>__<file>``
+    (asperity.stages.studies.files_by_scene)."""
+    return lambda wildcards: {
         f"{scene}__{kind}": f"{RESULTS}/{scene}/{kind}.nc"
-        for scene in config["validity_summary"]["scenes"]
-        for kind in ("interface", "surface")
-    }
-
-
-def friction_report_files(wildcards):
-    """The friction and interface files of each scene of config `friction_report`."""
-    return {
-        f"{scene}__{kind}": f"{RESULTS}/{scene}/{kind}.nc"
-        for scene in config["friction_report"]["scenes"]
-        for kind in ("friction", "interface")
+        for scene in config[study]["scenes"]
+        for kind in kinds
     }
 
 

@@ -112,7 +112,7 @@ rule validity_summary:
     snakemake --cores 2 results/studies/validity_summary.nc
     """
     input:
-        unpack(validity_summary_files),
+        unpack(scene_files("validity_summary", ("interface", "surface"))),
     output:
         data=f"{RESULTS}/studies/validity_summary.nc",
     log:
@@ -132,7 +132,7 @@ rule friction_report:
     reads: snakemake --cores 2 results/studies/friction_report.nc
     """
     input:
-        unpack(friction_report_files),
+        unpack(scene_files("friction_report", ("friction", "interface"))),
     output:
         data=f"{RESULTS}/studies/friction_report.nc",
     log:

@@ -6,11 +6,7 @@ from asperity.stages import studies
 
 with job_log(snakemake.log[0], "study friction against the report"):
     p = snakemake.params
-    files = {}
-    for key, path in snakemake.input.items():  # <scene>__<file>
-        scene, kind = key.split("__")
-        files.setdefault(scene, {})[kind] = path
-    ds = studies.friction_report_dataset(files, p.scenes)
+    ds = studies.friction_report_dataset(studies.files_by_scene(snakemake.input.items()), p.scenes)
     write_dataset(ds, snakemake.output.data, scene="studies",
                   title="the shear part of the friction coefficient against the report's",
                   config={"friction_report": p.study, "scenes": p.scenes}, version=p.version)

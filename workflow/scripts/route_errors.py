@@ -7,14 +7,7 @@ from asperity.stages import studies
 
 with job_log(snakemake.log[0], f"study route errors ({snakemake.wildcards.table})"):
     p = snakemake.params
-    files = {}
-    for key, path in snakemake.input.items():  # <scene>__<file>, or <scene>__route__<route>
-        scene, kind, *route = key.split("__")
-        if route:
-            files.setdefault(scene, {}).setdefault("routes", {})[route[0]] = path
-        else:
-            files.setdefault(scene, {})[kind] = path
-    ds = studies.route_errors_dataset(files)
+    ds = studies.route_errors_dataset(studies.files_by_scene(snakemake.input.items()))
     write_dataset(ds, snakemake.output.data, scene="studies",
                   title=f"every route's error against the boundary elements ({snakemake.wildcards.table})",
                   config={"route_errors": p.study}, version=p.version)

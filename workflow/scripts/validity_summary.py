@@ -6,10 +6,6 @@ from asperity.stages import studies
 
 with job_log(snakemake.log[0], "study validity summary"):
     p = snakemake.params
-    files = {}
-    for key, path in snakemake.input.items():  # <scene>__<file>
-        scene, kind = key.split("__")
-        files.setdefault(scene, {})[kind] = path
-    ds = studies.validity_summary_dataset(files)
+    ds = studies.validity_summary_dataset(studies.files_by_scene(snakemake.input.items()))
     write_dataset(ds, snakemake.output.data, scene="studies", title="where each scene's interface law holds",
                   config={"validity_summary": p.study}, version=p.version)

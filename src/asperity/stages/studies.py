@@ -28,6 +28,20 @@ def adhesion_curves_figure(ds: xr.Dataset):
     return adhesion_plots.curves_figure(ds)
 
 
+def files_by_scene(inputs) -> dict:
+    """The input files of a study rule that gathers scenes, keyed ``<scene>__<file>`` or
+    ``<scene>__route__<route>`` (workflow/rules/common.smk), as scene -> {file: path,
+    ``routes``: {route: path}}."""
+    files: dict = {}
+    for key, path in inputs:
+        scene, kind, *route = key.split("__")
+        if route:
+            files.setdefault(scene, {}).setdefault("routes", {})[route[0]] = path
+        else:
+            files.setdefault(scene, {})[kind] = path
+    return files
+
+
 def route_errors_dataset(files: Mapping[str, Mapping[str, Any]]) -> xr.Dataset:
     """Every route's error against the boundary elements, per reference scene
     (`asperity.studies.route_errors`); `files`: scene -> its ``comparison``, ``reference``
