@@ -69,13 +69,16 @@ compare-results: $(STAMP)
 	@test -n "$(REFERENCE)" || { echo "make compare-results REFERENCE=<results folder>"; exit 2; }
 	$(BIN)/python benchmarks/compare_results.py results $(REFERENCE)
 
-# The figures shown in the README, copied from a full run.
+# The figures shown in the README and the docs, copied from a full run (and the unloaded
+# ridge, a scene of the plane-strain table).
 README_FIGURES := steel_glass_bead/figures/interface.png profile_quasirandom/figures/surface.png expectation_unit/figures/expectation.png \
 	greenwood_williamson/figures/interface.png map_hertz/figures/surface.png steel_hertz/figures/interface.png \
 	profiles_anisotropic/figures/surface.png hertz/figures/verification.png \
 	asperity_shape/figures/interface.png asperity_shape/figures/asperities.png \
-	smooth_aluminum_adhesion/figures/adhesion.png truncated_v/figures/plane_strain_meshes.png
+	smooth_aluminum_adhesion/figures/adhesion.png truncated_v/figures/plane_strain_meshes.png \
+	truncated_v_unloading/figures/plane_strain.png
 figures: reproduce
+	$(BIN)/snakemake --cores $(CORES) results/truncated_v_unloading/figures/plane_strain.png
 	mkdir -p docs/figures
 	for f in $(README_FIGURES); do cp results/$$f docs/figures/$$(echo $$f | sed 's|/figures/|_|'); done
 	cp results/accuracy/hertz.png docs/figures/accuracy_hertz.png

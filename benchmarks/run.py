@@ -226,10 +226,6 @@ STUDIES = {
     "adhesion": Study("adhesion_cost.py", [], "CPU time of the adhesive jobs",
                       ["--only-large", "--radii", "5", "--accuracies", "draft",
                        "--out", f"{_S}/adhesion-cost.json"]),
-    "plane-strain": Study("plane_strain.py", ["--sensitivity", "--finite-strain", "--unloading"],
-                          "numbers and CPU time of the plane-strain scenes at every preset",
-                          ["--presets", "draft", "--scenes", "truncated_v", "--unloading",
-                           "--out", f"{_S}/plane-strain.json"]),
     # a route alone: the whole reference scene, boundary elements and comparison, is what
     # the workflow's test of deterministic_reference runs
     "reference": Study("reference_cost.py", ["--accuracy", "draft", "--cores", _CORES],
@@ -254,20 +250,9 @@ STUDIES = {
                             "--out", f"{_S}/finite-strain.json"]),
     "surface": Study("surface_speed.py", [], "a 2048^2 map's statistics beside SurfaceTopography's",
                      ["--points", "256", "--repeats", "1", "--out", f"{_S}/surface-speed.json"]),
-    # the results tree of the short `scenes` case (asperity_shape), which runs before,
-    # without the coupled scenes: the family against one job per sample only
-    "coupled": Study("coupled_numbers.py", [], "the coupled hill family beside the representative hill",
-                     [f"{_S}/results", "--out", f"{_S}/coupled.json"]),
-    "adhesion-scene": Study("adhesion_numbers.py", [], "the adhesive scene beside its elastic twin",
-                            None),
-    "adhesion-secant": Study("adhesion_secant.py", [], "the adhesive step test in contact",
-                             ["--radius", "5", "--w-max", "5", "--out", f"{_S}/adhesion-secant.json"]),
 }
 #: case -> why the short form leaves it out
-SHORT_SKIPPED = {
-    "adhesion-scene": "reads the results tree of smooth_aluminum_adhesion and its elastic twin, "
-                      "about a minute of pipeline on 2 cores even with two curvature samples",
-}
+SHORT_SKIPPED: dict[str, str] = {}
 #: a short case still running after this many seconds has failed
 SHORT_TIMEOUT = 600.0
 
@@ -303,8 +288,7 @@ def short(names: list[str] | None = None) -> int:
     name (``kernels``: every kernel).  Times are recorded, never held against a target:
     benchmarks/out/short.json gets each case's command, exit code, wall and CPU seconds
     beside the machine and commit; the scripts write under benchmarks/out/short/ (emptied
-    first when every case runs: `coupled` reads the results tree the `scenes`
-    case leaves there), each script's output to <case>.log there.  Exit code 1 if a case
+    first when every case runs), each script's output to <case>.log there.  Exit code 1 if a case
     failed."""
     import shutil
     import traceback

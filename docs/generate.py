@@ -654,6 +654,90 @@ def _friction_report(name: str) -> str:
             + "".join(rows) + "\n" + _study_provenance(ds, name))
 
 
+def _adhesion_report(name: str) -> str:
+    """An adhesive scene beside its elastic twin (the study adhesion_report)."""
+    ds = _study(name)
+    if ds is None:
+        return ""
+    pair = yaml.safe_load(ds.attrs["config"])["adhesion_report"]
+    scene, twin = pair["scene"], pair["twin"]
+    v = {k: float(x) for k, x in ds.data_vars.items() if x.ndim == 0}
+    rows = ["| tip radius (um) | Tabor parameter | pull-off / JKR | pull-off / DMT | jump in, out (nm) "
+            "| in contact and elastic |\n|---|---|---|---|---|---|\n"]
+    tips = {k: x.values for k, x in ds.data_vars.items() if x.dims == ("curvature",)}
+    for i in range(ds.sizes["curvature"]):
+        r = {k: float(x[i]) for k, x in tips.items()}
+        rows.append(f"| {r['tip_radius'] * 1e6:.3g} | {r['tabor_parameter']:.3g} | {r['pull_off_over_jkr']:.3f} | "
+                    f"{r['pull_off_over_dmt']:.3f} | {r['jump_in_interference'] * 1e9:.2f}, "
+                    f"{r['jump_off_interference'] * 1e9:.2f} | {100 * r['elastic_share_in_contact']:.0f} % |\n")
+    branches = "; ".join(
+        f"{b}: {_span(float(c['elastic_fraction_low']), float(c['elastic_fraction_high']), '.0%')} elastic, "
+        f"valid at {_span(float(c['valid_from']), float(c['valid_to']), '.2f')} sigma"
+        for b, c in ((str(b), ds.sel(branch=b)) for b in ds["branch"].values))
+    return ("\n## Adhesion beside its elastic twin\n\n"
+            f"Scene `{scene}` (Lennard-Jones adhesion on elastic asperities, report 7.3) beside `{twin}`, "
+            "the same scene without adhesion (`snakemake --cores 2 results/studies/adhesion_report.nc` "
+            "after a default run). Per tip: its Tabor parameter, its pull-off force against JKR's "
+            "3/2 pi R W_c and DMT's 2 pi R W_c, the interferences where it jumps into and out of "
+            "contact, and the share of its grid points in contact where it is still elastic.\n\n"
+            + "".join(rows) +
+            f"\nFinite element jobs: {v['fe_jobs']:.0f}, {v['fe_cpu_time']:.0f} s of CPU. Summits above 1 sigma "
+            f"flatter than the flattest sample: {100 * v['flatter_above_1_sigma']:.2g} %, steeper than the "
+            f"steepest: {100 * v['steeper_above_1_sigma']:.2g} % (above 2 sigma: "
+            f"{100 * v['flatter_above_2_sigma']:.2g} %, {100 * v['steeper_above_2_sigma']:.2g} %). "
+            f"Largest attraction on approach {v['largest_attraction_approach'] / 1e3:.3g} kPa, pull-off "
+            f"pressure {v['pull_off_pressure'] / 1e3:.3g} kPa; at 1 sigma {v['pressure_at_1_sigma'] / 1e6:.3g} MPa "
+            f"against the twin's {v['twin_pressure_at_1_sigma'] / 1e6:.3g} MPa. Friction: mu "
+            f"{v['mu_at_1_sigma']:.3g} at 1 sigma and {v['mu_at_lightest_load']:.3g} at the lightest positive "
+            f"load ({v['lightest_load'] / 1e3:.3g} kPa); the twin's "
+            f"{_span(v['twin_mu_low'], v['twin_mu_high'], '.3g')}. Contacting asperities still elastic: "
+            f"{branches}; the twin's {_span(v['twin_elastic_fraction_low'], v['twin_elastic_fraction_high'], '.0%')}."
+            "\n\n" + _study_provenance(ds, name))
+
+
+def _plane_strain_table(name: str) -> str:
+    """The plane-strain scenes side by side (the study plane_strain_table); the theory page
+    on plane strain includes this section."""
+    ds = _study(name)
+    if ds is None:
+        return ""
+
+    def pair(r, key, fmt, scale=1.0):
+        return " / ".join(f"{float(r[key].sel(mesh=m)) * scale:{fmt}}" for m in ("coarse", "refined"))
+
+    rows = ["| scene | preset | dofs | F elastic (kN/m) | F viscoplastic (kN/m) | coarse - refined "
+            "| viscoplastic / elastic | largest nonelastic strain | inside out | half width - Hertz | CPU (s) "
+            "|\n|---|---|---|---|---|---|---|---|---|---|---|\n"]
+    unload = ["| scene | preset | permanent set (um) | recovery x k / F_max | unloading stiffness / k "
+              "| loaded / elastic half width |\n|---|---|---|---|---|---|\n"]
+    for run in ds["run"].values:
+        r = ds.sel(run=run)
+        hertz = r["hertz_half_width_deviation"].values
+        rows.append(f"| `{r['scene'].item()}` | {r['preset'].item()} | {pair(r, 'dofs', '.0f')} "
+                    f"| {pair(r, 'elastic_force', '.1f', 1e-3)} | {pair(r, 'viscoplastic_force', '.1f', 1e-3)} "
+                    f"| {100 * float(r['mesh_difference']):+.1f} % | {pair(r, 'viscoplastic_over_elastic', '.3f')} "
+                    f"| {pair(r, 'largest_inelastic_strain', '.3g')} | {pair(r, 'inverted_elements', '.0f')} "
+                    f"| {pair(r, 'hertz_half_width_deviation', '.1%') if np.isfinite(hertz).all() else '-'} "
+                    f"| {float(r['cpu_time'].sum()):.1f} |\n")
+        if np.isfinite(r["residual_interference"].values).all():
+            unload.append(f"| `{r['scene'].item()}` | {r['preset'].item()} "
+                          f"| {pair(r, 'residual_interference', '.2f', 1e6)} | {pair(r, 'recovery_ratio', '.3f')} "
+                          f"| {pair(r, 'unloading_over_elastic_stiffness', '.4f')} "
+                          f"| {pair(r, 'loaded_over_elastic_half_width', '.3f')} |\n")
+    text = ("\n## The plane-strain scenes side by side\n\n"
+            "Each scene at each preset; a pair is coarse / refined mesh. Forces per unit length at the "
+            "largest interference; the meshes' difference is the viscoplastic force's; the half width "
+            "against plane-strain Hertz is the elastic cylinder's largest deviation; CPU is both bodies' "
+            "solves on both meshes (`snakemake --cores 2 results/studies/plane_strain_table.nc`).\n\n"
+            + "".join(rows))
+    if len(unload) > 1:
+        text += ("\nUnloaded (each pair coarse / refined): the permanent set, the elastic recovery "
+                 "(w_max - w_r) k / F_max and the unloading stiffness over the elastic stiffness k at "
+                 "w_max, and the viscoplastic contact half width over the elastic one at w_max.\n\n"
+                 + "".join(unload))
+    return text + "\n" + _study_provenance(ds, name)
+
+
 def _routes_section() -> str:
     text = _route_errors("route_errors_maps.nc")
     if not text:
@@ -696,6 +780,8 @@ VERIFICATION_SECTIONS = (
     ("anisotropic.md", _anisotropic_section),
     ("validity.md", lambda: _validity_summary("validity_summary.nc")),
     ("friction-report.md", lambda: _friction_report("friction_report.nc")),
+    ("adhesion-report.md", lambda: _adhesion_report("adhesion_report.nc")),
+    ("plane-strain-table.md", lambda: _plane_strain_table("plane_strain_table.nc")),
     ("j2-sphere.md", lambda: _j2_sphere("j2_sphere.nc")),
     ("scale-study.md", lambda: _scale_study("scale_study.nc")),
     "\n## What a run costs\n",

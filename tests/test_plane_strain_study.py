@@ -399,3 +399,32 @@ def test_the_stage_warns_where_unloading_resolves_no_permanent_set(caplog):
     assert np.all(ds["largest_inelastic_strain"].values < 1e-6)
     assert "no permanent set" in ds.attrs["warnings"] and "'refined'" in ds.attrs["warnings"]
     assert ds.attrs["warnings"] in caplog.text
+
+
+def test_the_table_reads_each_run(cylinder, ridge):
+    """`asperity.studies.plane_strain_table` on the draft runs: forces, strains and CPU as
+    the runs' files give them; the cylinder's half width against plane-strain Hertz as
+    its deviation (under 3 % on both meshes); the unloaded ridge recovers F_max / k (the
+    elastic punch it was before it flowed, 3 % as in
+    `test_unloading_starts_elastic_with_the_loaded_contact`) and unloads at k (0.1 %)."""
+    from asperity.studies.plane_strain_table import plane_strain_table
+
+    unloaded = run("truncated_v", ["plasticity", "unloading"])
+    ds = plane_strain_table({"c@draft": cylinder, "r@draft": ridge, "u@draft": unloaded})
+    assert list(ds["scene"].values) == ["c", "r", "u"] and set(ds["preset"].values) == {"draft"}
+    ds = ds.assign_coords(run=["c", "r", "u"])
+    for name, source in (("c", cylinder), ("r", ridge), ("u", unloaded)):
+        end = source.isel(interference=-1)
+        for body in ("elastic", "viscoplastic"):
+            np.testing.assert_array_equal(ds[f"{body}_force"].sel(run=name), end["force"].sel(body=body))
+        np.testing.assert_array_equal(ds["largest_inelastic_strain"].sel(run=name), source["largest_inelastic_strain"])
+        np.testing.assert_allclose(ds["cpu_time"].sel(run=name), source["cpu_time"].sum("body"), rtol=1e-12)
+        f = end["force"].sel(body="viscoplastic")
+        assert float(ds["mesh_difference"].sel(run=name)) == pytest.approx(
+            float(f.sel(mesh="coarse") / f.sel(mesh="refined") - 1), rel=1e-12)
+    assert np.all(ds["hertz_half_width_deviation"].sel(run="c").values < 0.03)
+    assert np.all(np.isnan(ds["hertz_half_width_deviation"].sel(run="r").values))
+    assert np.all(np.isnan(ds["residual_interference"].sel(run=["c", "r"]).values))
+    np.testing.assert_allclose(ds["recovery_ratio"].sel(run="u"), 1.0, rtol=0.03)
+    np.testing.assert_allclose(ds["unloading_over_elastic_stiffness"].sel(run="u"), 1.0, rtol=1e-3)
+    np.testing.assert_array_equal(ds["residual_interference"].sel(run="u"), unloaded["residual_interference"])

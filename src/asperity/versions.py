@@ -51,6 +51,8 @@ VERSIONS: dict[str, int] = {
     "j2_sphere": 1,
     "validity_summary": 1,
     "friction_report": 1,
+    "adhesion_report": 1,
+    "plane_strain_table": 1,
     # the deterministic reference (workflow/rules/reference.smk)
     "reference": 3,
     "reference_comparison": 4,

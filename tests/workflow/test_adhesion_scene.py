@@ -198,3 +198,34 @@ def test_friction_far_above_the_twin_at_light_load(run):
                                        twin["nominal_pressure"].values, np.nan))
     assert float(mu["mu"][lightest]) > 10 * float(twin["mu"][light_twin])
     assert np.all(np.isnan(mu["mu"].values[p <= 0]))
+
+
+def test_the_adhesion_report_reads_the_scene_and_its_twin(run):
+    """Rule adhesion_report on this run: per tip the pull-off ratios and jumps of
+    asperities.nc, the share of contact points still elastic, and the pressures at
+    1 sigma of the scene and its twin as their interfaces give them (to round-off)."""
+    from asperity.io.netcdf import read_dataset
+    from asperity.population.density import height_scale
+
+    snakemake(run, "results/studies/adhesion_report.nc", *ONLY[:2], "accuracy=draft")
+    ds = read_dataset(run / "results" / "studies" / "adhesion_report.nc")
+    assert missing_attributes(ds) == []
+    asp = result(run, SCENE, "asperities.nc")
+    np.testing.assert_allclose(ds["pull_off_over_jkr"], asp["pull_off_force"] / asp["pull_off_force_jkr"],
+                               rtol=1e-12)
+    np.testing.assert_allclose(ds["pull_off_over_dmt"], asp["pull_off_force"] / asp["pull_off_force_dmt"],
+                               rtol=1e-12)
+    np.testing.assert_array_equal(ds["jump_off_interference"], asp["jump_off_interference"])
+    touching = asp["in_contact"].values > 0
+    shares = [(asp["elastic"].values[:, :, i] > 0)[touching[:, :, i]].mean() for i in range(asp.sizes["curvature"])]
+    np.testing.assert_allclose(ds["elastic_share_in_contact"], shares, rtol=1e-12)
+    for name, scene, var in (("pressure_at_1_sigma", SCENE, "pressure_at_1_sigma"),
+                             ("twin", TWIN, "twin_pressure_at_1_sigma")):
+        interface = result(run, scene, "interface.nc")
+        sigma = height_scale(result(run, scene, "surface.nc"))
+        approach = interface.sel(branch="approach") if "branch" in interface.dims else interface
+        assert float(ds[var]) == pytest.approx(float(approach["nominal_pressure"].interp(separation=sigma)),
+                                               rel=1e-12), name
+    # adhesion pulls: at 1 sigma less compressive pressure than the twin's
+    assert 0 < float(ds["pressure_at_1_sigma"]) < float(ds["twin_pressure_at_1_sigma"])
+    assert float(ds["pull_off_pressure"]) > 0 and float(ds["largest_attraction_approach"]) > 0

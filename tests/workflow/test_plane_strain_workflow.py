@@ -58,3 +58,18 @@ def test_numbers_of_the_run(run):
     assert np.all(np.abs(f / ds.attrs["test_load"] - 1) < 0.1), f
     assert np.all((0.4 < ds["largest_inelastic_strain"].values)
                   & (ds["largest_inelastic_strain"].values < 2.0))
+
+
+def test_the_plane_strain_table_reads_the_run(run):
+    """Rule plane_strain_table on this run's scene at draft: nothing computed again, the
+    forces and strains of its plane_strain.nc, with units on every variable."""
+    study = "plane_strain_table={'scenes': ['truncated_v'], 'presets': ['draft']}"
+    jobs = planned_jobs(snakemake(run, "-n", "results/studies/plane_strain_table.nc", "--config",
+                                  "accuracy=draft", study))
+    assert jobs == {"plane_strain_table": 1}, jobs
+    snakemake(run, "results/studies/plane_strain_table.nc", "--config", "accuracy=draft", study)
+    ds = read_dataset(run / "results" / "studies" / "plane_strain_table.nc")
+    assert missing_attributes(ds) == [] and list(ds["run"].values) == ["truncated_v@draft"]
+    source = read_dataset(run / "results" / SCENE / "plane_strain.nc").isel(interference=-1)
+    np.testing.assert_array_equal(ds["viscoplastic_force"].isel(run=0), source["force"].sel(body="viscoplastic"))
+    np.testing.assert_array_equal(ds["largest_inelastic_strain"].isel(run=0), source["largest_inelastic_strain"])

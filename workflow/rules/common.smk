@@ -656,6 +656,19 @@ def scene_files(study, kinds):
     }
 
 
+def plane_strain_table_files(wildcards):
+    """The plane_strain.nc of each scene of config `plane_strain_table` at each of its
+    presets (the scene's own folder at the run's `accuracy`, else ``<scene>@<preset>``),
+    keyed ``<scene>__<preset>``."""
+    study = config["plane_strain_table"]
+    at = {p: "" if p == config["accuracy"] else f"@{p}" for p in study["presets"]}
+    return {
+        f"{scene}__{preset}": f"{RESULTS}/{scene}{at[preset]}/plane_strain.nc"
+        for preset in study["presets"]
+        for scene in study["scenes"]
+    }
+
+
 def friction_report_scenes(wildcards):
     """The material and units of each scene of config `friction_report`."""
     return {

@@ -145,3 +145,49 @@ rule friction_report:
         scenes=friction_report_scenes,
     script:
         "../scripts/friction_report.py"
+
+
+rule adhesion_report:
+    """An adhesive scene beside its elastic twin (config `adhesion_report`; report 7.3,
+    9.1).  Not in `rule all`; after a default run it only reads:
+    snakemake --cores 2 results/studies/adhesion_report.nc
+    """
+    input:
+        asperities=f"{RESULTS}/{config['adhesion_report']['scene']}/asperities.nc",
+        interface=f"{RESULTS}/{config['adhesion_report']['scene']}/interface.nc",
+        friction=f"{RESULTS}/{config['adhesion_report']['scene']}/friction.nc",
+        surface=f"{RESULTS}/{config['adhesion_report']['scene']}/surface.nc",
+        twin_interface=f"{RESULTS}/{config['adhesion_report']['twin']}/interface.nc",
+        twin_friction=f"{RESULTS}/{config['adhesion_report']['twin']}/friction.nc",
+        twin_surface=f"{RESULTS}/{config['adhesion_report']['twin']}/surface.nc",
+    output:
+        data=f"{RESULTS}/studies/adhesion_report.nc",
+    log:
+        f"{RESULTS}/studies/logs/adhesion_report.log",
+    conda:
+        ENV
+    params:
+        version=code_version("adhesion_report"),
+        study=config["adhesion_report"],
+    script:
+        "../scripts/adhesion_report.py"
+
+
+rule plane_strain_table:
+    """The plane-strain scenes of config `plane_strain_table` side by side at each of its
+    presets (report 6.3.2, 6.3.3).  Not in `rule all` (a minute):
+    snakemake --cores 2 results/studies/plane_strain_table.nc
+    """
+    input:
+        unpack(plane_strain_table_files),
+    output:
+        data=f"{RESULTS}/studies/plane_strain_table.nc",
+    log:
+        f"{RESULTS}/studies/logs/plane_strain_table.log",
+    conda:
+        ENV
+    params:
+        version=code_version("plane_strain_table"),
+        study=config["plane_strain_table"],
+    script:
+        "../scripts/plane_strain_table.py"

@@ -11,7 +11,8 @@ import xarray as xr
 
 from asperity.io.netcdf import read_dataset
 from asperity.plots import adhesion as adhesion_plots
-from asperity.studies import adhesion, friction_report, j2_sphere, route_errors, summit_scale, validity_summary
+from asperity.studies import (adhesion, adhesion_report, friction_report, j2_sphere, plane_strain_table,
+                              route_errors, summit_scale, validity_summary)
 
 Config = Mapping[str, Any]
 
@@ -157,3 +158,19 @@ def friction_report_dataset(files: Mapping[str, Mapping[str, str]], scenes: Mapp
         scene: (read_dataset(paths["friction"]), read_dataset(paths["interface"]),
                 flow_stresses(scenes[scene]["material"], scenes[scene]["units"]))
         for scene, paths in files.items()})
+
+
+def adhesion_report_dataset(files: Mapping[str, str]) -> xr.Dataset:
+    """An adhesive scene beside its elastic twin (`asperity.studies.adhesion_report`);
+    `files`: the scene's ``asperities``, ``interface``, ``friction`` and ``surface`` files,
+    the twin's ``twin_interface``, ``twin_friction`` and ``twin_surface``."""
+    return adhesion_report.adhesion_report(
+        tuple(read_dataset(files[k]) for k in ("asperities", "interface", "friction", "surface")),
+        tuple(read_dataset(files[f"twin_{k}"]) for k in ("interface", "friction", "surface")))
+
+
+def plane_strain_table_dataset(files: Mapping[str, str]) -> xr.Dataset:
+    """The plane-strain scenes side by side (`asperity.studies.plane_strain_table`);
+    `files`: ``<scene>__<preset>`` -> its plane_strain.nc."""
+    return plane_strain_table.plane_strain_table(
+        {key.replace("__", "@"): read_dataset(path) for key, path in files.items()})
