@@ -143,6 +143,28 @@ def test_scene_accuracy_deviations_and_costs():
     assert missing_attributes(ds) == []
 
 
+def test_a_variant_is_compared_with_its_scenes_reference():
+    """A variant of `loads` (runs at draft and standard only) against `loads` at fine: its
+    draft deviates by the largest of its own errors above the threshold, 2 %; nothing at
+    fine; a variant's missing coarser run is still refused."""
+    variant = {("band", "draft"): interface(H_REF, P_REF * (1 + 0.5 * ERR), P_REF / 100, accuracy="draft",
+                                            fe_jobs=1, fe_cpu_time=3.0),
+               ("band", "standard"): interface(H_REF, P_REF, P_REF / 100, accuracy="standard",
+                                               fe_jobs=1, fe_cpu_time=8.0)}
+    ds = scene_accuracy({**_study(), **variant}, ["loads", "band"], ["draft", "standard", "fine"],
+                        against={"band": "loads"})
+    sel = dict(scene="band", branch="loading", quantity="nominal_pressure")
+    assert float(ds["deviation"].sel(preset="draft", **sel)) == pytest.approx(0.02, rel=1e-12)
+    assert float(ds["deviation"].sel(preset="standard", **sel)) == 0.0
+    assert np.isnan(ds["deviation"].sel(preset="fine", **sel)) and np.isnan(ds["fe_cpu_time"].sel(
+        scene="band", preset="fine"))
+    assert ds["fe_cpu_time"].sel(scene="band").values[:2].tolist() == [3.0, 8.0]
+    assert ds.attrs["variants"] == "band: against loads"
+    with pytest.raises(ValueError, match="band@draft"):
+        scene_accuracy({**_study(), ("band", "standard"): variant[("band", "standard")]}, ["loads", "band"],
+                       ["draft", "standard", "fine"], against={"band": "loads"})
+
+
 def test_scene_accuracy_other_reference_and_threshold():
     """Against standard instead of fine, threshold 1e-2: draft's loading pressure deviates by
     (1 + e) / (1 + e/4) - 1 where standard's is above 1e-2 of its largest (100.25 Pa): at 0..3 um

@@ -45,6 +45,8 @@ VERSIONS: dict[str, int] = {
     "plane_strain": 3,
     "accuracy_hertz": 1,
     "accuracy_scenes": 1,
+    "accuracy_sliding": 1,
+    "accuracy_inelastic_case": 1,
     "adhesion_curves": 1,
     "route_errors": 1,
     "scale_study": 1,

@@ -332,7 +332,7 @@ def test_tangent_is_consistent_with_the_residual(plastic_point):
 
 # --- the step control reads Newton's iterations to PACE_TOLERANCE -------------------
 def _j2_sphere_steps(tolerance):
-    """The J2 body of benchmarks/remesh.py (E / Y = 400, perfectly plastic; here a
+    """The J2 body of `asperity.studies.inelastic_accuracy` (E / Y = 400, perfectly plastic; here a
     paraboloid of its tip radius) at draft, pressed to 50 times its critical
     interference."""
     y = E / 400

@@ -11,7 +11,7 @@ import pytest
 from asperity.fe import J2Plasticity, Paraboloid, Sphere, solve_asperity_history
 from asperity.fe.contact.penalty import contact_edge_pressure
 from asperity.fe.drivers.inelastic import History
-from benchmarks.remesh import area_scatter
+from asperity.studies.inelastic_accuracy import area_scatter
 
 E, NU = 1000.0, 0.3
 E_STAR = E / (1 - NU**2)
@@ -49,7 +49,7 @@ def test_area_grows_with_the_force_at_every_step():
 
 
 #: contact area [m^2] of the same sphere at `fine` (its one mesh with the band, 116
-#: steps: `benchmarks/remesh.py --cases j2_sphere --presets fine --remesh off`,
+#: steps: the reference run of `snakemake --cores 2 accuracy_inelastic`, case j2_sphere,
 #: interpolated in ln F between its steps) at these forces [N]; fine's mesh before,
 #: adapted further to the elastic solutions and without the band, gave 2.5909e-4,
 #: 6.3420e-4, 1.8341e-3, 3.4461e-3, 6.4382e-3 (up to 1 % apart)
@@ -77,8 +77,8 @@ BAND_AREA = np.array([1.33240e-3, 2.13270e-3, 2.96864e-3, 3.83432e-3, 4.72801e-3
 
 
 def _scatter(ds):
-    """The area's step-to-step scatter (`benchmarks.remesh.area_scatter`, which
-    `make bench CASE=remesh` reports for every run)."""
+    """The area's step-to-step scatter (`asperity.studies.inelastic_accuracy.area_scatter`,
+    which `snakemake --cores 2 accuracy_inelastic` reports for every run)."""
     return area_scatter(ds.interference.values, ds.contact_area.values)
 
 

@@ -188,8 +188,8 @@ def test_finite_kinematics_agree_with_small_at_small_strain(spheres):
         assert a[1] == pytest.approx(a[0], rel=1e-2)
 
 
-#: the steel hill of `benchmarks/finite_strain.py` at standard (make bench CASE=finite-strain
-#: on 3044677, 2026-11-24): force [N] and contact area [m^2] at w = C/2 and C
+#: the steel hill of `asperity.studies.inelastic_accuracy` at standard in finite strain
+#: (`benchmarks/finite_strain.py` on 3044677, 2026-11-24, before it became that study): force [N] and contact area [m^2] at w = C/2 and C
 STEEL_HILL_STANDARD = {0.5: (0.08503, 9.372e-11), 1.0: (0.2303, 2.641e-10)}
 
 

@@ -16,11 +16,16 @@ def test_accuracy_scenes_target_runs_every_scene_at_every_preset(workflow_copy):
     proc = snakemake(workflow_copy, "-n", "accuracy_scenes")
     jobs = planned_jobs(proc)
     assert jobs["accuracy_scenes"] == 1
-    # steel_glass_bead, rough_aluminum and smooth_aluminum at draft, standard and fine
-    assert jobs["interface"] == len(study["scenes"]) * len(study["presets"]) == 9
+    # steel_glass_bead, rough_aluminum and smooth_aluminum at draft, standard and fine, and
+    # the variant with the edge band at draft and standard (compared with the scene at fine)
+    assert study["variants"] == {"steel_glass_bead_edge_band": "steel_glass_bead"}
+    assert jobs["interface"] == len(study["scenes"]) * len(study["presets"]) + 2 == 11
     for name in study["scenes"]:
         for preset in study["presets"]:
             assert f"results/{name}@{preset}/interface.nc" in proc.stdout, (name, preset)
+    for preset in ("draft", "standard"):
+        assert f"results/steel_glass_bead_edge_band@{preset}/interface.nc" in proc.stdout
+    assert "results/steel_glass_bead_edge_band@fine/" not in proc.stdout
     # the default run leaves it out (it costs the fine runs)
     assert "accuracy_scenes" not in planned_jobs(snakemake(workflow_copy, "-n"))
 

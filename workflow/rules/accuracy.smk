@@ -46,3 +46,66 @@ rule accuracy_scenes:
         runs=accuracy_scene_runs(),
     script:
         "../scripts/accuracy_scenes.py"
+
+
+rule accuracy_sliding:
+    """Force histories of a sliding asperity at each preset against the next finer one's,
+    with what each run costs.  Not in `rule all` (it runs the scene at `fine`):
+    snakemake --cores 2 accuracy_sliding
+    """
+    input:
+        unpack(accuracy_sliding_files),
+    output:
+        data=f"{RESULTS}/accuracy/sliding.nc",
+        figure=report(
+            f"{RESULTS}/accuracy/sliding.png",
+            category="accuracy",
+            caption="../report/accuracy_sliding.rst",
+            labels={"study": "sliding asperity", "figure": "accuracy against cost"},
+        ),
+    log:
+        f"{RESULTS}/accuracy/logs/sliding.log",
+    conda:
+        ENV
+    params:
+        version=code_version("accuracy_sliding"),
+        study=config["accuracy_sliding"],
+    script:
+        "../scripts/accuracy_sliding.py"
+
+
+rule accuracy_inelastic:
+    """Every case of config `accuracy_inelastic`: an inelastic asperity's meshes and
+    kinematics at each preset against a finer run.  Not in `rule all` (about 20 minutes):
+    snakemake --cores 2 accuracy_inelastic
+    """
+    input:
+        expand(
+            f"{RESULTS}/accuracy/inelastic_{{case}}.nc",
+            case=config["accuracy_inelastic"]["cases"],
+        ),
+
+
+rule accuracy_inelastic_case:
+    """One case of config `accuracy_inelastic` (a J2 sphere, a viscoplastic hill, a coupled
+    steel hill): each variant at each preset against the reference run, and its CPU time."""
+    output:
+        data=f"{RESULTS}/accuracy/inelastic_{{case}}.nc",
+        figure=report(
+            f"{RESULTS}/accuracy/inelastic_{{case}}.png",
+            category="accuracy",
+            caption="../report/accuracy_inelastic.rst",
+            labels={"study": "inelastic asperity", "figure": "{case}"},
+        ),
+    log:
+        f"{RESULTS}/accuracy/logs/inelastic_{{case}}.log",
+    wildcard_constraints:
+        case="j2_sphere|viscoplastic_hill|steel_hill",
+    conda:
+        ENV
+    params:
+        version=code_version("accuracy_inelastic_case"),
+        study=config["accuracy_inelastic"],
+        case=lambda wildcards: wildcards.case,
+    script:
+        "../scripts/accuracy_inelastic.py"

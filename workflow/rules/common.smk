@@ -537,9 +537,22 @@ def friction_compared(wildcards):
 
 
 def accuracy_scene_runs():
-    """(scene, preset) of every run the scene accuracy study compares."""
+    """(scene, preset) of every run the scene accuracy study compares: each scene at each
+    preset, each variant at each preset but the last (compared with its scene's last)."""
     study = config["accuracy_scenes"]
-    return [(name, preset) for name in study["scenes"] for preset in study["presets"]]
+    variants = study.get("variants") or {}
+    return [(name, preset) for name in study["scenes"] for preset in study["presets"]] + [
+        (name, preset) for name in variants for preset in study["presets"][:-1]
+    ]
+
+
+def accuracy_sliding_files(wildcards):
+    """sliding.nc of the scene of config `accuracy_sliding` at each of its presets (its own
+    folder at the run's `accuracy`, else ``<scene>@<preset>``), keyed by preset."""
+    study = config["accuracy_sliding"]
+    return {
+        preset: f"{scene_folder(study['scene'], preset)}/sliding.nc" for preset in study["presets"]
+    }
 
 
 # --- reference (reference.smk) --------------------------------------------------------
@@ -604,6 +617,12 @@ def route_inputs(wildcards):
 # --- studies (studies.smk) -------------------------------------------------------------
 
 
+def scene_folder(scene, preset):
+    """The results folder of `scene` run at `preset`: its own at the run's `accuracy`, else
+    ``<scene>@<preset>``."""
+    return f"{RESULTS}/{scene}" if preset == config["accuracy"] else f"{RESULTS}/{scene}@{preset}"
+
+
 def route_error_files(wildcards):
     """The comparison, reference and surface files of each scene of table `table` of config
     `route_errors`, and the interface of each of its routes, at the table's preset: the
@@ -615,14 +634,13 @@ def route_error_files(wildcards):
             f"(one of {', '.join(config['route_errors']['tables'])})"
         )
     preset = config["route_errors"]["accuracy"]
-    at = "" if preset == config["accuracy"] else f"@{preset}"
     files = {
-        f"{scene}__{kind}": f"{RESULTS}/{scene}{at}/{kind}.nc"
+        f"{scene}__{kind}": f"{scene_folder(scene, preset)}/{kind}.nc"
         for scene in table
         for kind in ("comparison", "reference", "surface")
     }
     files |= {
-        f"{scene}__route__{route}": f"{RESULTS}/{scene}{ROUTE_SEPARATOR}{route}{at}/interface.nc"
+        f"{scene}__route__{route}": f"{scene_folder(scene + ROUTE_SEPARATOR + route, preset)}/interface.nc"
         for scene in table
         for route in SCENES[scene]["routes"]
     }
@@ -661,9 +679,8 @@ def plane_strain_table_files(wildcards):
     presets (the scene's own folder at the run's `accuracy`, else ``<scene>@<preset>``),
     keyed ``<scene>__<preset>``."""
     study = config["plane_strain_table"]
-    at = {p: "" if p == config["accuracy"] else f"@{p}" for p in study["presets"]}
     return {
-        f"{scene}__{preset}": f"{RESULTS}/{scene}{at[preset]}/plane_strain.nc"
+        f"{scene}__{preset}": f"{scene_folder(scene, preset)}/plane_strain.nc"
         for preset in study["presets"]
         for scene in study["scenes"]
     }

@@ -116,6 +116,7 @@ def scene_accuracy(
     interfaces: Mapping[tuple[str, str], xr.Dataset],
     scenes: Sequence[str], presets: Sequence[str], *,
     reference: str | None = None, threshold: float = 1e-3,
+    against: Mapping[str, str] | None = None,
 ) -> xr.Dataset:
     """Cost and deviation from the `reference` preset per (scene, preset).
 
@@ -123,15 +124,21 @@ def scene_accuracy(
     (``results/<scene>@<preset>/interface.nc``); `reference` defaults to the
     last of `presets` (the finest).  A run whose ``accuracy`` attribute names
     another preset is refused (the inputs were mixed up).  The deviation is
-    defined in the module docstring; the reference's own is 0.
+    defined in the module docstring; the reference's own is 0.  `against` maps a
+    variant of a scene (e.g. the scene with the edge band, written ``like:`` it) to
+    that scene: the variant runs at the presets but the reference and is compared with
+    the scene's reference run, so that what the variant buys and costs stands beside
+    the scene's own presets (NaN at the reference preset).
     """
     scenes, presets = list(scenes), list(presets)
+    against = dict(against or {})
     reference = presets[-1] if reference is None else reference
     if reference not in presets:
         raise ValueError(f"reference preset {reference!r} is not among the presets {presets}")
     if not 0.0 <= threshold < 1.0:
         raise ValueError(f"threshold {threshold} must be in [0, 1)")
-    missing = [f"{s}@{p}" for s in scenes for p in presets if (s, p) not in interfaces]
+    missing = [f"{s}@{p}" for s in scenes for p in presets
+               if (s, p) not in interfaces and not (s in against and p == reference)]
     if missing:
         raise ValueError(f"no interface for {', '.join(missing)}")
     for (s, p), ds in interfaces.items():
@@ -146,8 +153,10 @@ def scene_accuracy(
     cost = {name: np.full((len(scenes), len(presets)), np.nan) for name in COST_ATTRS}
     extrapolated = np.full((len(scenes), len(presets)), np.nan)
     for i, s in enumerate(scenes):
-        ref = interfaces[(s, reference)]
+        ref = interfaces[(against.get(s, s), reference)]
         for j, p in enumerate(presets):
+            if (s, p) not in interfaces:
+                continue  # a variant at the reference preset
             run = interfaces[(s, p)]
             for name in COST_ATTRS:
                 cost[name][i, j] = float(run.attrs.get(name, np.nan))
@@ -198,5 +207,6 @@ def scene_accuracy(
         "branch": ("branch", list(BRANCHES), attrs(
             "1", "loading, or unloading from the separation unloading_from (report 8.3)")),
     })
-    out.attrs.update(reference=reference, threshold=float(threshold))
+    out.attrs.update(reference=reference, threshold=float(threshold),
+                     variants="; ".join(f"{v}: against {s}" for v, s in against.items()))
     return out

@@ -90,7 +90,7 @@ def step_grid(motion: FlatMotion, preset: dict) -> np.ndarray:
     its preset's steps (`step_caps`).  A step may be shorter (cut, or paced by Newton)
     but never crosses one of these times, so runs whose presets have the same steps
     (``standard`` and ``fine``) both report their force histories at these times and
-    are compared there without interpolating either (`benchmarks/sliding_convergence.py`)."""
+    are compared there without interpolating either (`asperity.studies.sliding_accuracy`)."""
     times = np.asarray(motion.times, float)
     parts = [times[i] + (times[i + 1] - times[i]) * np.arange(n) / n
              for i, n in enumerate(_segment_steps(motion, preset))]

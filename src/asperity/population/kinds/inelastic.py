@@ -16,7 +16,7 @@ the effect enters the spec with the others, so it reruns them.
 The band the plastic contact edge sweeps (`edge_band_accuracy`: the spec's accuracy is
 the preset with its ``edge_size``, the one mesh refined where the plastic contact edge
 goes) is in fine's preset for every body, and the spec adds it at standard for a
-rate-independent (J2) body (`wants_band`): on the J2 sphere of `make bench CASE=remesh` it puts
+rate-independent (J2) body (`wants_band`): on the J2 sphere of `accuracy_inelastic` it puts
 standard's contact area within 1 % of fine's (3 % on the default mesh) for about twice
 standard's CPU. A rate-dependent body has it at fine only: its steps are set by the
 time-error control, whose indicator grows as the surface is refined, so the band takes
