@@ -500,7 +500,7 @@ def _sliding_accuracy(name: str) -> str:
                      for p in ds["preset"].values)
     traction = ", ".join(f"`{p}` {float(ds['mean_tangential_traction_sliding'].sel(preset=p)) / 1e6:.0f} MPa"
                          for p in ds["preset"].values)
-    return (f"\n### One asperity slid in 3-D: `{ds.attrs.get('scene', '')}` at each preset\n\n"
+    return (f"\n### One asperity slid in 3-D: `{ds.attrs.get('sliding_scene', '')}` at each preset\n\n"
             "The largest difference of each force history from the next finer preset's, over the finer "
             "run's largest force in the phase (at the step times both reached where their steps share "
             "a grid, else the finer interpolated); the solve's wall time on one core: "

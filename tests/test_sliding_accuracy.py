@@ -58,7 +58,7 @@ def test_the_study_compares_each_preset_with_the_next_finer():
     peak = 0.5 * (1 - np.exp(-(T_END - T_PRESS) / 200.0)) + 0.02
     assert float(d.sel(force="tangential_force", phase="sliding")) == pytest.approx(0.02 / peak, rel=1e-12)
     assert np.isnan(float(d.sel(force="tangential_force", phase="pressing")))
-    assert ds["dofs"].values.tolist() == [100, 400] and ds.attrs["scene"] == "s"
+    assert ds["dofs"].values.tolist() == [100, 400] and ds.attrs["sliding_scene"] == "s"
 
 
 def test_a_run_at_another_preset_is_refused():

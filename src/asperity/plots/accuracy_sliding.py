@@ -26,7 +26,7 @@ def sliding_accuracy_figure(ds: xr.Dataset) -> plt.Figure:
         for name, ls in (("normal_force", "-"), ("tangential_force", "--")):
             left.plot(t, 1e3 * d[f"history_{name}"].values, ls, color=f"C{i}", lw=1.2,
                       label=f"{preset}: {'F_N' if name == 'normal_force' else 'F_T'}")
-    left.set(xlabel="time [s]", ylabel="force [mN]", title=f"{ds.attrs.get('scene', '')}: forces on the flat")
+    left.set(xlabel="time [s]", ylabel="force [mN]", title=f"{ds.attrs.get('sliding_scene', '')}: forces on the flat")
     left.grid(True, alpha=0.3)
     left.legend(fontsize=7)
     styles = {("normal_force", "pressing"): ("o", "-"), ("normal_force", "sliding"): ("s", "-"),

@@ -118,5 +118,5 @@ def sliding_accuracy(runs: Mapping[str, xr.Dataset], presets: Sequence[str]) -> 
         "preset": ("preset", presets, attrs("", "accuracy preset of the sliding run")),
         "step": ("step", np.arange(steps), attrs("1", "step of a run's history")),
     }
-    return xr.Dataset(data, coords=coords, attrs={"scene": str(runs[presets[0]].attrs.get("scene", ""))
+    return xr.Dataset(data, coords=coords, attrs={"sliding_scene": str(runs[presets[0]].attrs.get("scene", ""))
                                                   .partition("@")[0]})
