@@ -76,7 +76,7 @@ rule accuracy_sliding:
 
 rule accuracy_inelastic:
     """Every case of config `accuracy_inelastic`: an inelastic asperity's meshes and
-    kinematics at each preset against a finer run.  Not in `rule all` (about 20 minutes):
+    kinematics at each preset against a finer run.  Not in `rule all` (most of an hour):
     snakemake --cores 2 accuracy_inelastic
     """
     input:
