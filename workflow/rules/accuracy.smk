@@ -27,7 +27,7 @@ rule accuracy_scenes:
     Not in `rule all` (it runs the scenes at `fine`): snakemake --cores 2 accuracy_scenes
     """
     input:
-        [f"{RESULTS}/{name}@{preset}/interface.nc" for name, preset in accuracy_scene_runs()],
+        [f"{scene_folder(name, preset)}/interface.nc" for name, preset in accuracy_scene_runs()],
     output:
         data=f"{RESULTS}/accuracy/scenes.nc",
         figure=report(

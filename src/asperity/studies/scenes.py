@@ -1,6 +1,7 @@
 """What accuracy costs for a whole scene: results/accuracy/scenes.nc.
 
-A scene run at each accuracy preset (``results/<scene>@<preset>/interface.nc``)
+A scene run at each accuracy preset (``results/<scene>@<preset>/interface.nc``, or the
+scene's own folder at the run's preset)
 gives the homogenized interface (report 2.5: the nominal pressure
 p = n E(F) and the real contact area ratio n E(A) of eq. 2.7, on the loading
 branch and, for scenes that unload, on the unloading branch of 8.3) and, in
