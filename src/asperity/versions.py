@@ -28,12 +28,13 @@ VERSIONS: dict[str, int] = {
     "sample:elastic": 1,
     "sample:inelastic": 4,
     "sample:adhesive": 6,
+    "sample:elliptic": 3,
     "asperities": 4,
     # homogenize (workflow/rules/homogenize.smk)
     "expectation": 1,
     "unloading": 1,
     "interface": 3,
-    "route_interface": 4,
+    "route_interface": 5,
     "verification": 1,
     # friction (workflow/rules/friction.smk)
     "friction": 2,

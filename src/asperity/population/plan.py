@@ -325,3 +325,35 @@ def make_aspect_plan(
                            f"{qj[0]:.3g} .. {qj[-1]:.3g} by scaling and interpolation in log aspect"
                            + (f", one job at {qc:.3g} to check it" if np.isfinite(qc) else ""))
     return ds
+
+
+def make_ratio_plan(ratios: np.ndarray, *, model: str, job_spec: Callable[[float], Mapping[str, Any]],
+                    reference_curvature: float) -> xr.Dataset:
+    """The jobs of elliptic summits (`asperity.population.kinds.elliptic`): one per curvature
+    ratio t = kappa_2 / kappa_1 of `ratios`, each at `reference_curvature` kappa_1; every
+    summit of the anisotropic density is derived from them by scaling (its kappa_1) and
+    interpolation in ln t (its ratio). `job_spec(ratio)` as the kind's spec; the key is
+    its hash."""
+    ratios = np.asarray(ratios, float)
+    specs = [spec_json(job_spec(float(t))) for t in ratios]
+    keys = np.array([_digest(text) for text in specs])
+    n = ratios.size
+    kref = float(reference_curvature)
+    ds = xr.Dataset(
+        {
+            "sample_ratio": ("sample", ratios, {"units": "1", "long_name": "curvature ratio kappa_2 / kappa_1 of the job's summit"}),
+            "job_curvature": ("sample", np.full(n, kref), {"units": "1/m", "long_name": "larger principal curvature kappa_1 of the job's summit"}),
+            "unloading_level": ("sample", np.full(n, np.nan), {"units": "m", "long_name": "interference from which the sample unloads (NaN: loading only)"}),
+            "key": ("sample", keys, {"units": "1", "long_name": "hash of the inputs of the sample's job"}),
+            "spec": ("sample", np.array(specs, dtype=object), {
+                "units": "1", "long_name": "what the sample's job depends on (JSON; its hash is the key)"}),
+            "derived_from": ("sample", np.full(n, ""), {"units": "1", "long_name": "key of the job this sample is derived from (empty: computed itself)"}),
+            "job": ("sample", np.ones(n, bool), {"units": "1", "long_name": "sample needs a finite element job"}),
+        },
+        coords={"sample": ("sample", np.arange(n), {"units": "1", "long_name": "sample index"})},
+    )
+    ds.attrs["model"] = model
+    ds.attrs["reference_curvature"] = kref
+    ds.attrs["derived"] = (f"every summit derived from {n} jobs at curvature ratios {ratios[0]:.3g} .. "
+                           f"{ratios[-1]:.3g} by scaling in kappa_1 and interpolation in ln(kappa_2 / kappa_1)")
+    return ds

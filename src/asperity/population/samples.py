@@ -37,9 +37,12 @@ def scene_plan(surface_ds: xr.Dataset, population: Population, asperity: Asperit
     """The samples a scene needs (DESIGN.md: the plan): heights x curvatures (x the
     unloading levels of each), their keys and specs, which are derived, and the
     attributes the later stages need (``kind``, ``support``, ...); `adhesion` is used
-    with the effect ``adhesion``."""
-    kind = kind_of(asperity.model, effects)
+    with the effect ``adhesion``. Elliptic summits (``geometry: elliptic``) are planned
+    over their curvature ratio instead (`elliptic_plan`)."""
+    kind = kind_of(asperity.model, effects, asperity.geometry)
     kind.check(asperity, material, effects)
+    if kind.name == "elliptic":
+        return elliptic_plan(surface_ds, asperity, material, accuracy)
     density = population_density(surface_ds, population)
     threshold = population.support_threshold
     z0, z1, k0, k1 = bounds(density, population.height_range, population.curvature_range, threshold)
@@ -110,6 +113,41 @@ def scene_plan(surface_ds: xr.Dataset, population: Population, asperity: Asperit
     out.attrs["support_threshold"] = threshold
     out.attrs.update(kind.plan_attrs(planning))
     log.info("plan: %d samples, %s", out.sizes["sample"], out.attrs["derived"])
+    return out
+
+
+def elliptic_plan(surface_ds: xr.Dataset, asperity: Asperity, material: Material,
+                  accuracy: str) -> xr.Dataset:
+    """The jobs of the elliptic summits of the Gaussian anisotropic surface of surface.nc's
+    spectral moments (`asperity.population.kinds.elliptic`): `Asperity.ratios` curvature
+    ratios geometrically spaced from the 5 % quantile of t = kappa_2 / kappa_1 over the
+    summits (at least `SMALLEST_RATIO`) to 1, at the reference curvature (the scene's, or
+    the summits' median kappa_1); each job's range reaches the deepest interference of
+    any summit of the density's support (its height span times its largest kappa_1, in
+    the reference curvature's units), or `Asperity.yield_multiple` times first yield."""
+    from asperity.peaks.anisotropic import AnisotropicDensity
+    from asperity.population.kinds.elliptic import ELLIPTIC, RATIO_QUANTILE, SMALLEST_RATIO
+    from asperity.population.plan import geometric_levels, make_ratio_plan
+
+    density = AnisotropicDensity.from_surface(surface_ds)
+    _, k1, t, weight = density.nodes()
+
+    def quantile(values, share, q):
+        cumulative = np.cumsum(share) / np.sum(share)
+        return float(values[min(int(np.searchsorted(cumulative, q)), values.size - 1)])
+
+    smallest = max(quantile(t, weight.sum(axis=(0, 1)), RATIO_QUANTILE), SMALLEST_RATIO)
+    ratios = geometric_levels(smallest, 1.0, asperity.ratios) if smallest < 1.0 else np.array([1.0])
+    reference = asperity.reference_curvature or quantile(k1, weight.sum(axis=(0, 2)), 0.5)
+    z_lo, z_hi, k_max = density.support()
+    deepest = (z_hi - z_lo) * k_max / reference
+    out = make_ratio_plan(ratios, model=asperity.model, reference_curvature=reference,
+                          job_spec=lambda r: ELLIPTIC.ratio_spec(material, accuracy, reference, r, deepest,
+                                                                 asperity.yield_multiple))
+    out.attrs.update(kind=ELLIPTIC.name, shift_invariant=1,
+                     support=f"kappa_2 / kappa_1 [{smallest:.4g}, 1] (the {RATIO_QUANTILE:.0%} quantile "
+                             f"of the summits, at least {SMALLEST_RATIO:.4g})")
+    log.info("plan: %d elliptic jobs, %s", out.sizes["sample"], out.attrs["derived"])
     return out
 
 

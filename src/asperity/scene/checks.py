@@ -30,9 +30,10 @@ from typing import Any, Mapping
 from asperity import units as unit_table
 
 __all__ = ["SceneError", "GEOMETRIES", "E_RANGE", "YIELD_OVER_E_MIN", "require_geometry",
+           "require_elliptic_route",
            "check_material", "check_scene", "text_number_hint"]
 
-GEOMETRIES = ("sphere", "paraboloid", "cosine")
+GEOMETRIES = ("sphere", "paraboloid", "cosine", "elliptic")
 #: the Young's moduli a solid has [Pa]
 E_RANGE = (1e3, 2e12)
 #: the smallest yield stress over Young's modulus of a metal
@@ -66,12 +67,24 @@ def require_geometry(section: Mapping[str, Any] | None, key: str = "asperity") -
     if not section or section.get("model") != "fe":
         return
     geometry = section.get("geometry")
-    allowed = " | ".join(GEOMETRIES)
-    if geometry is None:
+    if geometry is None:  # elliptic summits serve one route alone (`require_elliptic_route`)
         raise SceneError(f"{key}.geometry", "an FE asperity (model: fe) needs its geometry",
-                         f"add geometry: {allowed}")
+                         f"add geometry: {' | '.join(g for g in GEOMETRIES if g != 'elliptic')}")
     if geometry not in GEOMETRIES:
-        raise SceneError(f"{key}.geometry", f"unknown geometry {geometry!r}", f"use one of {allowed}")
+        raise SceneError(f"{key}.geometry", f"unknown geometry {geometry!r}",
+                         f"use one of {' | '.join(GEOMETRIES)}")
+
+
+def require_elliptic_route(asperity: Mapping[str, Any] | None, route: Mapping[str, Any] | None,
+                           key: str = "asperity") -> None:
+    """Elliptic FE summits (``geometry: elliptic``) serve the anisotropic route's ``law: fe``
+    alone: the isotropic homogenization has no curvature ratio to integrate over."""
+    if not asperity or asperity.get("geometry") != "elliptic":
+        return
+    route = route or {}
+    if route.get("kind") != "anisotropic" or route.get("law") != "fe":
+        raise SceneError(f"{key}.geometry", "elliptic summits serve the anisotropic route alone",
+                         "add route: {kind: anisotropic, law: fe}, or use geometry: sphere")
 
 
 def _likely_unit(value: float, ok, typical: float) -> str | None:
@@ -137,10 +150,12 @@ def check_scene(scene: Mapping[str, Any], file=None) -> None:
     try:
         pressure = (scene.get("units") or {}).get("pressure", "MPa")
         require_geometry(scene.get("asperity"))
+        require_elliptic_route(scene.get("asperity"), scene.get("route"))
         check_material(scene.get("material"), pressure)
         for name, route in (scene.get("routes") or {}).items():
             if isinstance(route, Mapping):
                 require_geometry(route.get("asperity"), f"routes.{name}.asperity")
+                require_elliptic_route(route.get("asperity"), route.get("route"), f"routes.{name}.asperity")
     except SceneError as err:
         raise err.in_file(file) if file is not None else err from None
 

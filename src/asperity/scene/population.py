@@ -83,7 +83,7 @@ class Asperity:
     """The response of one asperity (report 2.6.2, 6.1, 2.5.1, 8.2, 8.3).
 
     model: ``hertz``, ``constant`` or ``fe``; value: X of the ``constant`` check;
-    geometry: ``sphere``, ``paraboloid`` or ``cosine`` (fe); mapping:
+    geometry: ``sphere``, ``paraboloid``, ``cosine`` or ``elliptic`` (fe); mapping:
     ``representative`` or ``coupled`` (cosine); width_to_height: of the
     representative hill (None: from the surface's rms slope); levels: interference
     levels of an elastic FE job; contact: ``penalty`` or ``exact``;
@@ -96,7 +96,9 @@ class Asperity:
     edge_band: inelastic jobs refine their mesh where the plastic contact edge goes
     (the preset's `asperity.fe.presets.EDGE_SIZE`); None (not set): at standard for a
     rate-independent body, and at fine for every body
-    (`asperity.population.kinds.inelastic.wants_band`).
+    (`asperity.population.kinds.inelastic.wants_band`); ratios, yield_multiple: the 3-D
+    jobs of elliptic summits (``geometry: elliptic``), how many curvature ratios and how far
+    each presses, in interferences of first yield (`asperity.population.kinds.elliptic`).
     """
 
     model: str
@@ -117,6 +119,8 @@ class Asperity:
     aspects: int = 6
     aspect_check: bool = False
     edge_band: bool | None = None
+    ratios: int = 3
+    yield_multiple: float = 1000.0
 
     @classmethod
     @parses("asperity")
@@ -136,7 +140,8 @@ class Asperity:
             unloading_check=section["unloading_check"], scaling=section["scaling"],
             reference_curvature=reference / length if reference else None,
             aspects=section.get("aspects", 6), aspect_check=section.get("aspect_check", False),
-            edge_band=section.get("edge_band"),
+            edge_band=section.get("edge_band"), ratios=section.get("ratios", 3),
+            yield_multiple=section.get("yield_multiple", 1000.0),
         )
         require_geometry(section)  # after the keys: a missing one is named first
         return asperity

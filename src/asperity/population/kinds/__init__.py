@@ -15,8 +15,9 @@ gather, every question that differs between asperities:
 The kinds, in `KINDS` by name: ``hertz`` (the closed form of 6.1, no job of its
 own), ``elastic`` (FE, 6.1, 7.2), ``inelastic`` (FE with J2 or Bodner-Partom, loaded
 and unloaded from levels, 7.3, 8.2, 8.3), ``adhesive`` (FE with Lennard-Jones
-adhesion, 3.3.3, 7.3). A scene chooses one through its asperity model and effects
-(`kind_of`); a job chooses its kind from its spec (`kind_of_spec`); the gather from
+adhesion, 3.3.3, 7.3), ``elliptic`` (3-D FE elliptic paraboloids of a J2 body, one per
+curvature ratio, for the anisotropic route: 2.4.2, 2.5.2). A scene chooses one through its
+asperity model, geometry and effects (`kind_of`); a job chooses its kind from its spec (`kind_of_spec`); the gather from
 the plan (`kind_of_plan`). A new effect is a new kind: one module, registered here.
 
 Each kind has a code version, ``sample:<name>`` in `asperity.versions.VERSIONS`: bumped
@@ -34,21 +35,24 @@ import xarray as xr
 from asperity.population.kinds.adhesive import ADHESIVE
 from asperity.population.kinds.base import FiniteElementKind, Kind, Planning, SampleFailed
 from asperity.population.kinds.elastic import ELASTIC
+from asperity.population.kinds.elliptic import ELLIPTIC
 from asperity.population.kinds.hertz import HERTZ
 from asperity.population.kinds.inelastic import INELASTIC
 
 Config = Mapping[str, Any]
 
 #: every kind, by name
-KINDS: dict[str, Kind] = {kind.name: kind for kind in (HERTZ, ELASTIC, INELASTIC, ADHESIVE)}
+KINDS: dict[str, Kind] = {kind.name: kind for kind in (HERTZ, ELASTIC, INELASTIC, ADHESIVE, ELLIPTIC)}
 
 __all__ = ["KINDS", "FiniteElementKind", "Kind", "Planning", "SampleFailed", "kind_of",
            "kind_of_plan", "kind_of_spec"]
 
 
-def kind_of(model: str, effects) -> Kind:
-    """The kind of a scene's asperity ``model`` under its ``effects``."""
+def kind_of(model: str, effects, geometry: str | None = None) -> Kind:
+    """The kind of a scene's asperity ``model`` (and FE ``geometry``) under its ``effects``."""
     effects = set(effects)
+    if model == "fe" and geometry == "elliptic":
+        return KINDS["elliptic"]
     if model == "hertz":
         if "adhesion" in effects:
             raise ValueError("effect `adhesion` needs a finite element asperity (asperity.model: fe)")
@@ -65,7 +69,7 @@ def kind_of(model: str, effects) -> Kind:
 
 def kind_of_spec(spec: Config) -> Kind:
     """The kind of a sample job from its spec."""
-    return kind_of(spec["model"], spec.get("effects", ()))
+    return kind_of(spec["model"], spec.get("effects", ()), spec.get("geometry"))
 
 
 def kind_of_plan(plan: xr.Dataset) -> Kind:
