@@ -268,7 +268,7 @@ def test_the_anisotropic_fe_law_is_elliptic_hertz_with_the_spheres_departure():
     Hertz's / (1 + 300 w kappa) (a departure of w/R alone) divides each summit's force by
     1 + 300 w kappa_p, kappa_p its peak-pressure curvature, on Hertz's area (against a
     direct quadrature, 1e-3), its stiffness by the product rule (central differences of the
-    pressure, 2e-3); past the sphere's computed reach the ratio is held; without
+    pressure, 2e-3); past the sphere's computed reach the ratio is held and marked; without
     asperities the route says what it needs."""
     import xarray as xr
     import yaml
@@ -336,7 +336,8 @@ def test_the_anisotropic_fe_law_is_elliptic_hertz_with_the_spheres_departure():
     reach = grid[None, :] * curvature[:, None] > 1e-3
     held = routes.sphere_departure(table(np.where(reach, 0.1, 1.0 / (1.0 + c * grid[None, :]
                                                                    * curvature[:, None])), reach), modulus)
-    rf = held(np.array([1e-4, 5e-3, 1e-1]))[0]  # the grid's last computed level, within 1e-3 of it
+    rf, _, _, beyond = held(np.array([1e-4, 5e-3, 1e-1]), 1.0)  # the grid's last computed level, within 1e-3 of it
     np.testing.assert_allclose(rf, [1 / 1.03, 1 / 1.3, 1 / 1.3], rtol=1e-3)
+    np.testing.assert_array_equal(beyond, [False, True, True])
     with pytest.raises(ValueError, match="route.law fe needs the scene's finite element asperities"):
         interface(law="fe")

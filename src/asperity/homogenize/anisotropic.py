@@ -27,8 +27,12 @@ mean curvature (kappa_1 + kappa_2) / 2 instead: the isotropic route's asperity o
 anisotropic density, which separates the effect of the summits' shape from that of
 their statistics.
 
-``fe`` is the elliptic contact times the departure of a finite element sphere from
-Hertz's (force and area ratios, `with_departure`), read at equal Hertz peak pressure:
+``fe`` is the elliptic contact times a departure from Hertz (force and area ratios,
+`with_departure`) of finite element asperities: of 3-D elliptic paraboloids computed at a
+few curvature ratios (`asperity.population.kinds.elliptic`; the ratio of the J2 body to
+the elastic one, interpolated in ln t: `asperity.stages.routes.elliptic_departure`), or
+of an axisymmetric sphere (`asperity.stages.routes.sphere_departure`); both are read at
+equal Hertz peak pressure:
 the ellipse's p0 = 3 F / (2 pi a b) = (3 c_F / (2 c_A)) E* sqrt(w kappa_1) is a sphere's
 p0 = (2 / pi) E* sqrt(w kappa) at the same w for kappa = (3 pi c_F / (4 c_A))^2
 kappa_1 (`peak_pressure_curvature`; kappa_1 itself when t = 1).  First yield of a Hertz
@@ -47,8 +51,12 @@ from typing import Callable
 import numpy as np
 import xarray as xr
 
+from asperity.homogenize.validity import EXTRAPOLATED_FORCE
 from asperity.peaks.anisotropic import AnisotropicDensity
 from asperity.units import attrs
+
+#: the sum validity.assess turns into extrapolated_load_fraction
+EXTRAPOLATED = f"{EXTRAPOLATED_FORCE}_per_unit_area"
 
 __all__ = ["LAWS", "elliptic_law", "mean_curvature_law", "peak_pressure_curvature", "with_departure",
            "anisotropic_interface"]
@@ -56,7 +64,8 @@ __all__ = ["LAWS", "elliptic_law", "mean_curvature_law", "peak_pressure_curvatur
 #: the summit laws of the anisotropic route
 LAWS = ("elliptic", "hertz", "fe")
 
-#: law(w, kappa_1, t) -> (force, contact_area, stiffness, contact_radius), broadcasting
+#: law(w, kappa_1, t) -> (force, contact_area, stiffness, contact_radius[, beyond]), broadcasting;
+#: beyond: True where the response was extrapolated past what was computed
 Law = Callable[[np.ndarray, np.ndarray, np.ndarray], tuple]
 
 
@@ -101,17 +110,19 @@ def mean_curvature_law(contact_modulus: float) -> Law:
 
 
 def with_departure(base: Law, departure: Callable) -> Law:
-    """`base` (``elliptic_law``) times the departure of a sphere from Hertz read at equal
-    Hertz peak pressure (module docstring): ``departure(s)`` gives the force and area
-    ratios and their slopes in s = w kappa of a sphere of curvature kappa, taken at
-    s = w `peak_pressure_curvature`; the stiffness by the product rule, the contact radius
-    with the square root of the area ratio."""
+    """`base` (``elliptic_law``) times a departure from Hertz read at equal Hertz peak
+    pressure (module docstring): ``departure(s, t)`` gives the force and area ratios, the
+    force ratio's slope in s and whether s lies past what was computed, at s = w
+    `peak_pressure_curvature` and ratio t (a sphere's ignores t); the stiffness by the
+    product rule, the contact radius with the square root of the area ratio. The law
+    returns a fifth array, True where the departure was held past its computed range
+    (`anisotropic_interface` counts the load there)."""
     def law(w, k1, t):
         w = np.maximum(w, 0.0)
         k = peak_pressure_curvature(k1, t)
         force, area, stiffness, radius = base(w, k1, t)
-        rf, ra, drf, _ = departure(w * k)
-        return force * rf, area * ra, stiffness * rf + force * drf * k, radius * np.sqrt(ra)
+        rf, ra, drf, beyond = departure(w * k, t)
+        return force * rf, area * ra, stiffness * rf + force * drf * k, radius * np.sqrt(ra), beyond
 
     return law
 
@@ -122,21 +133,26 @@ def anisotropic_interface(density: AnisotropicDensity, law: Law, separations,
     `density` against a flat at each separation [m] (module docstring), with the sums
     the validity of independent asperities takes (`asperity.homogenize.validity.assess`):
     the mean contact radius and, with a finite `yield_pressure` [Pa], the share of
-    contacting summits whose mean contact pressure F/A exceeds it."""
+    contacting summits whose mean contact pressure F/A exceeds it; where the law marks
+    its extrapolated responses (a fifth array), the pressure they carry."""
     h = np.asarray(separations, dtype=float)
     names = ("nominal_pressure", "contact_area_ratio", "normal_stiffness", "contact_count",
-             "contact_radius_per_unit_area", "yielded_per_unit_area")
+             "contact_radius_per_unit_area", "yielded_per_unit_area", EXTRAPOLATED)
     out = {k: np.zeros(h.size) for k in names}
+    extrapolates = len(law(np.ones(1), np.ones(1), np.ones(1))) == 5
     for i, hk in enumerate(h):  # one quadrature per separation (its own cells above z = h)
         z, k1, t, weight = density.nodes(above=hk)
         if not weight.size:
             continue
-        force, area, stiffness, radius = law(z[:, None, None] - hk, k1[None, :, None], t[None, None, :])
+        force, area, stiffness, radius, *beyond = law(z[:, None, None] - hk, k1[None, :, None],
+                                                      t[None, None, :])
         touching = (z[:, None, None] > hk) * np.ones(weight.shape)
         for name, value in (("nominal_pressure", force), ("contact_area_ratio", area),
                             ("normal_stiffness", stiffness), ("contact_count", touching),
                             ("contact_radius_per_unit_area", radius)):
             out[name][i] = float(np.sum(value * weight))
+        if beyond:
+            out[EXTRAPOLATED][i] = float(np.sum(force * beyond[0] * weight))
         if math.isfinite(yield_pressure):
             out["yielded_per_unit_area"][i] = float(np.sum((force > yield_pressure * area) * weight))
     meta = {
@@ -148,8 +164,12 @@ def anisotropic_interface(density: AnisotropicDensity, law: Law, separations,
         "yielded_per_unit_area": ("1/m^2", "summits in contact with F/A above the yield pressure, "
                                   "per unit area"),
     }
+    meta[EXTRAPOLATED] = ("Pa", "nominal pressure carried by summits past the computed departure "
+                          "from Hertz (held there)")
     if not math.isfinite(yield_pressure):
         del out["yielded_per_unit_area"], meta["yielded_per_unit_area"]
+    if not extrapolates:
+        del out[EXTRAPOLATED], meta[EXTRAPOLATED]
     data = {k: ("separation", out[k], attrs(*meta[k])) for k in out}
     data["mean_gap"] = ("separation", h.copy(), attrs(
         "m", "mean gap: the separation (independent summits move no mean plane)"))

@@ -102,7 +102,8 @@ _INDEPENDENT = ("the contacts are no longer independent asperities (2.5): the bo
 REMEDIES = {
     "extrapolated_load_fraction": (
         "asperities pressed beyond their FE job's range (asperity.max_height_fraction of a hill, "
-        "max_radius_fraction of a sphere) carry that load, continued in a straight line; with the "
+        "max_radius_fraction of a sphere, yield_multiple of an elliptic summit) carry that load, "
+        "continued in a straight line (an anisotropic route's departure from Hertz: held); with the "
         "representative mapping, asperity.mapping: coupled presses a hill by at most its amplitude (2.5.1)"),
     "yielded_fraction": ("elastic asperities beyond first yield: asperity.model: fe with "
                          "effects: [plasticity]"),

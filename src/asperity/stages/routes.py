@@ -198,11 +198,60 @@ def sphere_departure(asperities: xr.Dataset, modulus: float):
         return one, one, 0.0 * one, 0.0 * one
 
     law = departure_law(unit, model, sphere, reach)
+    top = float(reach[best]) * k
 
-    def departure(s):
+    def departure(s, t):
         s = np.asarray(s, dtype=float)
-        rf, ra, drf, dra = law(s / k, np.full(s.shape, best))
-        return rf, ra, drf / k, dra / k
+        rf, ra, drf, _ = law(s / k, np.full(s.shape, best))
+        return rf, ra, drf / k, s > top
+
+    return departure
+
+
+def _log_interp(s, nodes, values):
+    """Values at `s` > 0 of the piecewise linear function of ln s through (`nodes`,
+    `values`) (nodes increasing), held past the ends, and its slope d/ds there."""
+    x, lx = np.log(np.maximum(s, nodes[0])), np.log(nodes)
+    i = np.clip(np.searchsorted(lx, x) - 1, 0, lx.size - 2)
+    slope = (values[i + 1] - values[i]) / (lx[i + 1] - lx[i])
+    inside = (s > nodes[0]) & (s < nodes[-1])
+    value = np.where(s >= nodes[-1], values[-1], values[i] + slope * (x - lx[i]))
+    return value, np.where(inside, slope / np.maximum(s, nodes[0]), 0.0)
+
+
+def elliptic_departure(asperities: xr.Dataset):
+    """``departure(s, t)``: the force and area ratios of the J2 elliptic summit of ratio t
+    to the elastic one (`asperity.population.kinds.elliptic`: asperities.nc on (ratio,
+    level)), the force ratio's slope in s, and whether s lies past the jobs' reach, for
+    `asperity.homogenize.anisotropic.with_departure`. s = w kappa, kappa the curvature of
+    the sphere of equal Hertz peak pressure (the jobs' ``scaled_interference``): each job's
+    ratios are piecewise linear in ln s, held below its first level (elastic there) and
+    past its last; between two jobs' ratios linear in ln t; a ratio outside the jobs'
+    takes the nearest job's at equal s, that is at equal peak pressure, the equivalence
+    `sphere_departure` rests on (within 2 % for the J2 ellipse of t = 1/4:
+    tests/fe/test_elliptic_3d.py)."""
+    ratios = asperities["ratio"].values.astype(float)
+    scaled = asperities["scaled_interference"].values
+    force, area = (asperities[k].values for k in ("force_departure", "area_departure"))
+    reach = scaled[:, -1]
+    lt = np.log(ratios)
+
+    def departure(s, t):
+        s, t = np.broadcast_arrays(np.asarray(s, dtype=float), np.asarray(t, dtype=float))
+        per_job = [[_log_interp(s, scaled[j], v[j]) for v in (force, area)] for j in range(ratios.size)]
+        rf, drf = (np.stack([job[0][m] for job in per_job]) for m in (0, 1))  # (job, ...)
+        ra = np.stack([job[1][0] for job in per_job])
+        if ratios.size == 1:
+            return rf[0], ra[0], drf[0], s > reach[0]
+        x = np.clip(np.log(np.maximum(t, 1e-300)), lt[0], lt[-1])
+        j = np.clip(np.searchsorted(lt, x) - 1, 0, lt.size - 2)
+        u = (x - lt[j]) / (lt[j + 1] - lt[j])
+
+        def mix(a):
+            return ((1.0 - u) * np.take_along_axis(a, j[None], axis=0)[0]
+                    + u * np.take_along_axis(a, j[None] + 1, axis=0)[0])
+
+        return mix(rf), mix(ra), mix(drf), s > np.minimum(reach[j], reach[j + 1])
 
     return departure
 
@@ -261,8 +310,9 @@ def _anisotropic(h, surface_ds: xr.Dataset, route_cfg: Config, material_cfg: Con
     """The summits of the Gaussian anisotropic surface of the map's spectral moments (its
     derivative covariances at the scene's lateral scale, surface.nc), each an elliptic
     Hertz contact (``law: elliptic``), the sphere of its mean curvature (``hertz``) or the
-    elliptic contact with the departure of the scene's finite element sphere from Hertz at
-    equal peak pressure (``fe``: `sphere_departure`), independent (report 2.4.2, 2.5.2:
+    elliptic contact with the departure from Hertz of the scene's finite element asperities
+    (``fe``): its 3-D elliptic summits over the curvature ratio (`elliptic_departure`), or
+    its sphere at equal peak pressure (`sphere_departure`); independent (report 2.4.2, 2.5.2:
     `asperity.homogenize.anisotropic`), with the validity of independent asperities
     (`asperity.homogenize.validity.assess`: yield, contact area, interaction, plasticity
     index, Gaussian heights)."""
@@ -283,8 +333,10 @@ def _anisotropic(h, surface_ds: xr.Dataset, route_cfg: Config, material_cfg: Con
     elif kind == "fe":
         if asperities is None:
             raise ValueError("route.law fe needs the scene's finite element asperities "
-                             "(asperity: {model: fe, geometry: sphere} and a population)")
-        law = anisotropic.with_departure(anisotropic.elliptic_law(modulus), sphere_departure(asperities, modulus))
+                             "(asperity: {model: fe, geometry: elliptic or sphere})")
+        departure = (elliptic_departure(asperities) if "ratio" in asperities.dims
+                     else sphere_departure(asperities, modulus))
+        law = anisotropic.with_departure(anisotropic.elliptic_law(modulus), departure)
     else:
         law = anisotropic.elliptic_law(modulus)
     out = anisotropic.anisotropic_interface(density, law, h, plastic.yield_pressure)
