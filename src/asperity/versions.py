@@ -28,7 +28,7 @@ VERSIONS: dict[str, int] = {
     "sample:elastic": 1,
     "sample:inelastic": 4,
     "sample:adhesive": 6,
-    "sample:elliptic": 3,
+    "sample:elliptic": 4,
     "asperities": 4,
     # homogenize (workflow/rules/homogenize.smk)
     "expectation": 1,

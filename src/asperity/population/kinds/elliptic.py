@@ -140,7 +140,8 @@ class Elliptic(FiniteElementKind):
                                       where)
                 rows[name].append(ds)
         out = _levels_dataset(rows, levels, hertz)
-        out.attrs.update(ratio=t, steps=int(sum(ds.attrs["steps"] for ds in rows["j2"])))
+        out.attrs.update(ratio=t, steps=int(sum(ds.attrs["steps"] for ds in rows["j2"])),
+                         accuracy=spec["accuracy"])
         return self.record(out, spec, key, geometry, math.nan, time.process_time() - cpu)
 
     def gather(self, plan, samples):
