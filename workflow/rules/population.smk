@@ -11,6 +11,9 @@ checkpoint plan:
         f"{RESULTS}/{{scene}}/plan.nc",
     log:
         f"{RESULTS}/{{scene}}/logs/plan.log",
+    # the plan and the FE samples first: the finite element jobs are a run's longest, and
+    # started last they end it alone on one core
+    priority: 10
     conda:
         ENV
     params:
@@ -38,6 +41,7 @@ rule sample:
     # reran every FE sample ("code has changed")
     wildcard_constraints:
         key="[0-9a-f]{12}",
+    priority: 10
     conda:
         ENV
     params:
