@@ -139,7 +139,7 @@ def anisotropic_interface(density: AnisotropicDensity, law: Law, separations,
     names = ("nominal_pressure", "contact_area_ratio", "normal_stiffness", "contact_count",
              "contact_radius_per_unit_area", "yielded_per_unit_area", EXTRAPOLATED)
     out = {k: np.zeros(h.size) for k in names}
-    extrapolates = len(law(np.ones(1), np.ones(1), np.ones(1))) == 5
+    extrapolates = False  # whether the law marks its extrapolated responses
     for i, hk in enumerate(h):  # one quadrature per separation (its own cells above z = h)
         z, k1, t, weight = density.nodes(above=hk)
         if not weight.size:
@@ -152,6 +152,7 @@ def anisotropic_interface(density: AnisotropicDensity, law: Law, separations,
                             ("contact_radius_per_unit_area", radius)):
             out[name][i] = float(np.sum(value * weight))
         if beyond:
+            extrapolates = True
             out[EXTRAPOLATED][i] = float(np.sum(force * beyond[0] * weight))
         if math.isfinite(yield_pressure):
             out["yielded_per_unit_area"][i] = float(np.sum((force > yield_pressure * area) * weight))

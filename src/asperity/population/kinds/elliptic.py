@@ -64,11 +64,12 @@ def first_yield(curvature: float, ratio: float, material: Material) -> float:
     """The interference [m] of first yield of the sphere of equal Hertz peak pressure of the
     elliptic paraboloid of `curvature` kappa_1 [1/m] and `ratio` (module docstring)."""
     from asperity.homogenize.anisotropic import peak_pressure_curvature
+    from asperity.references.hertz import plane_strain_modulus
     from asperity.references.kogut_etsion import critical_interference
 
     kappa = float(peak_pressure_curvature(np.array(curvature), np.array(ratio)))
-    modulus = material.youngs_modulus / (1.0 - material.poisson ** 2)
-    return critical_interference(1.0 / kappa, modulus, material.poisson, material.yield_stress)
+    return critical_interference(1.0 / kappa, plane_strain_modulus(material.youngs_modulus, material.poisson),
+                                 material.poisson, material.yield_stress)
 
 
 class Elliptic(FiniteElementKind):
